@@ -1,0 +1,163 @@
+//! The bake pipeline: validate → weld → drop degenerate triangles → adjacency → classify → split
+//! normals → assemble the asset. Each step's time is recorded for `chamfer bake --timings`.
+
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+use chamfer_runtime::asset::{Asset, Header, Indices, Stats, pack_attributes};
+use glam::Vec3;
+
+use crate::mesh::{Mark, Mesh, MeshError};
+use crate::{BakeOptions, Error, adjacency, classify, degenerate, load, normals, weld};
+
+/// A baked asset and what it took.
+#[derive(Clone, Debug)]
+pub struct Baked {
+    /// The asset, ready to [`encode`](Asset::encode).
+    pub asset: Asset,
+    /// Time per step.
+    pub timings: Timings,
+    /// Bytes the loaded mesh occupied in memory (the yardstick for peak memory).
+    pub mesh_bytes: usize,
+    /// What the loader skipped or ignored.
+    pub warnings: Vec<String>,
+}
+
+/// Wall-clock time of each bake step.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Timings {
+    /// Reading and parsing the file (zero when baking an in-memory mesh).
+    pub parse: Duration,
+    /// Welding, remapping triangles and dropping degenerate ones.
+    pub weld: Duration,
+    /// Building unique edges.
+    pub adjacency: Duration,
+    /// Classifying and dropping coplanar edges.
+    pub classify: Duration,
+    /// Splitting normals into render vertices.
+    pub normals: Duration,
+    /// Packing the asset's sections.
+    pub assemble: Duration,
+}
+
+impl Timings {
+    /// Everything but parsing.
+    pub fn processing(&self) -> Duration {
+        self.weld + self.adjacency + self.classify + self.normals + self.assemble
+    }
+}
+
+/// Loads and bakes one file; errors name the file.
+pub fn bake_file(path: &Path, options: &BakeOptions) -> Result<Baked, Error> {
+    options.validate()?;
+    let start = Instant::now();
+    let loaded = load::load(path)?;
+    let parse = start.elapsed();
+    let name = path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
+    let mut baked = bake(loaded.mesh, &name, options).map_err(|e| match e {
+        Error::Mesh { source, .. } => Error::Mesh { path: path.to_owned(), source },
+        other => other,
+    })?;
+    baked.timings.parse = parse;
+    baked.warnings = loaded.warnings;
+    Ok(baked)
+}
+
+/// Bakes an in-memory mesh; `source` names it in the asset and in errors.
+///
+/// Consumes the mesh so its arrays can be freed as soon as each step is done with them.
+/// The result depends only on the mesh and the options, never on the thread count.
+pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Error> {
+    options.validate()?;
+    let mesh_error = |source_error| Error::Mesh { path: source.into(), source: source_error };
+    mesh.validate().map_err(mesh_error)?;
+    let mesh_bytes = mesh.memory_bytes();
+    let mut stats = Stats {
+        input_vertices: mesh.positions.len() as u64,
+        input_triangles: mesh.triangles.len() as u64,
+        ..Stats::default()
+    };
+    let mut timings = Timings::default();
+    let mut clock = Instant::now();
+    let mut lap = |slot: &mut Duration| {
+        *slot = clock.elapsed();
+        clock = Instant::now();
+    };
+
+    let Mesh { positions, mut triangles, mut materials, marks, .. } = mesh;
+    let welded = weld::weld(&positions, options.weld_epsilon);
+    drop(positions);
+    for t in &mut triangles {
+        *t = t.map(|i| welded.remap[i as usize]);
+    }
+    let marks: Vec<Mark> =
+        marks.iter().map(|m| Mark { vertices: m.vertices.map(|i| welded.remap[i as usize]), ..*m }).collect();
+    let positions = welded.positions;
+    stats.welded_vertices = positions.len() as u64;
+    if materials.windows(2).all(|w| w[0] == w[1]) {
+        materials = Vec::new(); // one material: no seams to look for
+    }
+    stats.degenerate_triangles = degenerate::remove_degenerate(&mut triangles, &mut materials, &positions) as u64;
+    if triangles.is_empty() {
+        return Err(mesh_error(MeshError::AllDegenerate { count: stats.degenerate_triangles as usize }));
+    }
+    lap(&mut timings.weld);
+
+    let mut edges = adjacency::adjacency(&triangles, &materials, positions.len());
+    drop(materials);
+    lap(&mut timings.adjacency);
+
+    stats.edges = classify::classify(&positions, &mut edges, &marks, options.coplanar_deg, options.crease_deg);
+    lap(&mut timings.classify);
+
+    let render = normals::split_normals(&positions, &triangles, &edges);
+    drop(triangles);
+    lap(&mut timings.normals);
+
+    let asset = assemble(source, options, stats, &positions, edges, render);
+    lap(&mut timings.assemble);
+    Ok(Baked { asset, timings, mesh_bytes, warnings: Vec::new() })
+}
+
+/// Packs the results into the asset's sections, as narrow as the counts allow.
+fn assemble(
+    source: &str,
+    options: &BakeOptions,
+    stats: Stats,
+    positions: &[Vec3],
+    edges: adjacency::Edges,
+    render: normals::RenderMesh,
+) -> Asset {
+    let (bounds_min, bounds_max) = positions
+        .iter()
+        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+    let radius_scale = edges.radii.iter().fold(0.0f32, |m, &r| m.max(r));
+    let edge_attributes = edges
+        .flags
+        .iter()
+        .enumerate()
+        .map(|(e, &flags)| pack_attributes(flags, edges.radii.get(e).copied().unwrap_or(0.0), radius_scale))
+        .collect();
+    let render_vertices = render.positions.len();
+    let edge_vertices: Vec<u32> = bytemuck::allocation::cast_vec(edges.vertices);
+    Asset {
+        header: Header {
+            source: source.to_owned(),
+            generator: concat!("chamfer-preprocess ", env!("CARGO_PKG_VERSION")).to_owned(),
+            settings: options.describe(),
+            bounds_min: bounds_min.to_array(),
+            bounds_max: bounds_max.to_array(),
+            radius_scale,
+            stats,
+            sections: Vec::new(),
+        },
+        render_positions: render.positions,
+        render_normals: render.normals,
+        mesh_indices: Indices::with_bound(render.indices, render_vertices),
+        topology_positions: positions.iter().map(|p| p.to_array()).collect(),
+        edge_vertices: Indices::with_bound(edge_vertices, positions.len()),
+        edge_attributes,
+        next_ends: Indices::default(),
+        cap_heads: Indices::default(),
+    }
+}

@@ -1,0 +1,69 @@
+//! The library's one error type: every variant names the file and what is wrong with it.
+
+use std::path::PathBuf;
+
+use crate::mesh::MeshError;
+use crate::options::OptionsError;
+
+/// Why a load, bake or write failed.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// The file could not be read.
+    #[error("{}: cannot read: {source}", path.display())]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// The output could not be written.
+    #[error("{}: cannot write: {source}", path.display())]
+    Write {
+        /// The output file.
+        path: PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// The file is not valid in its format.
+    #[error("{}: invalid {format}: {message}", path.display())]
+    Parse {
+        /// The file.
+        path: PathBuf,
+        /// "OBJ", "glTF" or "PLY".
+        format: &'static str,
+        /// What the parser found.
+        message: String,
+    },
+    /// The file is valid but uses something this loader does not support.
+    #[error("{}: unsupported: {what}", path.display())]
+    Unsupported {
+        /// The file.
+        path: PathBuf,
+        /// What is unsupported.
+        what: String,
+    },
+    /// The file's extension is not a mesh format this crate reads.
+    #[error("{}: unknown mesh format (expected .obj, .gltf, .glb, .ply or .ply.gz)", path.display())]
+    UnknownFormat {
+        /// The file.
+        path: PathBuf,
+    },
+    /// The mesh loaded but cannot be baked.
+    #[error("{}: {source}", path.display())]
+    Mesh {
+        /// The file (or the name given to [`bake`](crate::bake)).
+        path: PathBuf,
+        /// What is wrong with the mesh.
+        source: MeshError,
+    },
+    /// The bake options are out of range.
+    #[error(transparent)]
+    Options(#[from] OptionsError),
+    /// Writing would replace one of the inputs.
+    #[error("{}: output would overwrite an input file", path.display())]
+    OutputIsInput {
+        /// The path given as both.
+        path: PathBuf,
+    },
+}

@@ -1,0 +1,28 @@
+//! Chamfer's offline bake: load a mesh, weld it, build its edge adjacency, classify the edges, split
+//! normals at creases and write the compact `.chamfer` asset that `chamfer-runtime` draws.
+//!
+//! One module per step, each with one public entry and its contract:
+//! [`load`] → [`weld`] → [`degenerate`] → [`adjacency`] → [`classify`] → [`normals`] → the asset.
+//!
+//! ```no_run
+//! use chamfer_preprocess::{bake_file, BakeOptions};
+//! let baked = bake_file("model.obj".as_ref(), &BakeOptions::DEFAULT)?;
+//! std::fs::write("model.chamfer", baked.asset.encode_to_vec())?;
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+pub mod adjacency;
+mod bake;
+pub mod classify;
+pub mod degenerate;
+mod error;
+pub mod load;
+pub mod mesh;
+pub mod normals;
+mod options;
+pub mod weld;
+pub mod write;
+
+pub use bake::{Baked, Timings, bake, bake_file};
+pub use error::Error;
+pub use options::{BakeOptions, OptionsError};

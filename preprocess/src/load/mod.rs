@@ -1,0 +1,79 @@
+//! Loaders: OBJ (tobj), glTF 2.0 / GLB (gltf) and PLY (ply-rs-bw) into one [`Mesh`].
+//!
+//! Every loader reads the whole file, checks what it reads, and reports problems as
+//! [`Error`]s naming the file. Loaders never modify their input.
+
+mod gltf;
+mod obj;
+mod ply;
+
+use std::io::Read;
+use std::path::Path;
+
+use crate::Error;
+use crate::mesh::Mesh;
+
+/// The mesh formats this crate reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// Wavefront OBJ (`.obj`).
+    Obj,
+    /// glTF 2.0, JSON (`.gltf`) or binary (`.glb`).
+    Gltf,
+    /// Stanford PLY, ASCII or binary (`.ply`, or gzip-compressed `.ply.gz`).
+    Ply,
+}
+
+/// The format a path's extension names, if any (case-insensitive).
+pub fn format_of(path: &Path) -> Option<Format> {
+    let name = path.file_name()?.to_string_lossy().to_ascii_lowercase();
+    let name = name.strip_suffix(".gz").unwrap_or(&name);
+    match Path::new(name).extension()?.to_str()? {
+        "obj" => Some(Format::Obj),
+        "gltf" | "glb" => Some(Format::Gltf),
+        "ply" => Some(Format::Ply),
+        _ => None,
+    }
+}
+
+/// A loaded mesh and what the loader had to skip or ignore.
+#[derive(Clone, Debug, Default)]
+pub struct Loaded {
+    /// The mesh, validated.
+    pub mesh: Mesh,
+    /// Things the file holds that were skipped (line primitives, unknown required extensions, ...).
+    pub warnings: Vec<String>,
+}
+
+/// Loads a mesh file, choosing the loader by extension, and validates it.
+pub fn load(path: &Path) -> Result<Loaded, Error> {
+    let format = format_of(path).ok_or_else(|| Error::UnknownFormat { path: path.to_owned() })?;
+    let bytes = read(path)?;
+    let mut warnings = Vec::new();
+    let mesh = match format {
+        Format::Obj => obj::parse(path, &bytes, &mut warnings)?,
+        Format::Gltf => gltf::parse(path, &bytes, &mut warnings)?,
+        Format::Ply => ply::parse(path, &bytes, &mut warnings)?,
+    };
+    mesh.validate().map_err(|source| Error::Mesh { path: path.to_owned(), source })?;
+    Ok(Loaded { mesh, warnings })
+}
+
+/// Reads a file, inflating it if its name ends in `.gz`.
+pub(crate) fn read(path: &Path) -> Result<Vec<u8>, Error> {
+    let read_error = |source| Error::Read { path: path.to_owned(), source };
+    let bytes = std::fs::read(path).map_err(read_error)?;
+    if !path.to_string_lossy().to_ascii_lowercase().ends_with(".gz") {
+        return Ok(bytes);
+    }
+    let mut inflated = Vec::new();
+    flate2::read::GzDecoder::new(bytes.as_slice()).read_to_end(&mut inflated).map_err(read_error)?;
+    Ok(inflated)
+}
+
+/// Splits a polygon into a triangle fan, the convention of OBJ and PLY readers (trimesh, tobj).
+pub(crate) fn fan(polygon: &[u32], out: &mut Vec<[u32; 3]>) {
+    for i in 2..polygon.len() {
+        out.push([polygon[0], polygon[i - 1], polygon[i]]);
+    }
+}

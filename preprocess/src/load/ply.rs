@@ -1,0 +1,212 @@
+//! PLY via ply-rs-bw (the maintained fork of ply-rs, which is unmaintained since 2018; the fork reads
+//! ASCII and both binary encodings, caps preallocation from hostile element counts, and lets us
+//! parse into typed structs instead of one hash map per vertex).
+//!
+//! Reads `vertex` (`x y z`, optional `nx ny nz`), `face` (`vertex_indices` or `vertex_index`, lists
+//! of any integer type and length, fanned into triangles) and `edge` (`vertex1 vertex2`, optional
+//! `radius`) as marked edges. Other elements and properties are skipped.
+
+use std::io::BufReader;
+use std::path::Path;
+
+use glam::Vec3;
+use ply_rs_bw::parser::{Parser, Reader};
+use ply_rs_bw::ply::{BeginList, Property, PropertyAccess, PropertyAccessResult};
+
+use crate::Error;
+use crate::mesh::{Mark, Mesh};
+
+pub(super) fn parse(path: &Path, bytes: &[u8], _warnings: &mut Vec<String>) -> Result<Mesh, Error> {
+    let parse_error = |message: String| Error::Parse { path: path.to_owned(), format: "PLY", message };
+    let mut reader = Reader::new(BufReader::new(bytes));
+    let header = Parser::<Skip>::new().read_header(&mut reader).map_err(|e| parse_error(e.to_string()))?;
+
+    let mut mesh = Mesh::default();
+    let mut negative = None;
+    for (name, element) in header.elements.iter() {
+        let err = |e: ply_rs_bw::parser::ParseError| parse_error(format!("element '{name}': {e}"));
+        match name.as_str() {
+            "vertex" => {
+                let has_normals = ["nx", "ny", "nz"].iter().all(|p| element.properties.contains_key(*p));
+                let vertices = Parser::<Vertex>::new().read_payload_for_element(&mut reader, element, &header).map_err(err)?;
+                mesh.positions = vertices.iter().map(|v| Vec3::from(v.position)).collect();
+                if has_normals {
+                    mesh.normals = Some(vertices.iter().map(|v| Vec3::from(v.normal)).collect());
+                }
+            }
+            "face" => {
+                let faces = Parser::<Face>::new().read_payload_for_element(&mut reader, element, &header).map_err(err)?;
+                mesh.triangles.reserve(faces.len());
+                for (f, mut face) in faces.into_iter().enumerate() {
+                    // `int` lists arrive unconverted through the in-place fast path.
+                    if !face.signed.is_empty() {
+                        let signed = std::mem::take(&mut face.signed);
+                        face.take(signed.into_iter().map(i64::from));
+                    }
+                    negative = negative.or(face.negative.map(|v| ("face", f, v)));
+                    super::fan(&face.indices, &mut mesh.triangles);
+                }
+            }
+            "edge" => {
+                let edges = Parser::<Edge>::new().read_payload_for_element(&mut reader, element, &header).map_err(err)?;
+                for (e, edge) in edges.iter().enumerate() {
+                    negative = negative.or(edge.negative.map(|v| ("edge", e, v)));
+                    mesh.marks.push(Mark { vertices: edge.vertices, radius: edge.radius });
+                }
+            }
+            _ => {
+                Parser::<Skip>::new().read_payload_for_element(&mut reader, element, &header).map_err(err)?;
+            }
+        }
+    }
+    if let Some((element, index, value)) = negative {
+        return Err(parse_error(format!("{element} {index} has the negative vertex index {value}")));
+    }
+    mesh.materials = vec![0; mesh.triangles.len()];
+    Ok(mesh)
+}
+
+/// An element this loader does not use: parsed (to advance the reader) and dropped.
+struct Skip;
+
+impl PropertyAccess for Skip {
+    fn new() -> Self {
+        Skip
+    }
+}
+
+#[derive(Default)]
+struct Vertex {
+    position: [f32; 3],
+    normal: [f32; 3],
+}
+
+impl Vertex {
+    fn slot(&mut self, name: &str) -> Option<&mut f32> {
+        match name {
+            "x" => Some(&mut self.position[0]),
+            "y" => Some(&mut self.position[1]),
+            "z" => Some(&mut self.position[2]),
+            "nx" => Some(&mut self.normal[0]),
+            "ny" => Some(&mut self.normal[1]),
+            "nz" => Some(&mut self.normal[2]),
+            _ => None,
+        }
+    }
+
+    fn store(&mut self, name: &str, value: f32) -> PropertyAccessResult {
+        match self.slot(name) {
+            Some(slot) => {
+                *slot = value;
+                PropertyAccessResult::Set
+            }
+            None => PropertyAccessResult::Ignored,
+        }
+    }
+}
+
+impl PropertyAccess for Vertex {
+    fn new() -> Self {
+        Self::default()
+    }
+    fn set_float(&mut self, name: &str, value: f32) -> PropertyAccessResult {
+        self.store(name, value)
+    }
+    fn set_double(&mut self, name: &str, value: f64) -> PropertyAccessResult {
+        self.store(name, value as f32)
+    }
+    fn set_property(&mut self, name: &str, property: Property) -> PropertyAccessResult {
+        match property.to_f32_lossy() {
+            Some(value) => self.store(name, value),
+            None => PropertyAccessResult::Ignored,
+        }
+    }
+}
+
+#[derive(Default)]
+struct Face {
+    indices: Vec<u32>,
+    signed: Vec<i32>,
+    negative: Option<i64>,
+}
+
+impl Face {
+    fn is_index_list(name: &str) -> bool {
+        name == "vertex_indices" || name == "vertex_index"
+    }
+
+    fn take(&mut self, values: impl Iterator<Item = i64>) -> PropertyAccessResult {
+        self.indices.clear();
+        for v in values {
+            match u32::try_from(v) {
+                Ok(v) => self.indices.push(v),
+                Err(_) => self.negative = self.negative.or(Some(v)),
+            }
+        }
+        PropertyAccessResult::Set
+    }
+}
+
+impl PropertyAccess for Face {
+    fn new() -> Self {
+        Self::default()
+    }
+    fn begin_list_uint(&mut self, name: &str, _len: usize) -> BeginList<'_, u32> {
+        if Self::is_index_list(name) { BeginList::Fill(&mut self.indices) } else { BeginList::UseSetter }
+    }
+    fn begin_list_int(&mut self, name: &str, _len: usize) -> BeginList<'_, i32> {
+        if Self::is_index_list(name) { BeginList::Fill(&mut self.signed) } else { BeginList::UseSetter }
+    }
+    fn set_property(&mut self, name: &str, property: Property) -> PropertyAccessResult {
+        if !Self::is_index_list(name) {
+            return PropertyAccessResult::Ignored;
+        }
+        match property {
+            Property::ListChar(v) => self.take(v.into_iter().map(i64::from)),
+            Property::ListUChar(v) => self.take(v.into_iter().map(i64::from)),
+            Property::ListShort(v) => self.take(v.into_iter().map(i64::from)),
+            Property::ListUShort(v) => self.take(v.into_iter().map(i64::from)),
+            Property::ListInt(v) => self.take(v.into_iter().map(i64::from)),
+            Property::ListUInt(v) => self.take(v.into_iter().map(i64::from)),
+            _ => PropertyAccessResult::UnsupportedType,
+        }
+    }
+}
+
+#[derive(Default)]
+struct Edge {
+    vertices: [u32; 2],
+    radius: Option<f32>,
+    negative: Option<i64>,
+}
+
+impl PropertyAccess for Edge {
+    fn new() -> Self {
+        Self::default()
+    }
+    fn set_property(&mut self, name: &str, property: Property) -> PropertyAccessResult {
+        let slot = match name {
+            "vertex1" => 0,
+            "vertex2" => 1,
+            "radius" => {
+                self.radius = property.to_f32_lossy();
+                return PropertyAccessResult::Set;
+            }
+            _ => return PropertyAccessResult::Ignored,
+        };
+        let value = match property {
+            Property::Char(v) => i64::from(v),
+            Property::UChar(v) => i64::from(v),
+            Property::Short(v) => i64::from(v),
+            Property::UShort(v) => i64::from(v),
+            Property::Int(v) => i64::from(v),
+            Property::UInt(v) => i64::from(v),
+            _ => return PropertyAccessResult::UnsupportedType,
+        };
+        match u32::try_from(value) {
+            Ok(v) => self.vertices[slot] = v,
+            Err(_) => self.negative = self.negative.or(Some(value)),
+        }
+        PropertyAccessResult::Set
+    }
+}

@@ -1,0 +1,76 @@
+//! Bake settings: parsed once (by the CLI or a build script) and passed by reference to every step.
+
+/// How to bake a mesh. Start from [`BakeOptions::DEFAULT`] and change fields with the `with_*` setters.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct BakeOptions {
+    /// Weld positions within this distance (mesh units). Default 0: weld only bit-identical positions
+    /// (with -0.0 equal to 0.0). Must be finite and non-negative.
+    pub weld_epsilon: f32,
+    /// Drop interior edges whose face normals differ by less than this many degrees (thesis §6.2),
+    /// unless they are marked or a material seam. Default 0.01°. Must be in [0, `crease_deg`).
+    pub coplanar_deg: f32,
+    /// An edge whose face normals differ by this many degrees or more is a crease; normals are split
+    /// across it. Default 30°. Must be in (0, 180].
+    pub crease_deg: f32,
+}
+
+/// Why options were refused.
+#[derive(Debug, thiserror::Error, PartialEq)]
+#[error("invalid option {name} = {value}: {reason}")]
+pub struct OptionsError {
+    /// The option.
+    pub name: &'static str,
+    /// Its value.
+    pub value: f32,
+    /// What it must be.
+    pub reason: &'static str,
+}
+
+impl BakeOptions {
+    /// Exact weld, 0.01° coplanar threshold, 30° creases.
+    pub const DEFAULT: Self = Self { weld_epsilon: 0.0, coplanar_deg: 0.01, crease_deg: 30.0 };
+
+    /// Sets [`weld_epsilon`](Self::weld_epsilon).
+    pub fn with_weld_epsilon(self, weld_epsilon: f32) -> Self {
+        Self { weld_epsilon, ..self }
+    }
+
+    /// Sets [`coplanar_deg`](Self::coplanar_deg).
+    pub fn with_coplanar_deg(self, coplanar_deg: f32) -> Self {
+        Self { coplanar_deg, ..self }
+    }
+
+    /// Sets [`crease_deg`](Self::crease_deg).
+    pub fn with_crease_deg(self, crease_deg: f32) -> Self {
+        Self { crease_deg, ..self }
+    }
+
+    /// Checks every field's range.
+    pub fn validate(&self) -> Result<(), OptionsError> {
+        let check = |ok: bool, name, value, reason| if ok { Ok(()) } else { Err(OptionsError { name, value, reason }) };
+        check(self.weld_epsilon.is_finite() && self.weld_epsilon >= 0.0, "weld-epsilon", self.weld_epsilon, "must be a finite number >= 0")?;
+        check(self.crease_deg > 0.0 && self.crease_deg <= 180.0, "crease-deg", self.crease_deg, "must be in (0, 180]")?;
+        check(
+            self.coplanar_deg >= 0.0 && self.coplanar_deg < self.crease_deg,
+            "coplanar-deg",
+            self.coplanar_deg,
+            "must be >= 0 and below crease-deg",
+        )
+    }
+
+    /// The settings as `(name, value)` pairs, recorded in the asset for provenance.
+    pub fn describe(&self) -> Vec<(String, String)> {
+        vec![
+            ("weld_epsilon".into(), self.weld_epsilon.to_string()),
+            ("coplanar_deg".into(), self.coplanar_deg.to_string()),
+            ("crease_deg".into(), self.crease_deg.to_string()),
+        ]
+    }
+}
+
+impl Default for BakeOptions {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}

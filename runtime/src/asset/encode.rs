@@ -1,0 +1,80 @@
+//! Writing an asset: header, then each section on a 16-byte boundary.
+
+use std::io::{self, Write};
+
+use super::{Asset, FORMAT_VERSION, MAGIC, SECTION_ALIGN, SectionEntry, SectionKind, envelope};
+
+const PREAMBLE_BYTES: u64 = 16;
+
+fn align(offset: u64) -> u64 {
+    offset.next_multiple_of(SECTION_ALIGN as u64)
+}
+
+impl Asset {
+    /// Writes the asset to `out`; the header's section table is computed here, whatever it held.
+    ///
+    /// The output depends only on the asset's contents, so equal assets encode to equal bytes.
+    /// Fails only if `out` fails (or, impossibly for real assets, if the header exceeds 1 MiB).
+    pub fn encode(&self, out: &mut impl Write) -> io::Result<()> {
+        let (header_bytes, sections) = self.layout()?;
+        out.write_all(&MAGIC)?;
+        out.write_all(&FORMAT_VERSION.to_le_bytes())?;
+        out.write_all(&(header_bytes.len() as u32).to_le_bytes())?;
+        out.write_all(&header_bytes)?;
+        let mut written = PREAMBLE_BYTES + header_bytes.len() as u64;
+        for entry in &sections {
+            write_zeros(out, entry.offset - written)?;
+            let kind = SectionKind::from_u32(entry.kind).expect("layout lists only known kinds");
+            out.write_all(self.section_bytes(kind))?;
+            written = entry.offset + entry.length;
+        }
+        Ok(())
+    }
+
+    /// The encoded asset in a new vector.
+    pub fn encode_to_vec(&self) -> Vec<u8> {
+        let mut bytes = Vec::with_capacity(self.encoded_len() as usize);
+        // Writing to a Vec cannot fail; the header limit is far above any real header.
+        if let Err(e) = self.encode(&mut bytes) {
+            panic!("chamfer: encoding into memory failed ({e}); please report this");
+        }
+        bytes
+    }
+
+    /// The size of the encoded asset in bytes.
+    pub fn encoded_len(&self) -> u64 {
+        match self.layout() {
+            Ok((_, sections)) => sections.last().map_or(0, |s| s.offset + s.length),
+            Err(_) => 0,
+        }
+    }
+
+    /// The section table and the header bytes that describe it.
+    fn layout(&self) -> io::Result<(Vec<u8>, Vec<SectionEntry>)> {
+        let mut header = self.header.clone();
+        header.sections = SectionKind::ALL
+            .iter()
+            .map(|&kind| SectionEntry {
+                kind: kind as u32,
+                offset: 0,
+                length: self.section_bytes(kind).len() as u64,
+            })
+            .collect();
+        // The header's size does not depend on the offsets (fixed-width integers), so measure it
+        // first, then place the sections after it.
+        let header_len = envelope::encode_header(&header)?.len() as u64;
+        let mut offset = PREAMBLE_BYTES + header_len;
+        for entry in &mut header.sections {
+            entry.offset = align(offset);
+            offset = entry.offset + entry.length;
+        }
+        let bytes = envelope::encode_header(&header)?;
+        debug_assert_eq!(bytes.len() as u64, header_len);
+        Ok((bytes, header.sections))
+    }
+}
+
+fn write_zeros(out: &mut impl Write, count: u64) -> io::Result<()> {
+    const ZEROS: [u8; SECTION_ALIGN] = [0; SECTION_ALIGN];
+    out.write_all(&ZEROS[..count as usize])
+}

@@ -1,0 +1,77 @@
+//! Why an asset was rejected.
+
+use super::SectionKind;
+
+/// Everything [`Asset::decode`](super::Asset::decode) can reject; the message names what is wrong.
+#[derive(Debug, thiserror::Error, PartialEq)]
+#[non_exhaustive]
+pub enum DecodeError {
+    /// The file does not start with [`MAGIC`](super::MAGIC).
+    #[error("not a .chamfer asset (bad magic bytes)")]
+    BadMagic,
+    /// Written by a different format version.
+    #[error("asset format version {found} is not supported (this build reads version {supported}); re-bake the source mesh")]
+    UnsupportedVersion {
+        /// Version in the file.
+        found: u32,
+        /// Version this crate reads.
+        supported: u32,
+    },
+    /// The file ends before something it announces.
+    #[error("truncated: {what} needs {needed} bytes but the file has {available}")]
+    Truncated {
+        /// What was being read.
+        what: &'static str,
+        /// Bytes required (from the start of the file).
+        needed: u64,
+        /// Bytes present.
+        available: u64,
+    },
+    /// Bytes after the last section.
+    #[error("{0} unexpected bytes after the last section")]
+    TrailingBytes(u64),
+    /// The header could not be decoded or is inconsistent.
+    #[error("bad header: {0}")]
+    BadHeader(String),
+    /// The section table is malformed.
+    #[error("bad section table: {0}")]
+    BadSectionTable(String),
+    /// A section's length does not fit its element size or its count.
+    #[error("section {kind:?}: {reason}")]
+    BadSectionLength {
+        /// The section.
+        kind: SectionKind,
+        /// What is wrong.
+        reason: String,
+    },
+    /// An index points past the end of what it indexes.
+    #[error("section {kind:?}: element {position} is {value}, out of range (must be below {bound})")]
+    IndexOutOfRange {
+        /// The section.
+        kind: SectionKind,
+        /// Position of the bad index in the section.
+        position: u64,
+        /// The index.
+        value: u32,
+        /// The exclusive upper bound.
+        bound: u64,
+    },
+    /// A NaN or infinity where a finite number is required.
+    #[error("section {kind:?}: element {position} is not a finite number")]
+    NonFinite {
+        /// The section.
+        kind: SectionKind,
+        /// Position of the bad float in the section.
+        position: u64,
+    },
+    /// Structurally valid numbers that break a rule of the format (e.g. unknown flag bits).
+    #[error("section {kind:?}: element {position}: {reason}")]
+    Invalid {
+        /// The section.
+        kind: SectionKind,
+        /// Position of the bad element in the section.
+        position: u64,
+        /// The rule broken.
+        reason: String,
+    },
+}

@@ -1,0 +1,471 @@
+//! The `.chamfer` edge asset: what the bake writes and the runtime uploads.
+//!
+//! # Layout (format version 1)
+//!
+//! All numbers are little-endian.
+//!
+//! | bytes | content |
+//! |---|---|
+//! | 0..8 | magic `b"CHAMFER\0"` |
+//! | 8..12 | format version (`u32`) |
+//! | 12..16 | header length `H` (`u32`, at most [`MAX_HEADER_BYTES`]) |
+//! | 16..16+H | [`Header`], bincode 2 (fixed-width integers), see `envelope.rs` |
+//! | … | sections, each starting on a 16-byte boundary, zero padding between |
+//!
+//! The header lists every section as (kind, offset, length). Sections are raw arrays that go to the GPU
+//! unchanged: no per-element decoding, only validation.
+//!
+//! | section | element | count |
+//! |---|---|---|
+//! | [`SectionKind::RenderPositions`] | `[f32; 3]` | R render vertices |
+//! | [`SectionKind::RenderNormals`] | `[f32; 3]` | R (crease-split, unit length) |
+//! | [`SectionKind::MeshIndices`] | index < R | 3 × T triangles |
+//! | [`SectionKind::TopologyPositions`] | `[f32; 3]` | V welded vertices |
+//! | [`SectionKind::EdgeVertices`] | index < V | 4 × E: `v0 v1 v2 v3` (thesis §8.1) |
+//! | [`SectionKind::EdgeAttributes`] | `u32` | E: low 16 bits [`EdgeFlags`], high 16 bits radius (f16) |
+//! | [`SectionKind::NextEnds`] | edge end < 2E | 2 × E, or empty |
+//! | [`SectionKind::CapHeads`] | edge end < 2E | one per capped vertex, or empty |
+//!
+//! An *index* section is `u16` when its values are bounded by 65 536 and `u32` otherwise
+//! ([`IndexWidth::for_bound`]); the width is implied by the counts, so it is never stored.
+//! An *edge end* is `2 * edge + end`, where end 0 is `v0` and end 1 is `v1`.
+//!
+//! For a boundary edge `v3 == v0` (thesis §6.2); [`EdgeFlags::BOUNDARY`] says the same explicitly.
+//!
+//! # Compatibility
+//!
+//! The version is bumped on any change to the header or to a section's meaning. A reader accepts only
+//! the version it was built for and reports any other as [`DecodeError::UnsupportedVersion`]: re-bake
+//! the source mesh (bakes are deterministic, so this is cheap to automate in `build.rs`).
+
+// Sections are written and uploaded as they lie in memory.
+#[cfg(target_endian = "big")]
+compile_error!("the .chamfer format is little-endian and this crate maps it directly: big-endian hosts are not supported");
+
+mod decode;
+mod encode;
+mod envelope;
+mod error;
+
+pub use error::DecodeError;
+
+use serde::{Deserialize, Serialize};
+
+/// The eight bytes every asset starts with.
+pub const MAGIC: [u8; 8] = *b"CHAMFER\0";
+/// The format version this crate reads and writes.
+pub const FORMAT_VERSION: u32 = 1;
+/// The largest header accepted; real headers are a few hundred bytes.
+pub const MAX_HEADER_BYTES: u32 = 1 << 20;
+/// Every section starts at a multiple of this many bytes.
+pub const SECTION_ALIGN: usize = 16;
+
+/// What a pipeline classified an edge as; several bits can be set at once.
+///
+/// An edge with none of these bits is a *smooth* edge: it is kept only because it can become a contour.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct EdgeFlags(pub u16);
+
+impl EdgeFlags {
+    /// Only one face: `v3 == v0`.
+    pub const BOUNDARY: Self = Self(1 << 0);
+    /// More than two faces; `v2` and `v3` are the opposite vertices of the first two.
+    pub const NON_MANIFOLD: Self = Self(1 << 1);
+    /// Crease whose faces fold away from each other (convex, thesis §6.1).
+    pub const RIDGE: Self = Self(1 << 2);
+    /// Crease whose faces fold towards each other (concave).
+    pub const VALLEY: Self = Self(1 << 3);
+    /// Marked in the source file.
+    pub const MARKED: Self = Self(1 << 4);
+    /// The faces have different materials (or glTF primitives of different materials).
+    pub const MATERIAL: Self = Self(1 << 5);
+    /// The second face winds the edge the same way as the first: negate its normal.
+    pub const FLIPPED: Self = Self(1 << 6);
+    /// The edge carries a chamfer radius.
+    pub const CHAMFER: Self = Self(1 << 7);
+    /// Every bit that has a meaning in this format version.
+    pub const ALL: Self = Self((1 << 8) - 1);
+    /// Either crease direction.
+    pub const CREASE: Self = Self(Self::RIDGE.0 | Self::VALLEY.0);
+    /// Classes that are drawable from every camera (the thesis' "pre-calculated" edges).
+    pub const STATIC: Self = Self(
+        Self::BOUNDARY.0 | Self::NON_MANIFOLD.0 | Self::CREASE.0 | Self::MARKED.0 | Self::MATERIAL.0,
+    );
+
+    /// True if any bit of `other` is set in `self`.
+    pub const fn intersects(self, other: Self) -> bool {
+        self.0 & other.0 != 0
+    }
+
+    /// True if every bit of `other` is set in `self`.
+    pub const fn contains(self, other: Self) -> bool {
+        self.0 & other.0 == other.0
+    }
+}
+
+impl std::ops::BitOr for EdgeFlags {
+    type Output = Self;
+    fn bitor(self, rhs: Self) -> Self {
+        Self(self.0 | rhs.0)
+    }
+}
+
+impl std::ops::BitOrAssign for EdgeFlags {
+    fn bitor_assign(&mut self, rhs: Self) {
+        self.0 |= rhs.0;
+    }
+}
+
+/// Packs an edge's flags and radius into its attribute word.
+///
+/// The radius is stored as an f16 of `radius / radius_scale` (relative precision about 5e-4);
+/// `radius_scale` is the asset's [`Header::radius_scale`].
+pub fn pack_attributes(flags: EdgeFlags, radius: f32, radius_scale: f32) -> u32 {
+    let scaled = if radius_scale > 0.0 { radius / radius_scale } else { 0.0 };
+    let half = half::f16::from_f32(scaled).to_bits();
+    u32::from(flags.0) | (u32::from(half) << 16)
+}
+
+/// The flags of an attribute word.
+pub fn attribute_flags(word: u32) -> EdgeFlags {
+    EdgeFlags((word & 0xffff) as u16)
+}
+
+/// The radius of an attribute word, in mesh units.
+pub fn attribute_radius(word: u32, radius_scale: f32) -> f32 {
+    half::f16::from_bits((word >> 16) as u16).to_f32() * radius_scale
+}
+
+/// How wide the values of an index section are.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum IndexWidth {
+    /// Two bytes per index.
+    U16,
+    /// Four bytes per index.
+    U32,
+}
+
+impl IndexWidth {
+    /// The narrowest width that holds every value below `bound`.
+    pub const fn for_bound(bound: usize) -> Self {
+        if bound <= 1 << 16 { Self::U16 } else { Self::U32 }
+    }
+
+    /// Bytes per index.
+    pub const fn bytes(self) -> usize {
+        match self {
+            Self::U16 => 2,
+            Self::U32 => 4,
+        }
+    }
+}
+
+/// An index array stored as narrow as its bound allows.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Indices {
+    /// Values below 65 536.
+    U16(Vec<u16>),
+    /// Any `u32` values.
+    U32(Vec<u32>),
+}
+
+impl Default for Indices {
+    fn default() -> Self {
+        Self::U16(Vec::new())
+    }
+}
+
+impl Indices {
+    /// Stores `values` as `u16` if `bound <= 65536`, else as `u32`.
+    ///
+    /// Every value must be below `bound` (checked in debug builds).
+    pub fn with_bound(values: Vec<u32>, bound: usize) -> Self {
+        debug_assert!(values.iter().all(|&v| (v as usize) < bound));
+        match IndexWidth::for_bound(bound) {
+            IndexWidth::U16 => Self::U16(values.iter().map(|&v| v as u16).collect()),
+            IndexWidth::U32 => Self::U32(values),
+        }
+    }
+
+    /// Number of indices.
+    pub fn len(&self) -> usize {
+        match self {
+            Self::U16(v) => v.len(),
+            Self::U32(v) => v.len(),
+        }
+    }
+
+    /// True if there are no indices.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The width of each index.
+    pub fn width(&self) -> IndexWidth {
+        match self {
+            Self::U16(_) => IndexWidth::U16,
+            Self::U32(_) => IndexWidth::U32,
+        }
+    }
+
+    /// The index at `i` (panics if out of range, like slice indexing).
+    pub fn get(&self, i: usize) -> u32 {
+        match self {
+            Self::U16(v) => u32::from(v[i]),
+            Self::U32(v) => v[i],
+        }
+    }
+
+    /// All indices, widened to `u32`.
+    pub fn iter(&self) -> IndicesIter<'_> {
+        match self {
+            Self::U16(v) => IndicesIter::U16(v.iter()),
+            Self::U32(v) => IndicesIter::U32(v.iter()),
+        }
+    }
+
+    /// All indices, widened to `u32`, in a new vector.
+    pub fn to_u32_vec(&self) -> Vec<u32> {
+        self.iter().collect()
+    }
+
+    /// The raw little-endian bytes, ready for a GPU buffer.
+    pub fn as_bytes(&self) -> &[u8] {
+        match self {
+            Self::U16(v) => bytemuck::cast_slice(v),
+            Self::U32(v) => bytemuck::cast_slice(v),
+        }
+    }
+}
+
+/// Iterator over [`Indices`], widening each to `u32`.
+#[derive(Clone, Debug)]
+pub enum IndicesIter<'a> {
+    /// Over `u16` indices.
+    U16(std::slice::Iter<'a, u16>),
+    /// Over `u32` indices.
+    U32(std::slice::Iter<'a, u32>),
+}
+
+impl Iterator for IndicesIter<'_> {
+    type Item = u32;
+    fn next(&mut self) -> Option<u32> {
+        match self {
+            Self::U16(it) => it.next().map(|&v| u32::from(v)),
+            Self::U32(it) => it.next().copied(),
+        }
+    }
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        match self {
+            Self::U16(it) => it.size_hint(),
+            Self::U32(it) => it.size_hint(),
+        }
+    }
+}
+
+impl ExactSizeIterator for IndicesIter<'_> {}
+
+/// What a section holds; the numbers are part of the format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[repr(u32)]
+pub enum SectionKind {
+    /// `[f32; 3]` per render vertex.
+    RenderPositions = 1,
+    /// `[f32; 3]` unit normal per render vertex, split at creases and marked edges.
+    RenderNormals = 2,
+    /// Three render-vertex indices per triangle.
+    MeshIndices = 3,
+    /// `[f32; 3]` per welded (topology) vertex.
+    TopologyPositions = 4,
+    /// Four topology-vertex indices per edge: `v0 v1 v2 v3`.
+    EdgeVertices = 5,
+    /// One `u32` per edge: flags and radius, see [`pack_attributes`].
+    EdgeAttributes = 6,
+    /// Per edge end, the next edge end around the same vertex (thesis §13).
+    NextEnds = 7,
+    /// Per capped vertex, one edge end at that vertex: the start of its ring (thesis §10.5).
+    CapHeads = 8,
+}
+
+impl SectionKind {
+    /// Every kind, in the order sections are written.
+    pub const ALL: [Self; 8] = [
+        Self::RenderPositions,
+        Self::RenderNormals,
+        Self::MeshIndices,
+        Self::TopologyPositions,
+        Self::EdgeVertices,
+        Self::EdgeAttributes,
+        Self::NextEnds,
+        Self::CapHeads,
+    ];
+
+    /// The kind with this number, if it is one of this version's.
+    pub fn from_u32(value: u32) -> Option<Self> {
+        Self::ALL.into_iter().find(|k| *k as u32 == value)
+    }
+
+    /// The name used in reports (`inspect --json`).
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::RenderPositions => "render_positions",
+            Self::RenderNormals => "render_normals",
+            Self::MeshIndices => "mesh_indices",
+            Self::TopologyPositions => "topology_positions",
+            Self::EdgeVertices => "edge_vertices",
+            Self::EdgeAttributes => "edge_attributes",
+            Self::NextEnds => "next_ends",
+            Self::CapHeads => "cap_heads",
+        }
+    }
+}
+
+/// Where one section lies in the file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct SectionEntry {
+    /// [`SectionKind`] as a number.
+    pub kind: u32,
+    /// Byte offset from the start of the file, a multiple of [`SECTION_ALIGN`].
+    pub offset: u64,
+    /// Length in bytes.
+    pub length: u64,
+}
+
+/// Counts of the edge classes found by the bake (an edge can be in several classes).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct EdgeStats {
+    /// Unique undirected edges of the welded mesh, before coplanar edges were dropped.
+    pub total: u64,
+    /// Edges written to the asset.
+    pub kept: u64,
+    /// Edges with one face.
+    pub boundary: u64,
+    /// Edges with more than two faces.
+    pub non_manifold: u64,
+    /// Ridge and valley creases together.
+    pub crease: u64,
+    /// Convex creases.
+    pub ridge: u64,
+    /// Concave creases.
+    pub valley: u64,
+    /// Edges marked in the source file.
+    pub marked: u64,
+    /// Edges between faces of different materials.
+    pub material: u64,
+    /// Kept edges of no static class: drawn only when they are contours.
+    pub smooth: u64,
+    /// Edges between (nearly) coplanar faces that were dropped (thesis §6.2, Lander).
+    pub coplanar_dropped: u64,
+    /// Manifold edges whose two faces wind it the same way (inconsistent orientation).
+    pub flipped: u64,
+    /// Marks in the source that are not an edge of any face.
+    pub marks_unmatched: u64,
+}
+
+/// What the bake saw and produced; shown by `chamfer inspect`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Stats {
+    /// Vertices in the source mesh (render vertices as loaded, seams split).
+    pub input_vertices: u64,
+    /// Vertices after welding positions: the topology vertices.
+    pub welded_vertices: u64,
+    /// Triangles in the source mesh after triangulating polygons.
+    pub input_triangles: u64,
+    /// Triangles skipped because they repeat a vertex or have zero area.
+    pub degenerate_triangles: u64,
+    /// Edge classes.
+    pub edges: EdgeStats,
+}
+
+/// The asset's header: provenance, bounds, statistics and the section table.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Header {
+    /// File name of the source mesh.
+    pub source: String,
+    /// The program and version that baked the asset.
+    pub generator: String,
+    /// The bake settings, as `(name, value)` pairs, for provenance.
+    pub settings: Vec<(String, String)>,
+    /// Minimum corner of the bounding box of the topology positions.
+    pub bounds_min: [f32; 3],
+    /// Maximum corner of the bounding box of the topology positions.
+    pub bounds_max: [f32; 3],
+    /// Radii in [`SectionKind::EdgeAttributes`] are multiples of this (the largest radius, or 0).
+    pub radius_scale: f32,
+    /// What the bake counted.
+    pub stats: Stats,
+    /// Where each section lies; filled in by [`Asset::encode`].
+    pub sections: Vec<SectionEntry>,
+}
+
+/// A decoded, validated edge asset.
+///
+/// Build one in a baker and [`encode`](Asset::encode) it, or [`decode`](Asset::decode) a file's bytes.
+/// Every section is a plain array ready for `queue.write_buffer` (see the `*_bytes` methods).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Asset {
+    /// Provenance and statistics; its section table is rewritten on encode.
+    pub header: Header,
+    /// Render vertex positions.
+    pub render_positions: Vec<[f32; 3]>,
+    /// Render vertex normals, unit length, split at creases.
+    pub render_normals: Vec<[f32; 3]>,
+    /// Triangles as render vertex indices, three per triangle.
+    pub mesh_indices: Indices,
+    /// Welded positions the edges refer to.
+    pub topology_positions: Vec<[f32; 3]>,
+    /// `v0 v1 v2 v3` per edge, topology vertex indices.
+    pub edge_vertices: Indices,
+    /// Flags and radius per edge.
+    pub edge_attributes: Vec<u32>,
+    /// Next edge end around the vertex, per edge end; empty if not baked.
+    pub next_ends: Indices,
+    /// First edge end of each capped vertex's ring; empty if not baked.
+    pub cap_heads: Indices,
+}
+
+impl Asset {
+    /// Number of triangles in the render mesh.
+    pub fn triangle_count(&self) -> usize {
+        self.mesh_indices.len() / 3
+    }
+
+    /// Number of edges.
+    pub fn edge_count(&self) -> usize {
+        self.edge_attributes.len()
+    }
+
+    /// The four topology vertices of edge `e`: `[v0, v1, v2, v3]`.
+    pub fn edge(&self, e: usize) -> [u32; 4] {
+        std::array::from_fn(|k| self.edge_vertices.get(4 * e + k))
+    }
+
+    /// The flags of edge `e`.
+    pub fn edge_flags(&self, e: usize) -> EdgeFlags {
+        attribute_flags(self.edge_attributes[e])
+    }
+
+    /// The chamfer radius of edge `e`, in mesh units (0 if it has none).
+    pub fn edge_radius(&self, e: usize) -> f32 {
+        attribute_radius(self.edge_attributes[e], self.header.radius_scale)
+    }
+
+    /// The topology vertex at edge end `end` (`2 * edge + 0` is `v0`, `+ 1` is `v1`).
+    pub fn end_vertex(&self, end: u32) -> u32 {
+        self.edge_vertices.get(2 * end as usize - (end as usize & 1))
+    }
+
+    /// The raw bytes of one section, as written to the file.
+    pub fn section_bytes(&self, kind: SectionKind) -> &[u8] {
+        match kind {
+            SectionKind::RenderPositions => bytemuck::cast_slice(&self.render_positions),
+            SectionKind::RenderNormals => bytemuck::cast_slice(&self.render_normals),
+            SectionKind::MeshIndices => self.mesh_indices.as_bytes(),
+            SectionKind::TopologyPositions => bytemuck::cast_slice(&self.topology_positions),
+            SectionKind::EdgeVertices => self.edge_vertices.as_bytes(),
+            SectionKind::EdgeAttributes => bytemuck::cast_slice(&self.edge_attributes),
+            SectionKind::NextEnds => self.next_ends.as_bytes(),
+            SectionKind::CapHeads => self.cap_heads.as_bytes(),
+        }
+    }
+}
