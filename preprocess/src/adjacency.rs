@@ -47,8 +47,14 @@ impl Edges {
     /// The edge joining `a` and `b` (either order), found by binary search.
     pub fn find(&self, a: u32, b: u32) -> Option<usize> {
         let key = (a.min(b), a.max(b));
-        let at = self.vertices.partition_point(|v| (v[0].min(v[1]), v[0].max(v[1])) < key);
-        (at < self.len() && (self.vertices[at][0].min(self.vertices[at][1]), self.vertices[at][0].max(self.vertices[at][1])) == key)
+        let at = self
+            .vertices
+            .partition_point(|v| (v[0].min(v[1]), v[0].max(v[1])) < key);
+        (at < self.len()
+            && (
+                self.vertices[at][0].min(self.vertices[at][1]),
+                self.vertices[at][0].max(self.vertices[at][1]),
+            ) == key)
             .then_some(at)
     }
 
@@ -106,7 +112,8 @@ pub fn adjacency(triangles: &[[u32; 3]], materials: &[u32], vertex_count: usize)
         for k in 0..3 {
             let (a, b) = (t[k], t[(k + 1) % 3]);
             let slot = &mut ends[a.min(b) as usize];
-            entries[*slot as usize] = (u64::from(a.max(b)) << 32) | ((ti * 3 + k) as u64) << 1 | u64::from(a > b);
+            entries[*slot as usize] =
+                (u64::from(a.max(b)) << 32) | ((ti * 3 + k) as u64) << 1 | u64::from(a > b);
             *slot += 1;
         }
     }
@@ -118,10 +125,15 @@ pub fn adjacency(triangles: &[[u32; 3]], materials: &[u32], vertex_count: usize)
         .step_by(VERTICES_PER_CHUNK)
         .map(|start| start..(start + VERTICES_PER_CHUNK).min(vertex_count))
         .collect();
-    let mut chunks: Vec<(std::ops::Range<usize>, &mut [u64])> = Vec::with_capacity(chunk_ranges.len());
+    let mut chunks: Vec<(std::ops::Range<usize>, &mut [u64])> =
+        Vec::with_capacity(chunk_ranges.len());
     let mut rest = entries.as_mut_slice();
     for r in &chunk_ranges {
-        let len = if r.is_empty() { 0 } else { bucket(r.end - 1).end - bucket(r.start).start };
+        let len = if r.is_empty() {
+            0
+        } else {
+            bucket(r.end - 1).end - bucket(r.start).start
+        };
         let (head, tail) = rest.split_at_mut(len);
         chunks.push((r.clone(), head));
         rest = tail;
@@ -130,12 +142,15 @@ pub fn adjacency(triangles: &[[u32; 3]], materials: &[u32], vertex_count: usize)
         .par_iter_mut()
         .map(|(range, slice)| {
             let base = bucket(range.start).start;
-            range.clone().map(|v| {
-                let b = bucket(v);
-                let edges = &mut slice[b.start - base..b.end - base];
-                edges.sort_unstable();
-                edges.chunk_by(same_edge).count()
-            }).sum()
+            range
+                .clone()
+                .map(|v| {
+                    let b = bucket(v);
+                    let edges = &mut slice[b.start - base..b.end - base];
+                    edges.sort_unstable();
+                    edges.chunk_by(same_edge).count()
+                })
+                .sum()
         })
         .collect();
 
@@ -151,19 +166,26 @@ pub fn adjacency(triangles: &[[u32; 3]], materials: &[u32], vertex_count: usize)
         outputs.push((v, f));
         (rest_v, rest_f) = (tail_v, tail_f);
     }
-    chunks.into_par_iter().zip(outputs).for_each(|((range, slice), (out_v, out_f))| {
-        let base = bucket(range.start).start;
-        let mut write = 0;
-        for v in range {
-            let b = bucket(v);
-            let half_edges = &slice[b.start - base..b.end - base];
-            for group in half_edges.chunk_by(same_edge) {
-                (out_v[write], out_f[write]) = edge_from_group(group, triangles, materials);
-                write += 1;
+    chunks
+        .into_par_iter()
+        .zip(outputs)
+        .for_each(|((range, slice), (out_v, out_f))| {
+            let base = bucket(range.start).start;
+            let mut write = 0;
+            for v in range {
+                let b = bucket(v);
+                let half_edges = &slice[b.start - base..b.end - base];
+                for group in half_edges.chunk_by(same_edge) {
+                    (out_v[write], out_f[write]) = edge_from_group(group, triangles, materials);
+                    write += 1;
+                }
             }
-        }
-    });
-    Edges { vertices, flags, radii: Vec::new() }
+        });
+    Edges {
+        vertices,
+        flags,
+        radii: Vec::new(),
+    }
 }
 
 /// Half-edges with the same higher vertex form one edge (buckets are sorted, so they are adjacent).
@@ -172,7 +194,11 @@ fn same_edge(x: &u64, y: &u64) -> bool {
 }
 
 /// Builds one edge from the half-edges that share it, sorted by corner.
-fn edge_from_group(group: &[u64], triangles: &[[u32; 3]], materials: &[u32]) -> ([u32; 4], EdgeFlags) {
+fn edge_from_group(
+    group: &[u64],
+    triangles: &[[u32; 3]],
+    materials: &[u32],
+) -> ([u32; 4], EdgeFlags) {
     let corner = |entry: u64| ((entry >> 1) & 0x7fff_ffff) as usize;
     let reversed = |entry: u64| entry & 1;
     let (ta, ka) = (corner(group[0]) / 3, corner(group[0]) % 3);
@@ -196,7 +222,11 @@ fn edge_from_group(group: &[u64], triangles: &[[u32; 3]], materials: &[u32]) -> 
         }
         [] => unreachable!("a group holds at least one half-edge"),
     };
-    if !materials.is_empty() && group.iter().any(|&h| materials[corner(h) / 3] != materials[ta]) {
+    if !materials.is_empty()
+        && group
+            .iter()
+            .any(|&h| materials[corner(h) / 3] != materials[ta])
+    {
         flags |= EdgeFlags::MATERIAL;
     }
     ([v0, v1, v2, v3], flags)
@@ -219,11 +249,26 @@ mod tests {
         let edges = adjacency(&[[0, 1, 2], [0, 2, 3]], &[], 4);
         assert_eq!(
             edges.vertices,
-            [[0, 1, 2, 0], [2, 0, 1, 3], [3, 0, 2, 3], [1, 2, 0, 1], [2, 3, 0, 2]]
+            [
+                [0, 1, 2, 0],
+                [2, 0, 1, 3],
+                [3, 0, 2, 3],
+                [1, 2, 0, 1],
+                [2, 3, 0, 2]
+            ]
         );
-        let boundary: Vec<bool> = edges.flags.iter().map(|f| f.contains(EdgeFlags::BOUNDARY)).collect();
+        let boundary: Vec<bool> = edges
+            .flags
+            .iter()
+            .map(|f| f.contains(EdgeFlags::BOUNDARY))
+            .collect();
         assert_eq!(boundary, [true, false, true, true, true]);
-        assert!(edges.flags.iter().all(|f| !f.intersects(EdgeFlags::FLIPPED | EdgeFlags::NON_MANIFOLD)));
+        assert!(
+            edges
+                .flags
+                .iter()
+                .all(|f| !f.intersects(EdgeFlags::FLIPPED | EdgeFlags::NON_MANIFOLD))
+        );
     }
 
     #[test]
@@ -250,7 +295,14 @@ mod tests {
         assert_eq!(edges.vertices[e], [0, 1, 2, 3]);
         assert!(edges.flags[e].contains(EdgeFlags::NON_MANIFOLD));
         assert_eq!(edges.len(), 7);
-        assert_eq!(edges.flags.iter().filter(|f| f.contains(EdgeFlags::BOUNDARY)).count(), 6);
+        assert_eq!(
+            edges
+                .flags
+                .iter()
+                .filter(|f| f.contains(EdgeFlags::BOUNDARY))
+                .count(),
+            6
+        );
     }
 
     #[test]
@@ -271,13 +323,28 @@ mod tests {
     fn output_is_the_same_across_chunk_boundaries_and_thread_counts() {
         // A strip long enough to span several chunks.
         let n = 3 * VERTICES_PER_CHUNK as u32;
-        let tris: Vec<[u32; 3]> = (0..n - 2).map(|i| if i % 2 == 0 { [i, i + 1, i + 2] } else { [i + 1, i, i + 2] }).collect();
+        let tris: Vec<[u32; 3]> = (0..n - 2)
+            .map(|i| {
+                if i % 2 == 0 {
+                    [i, i + 1, i + 2]
+                } else {
+                    [i + 1, i, i + 2]
+                }
+            })
+            .collect();
         let a = adjacency(&tris, &[], n as usize);
-        let single = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("pool");
+        let single = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .expect("pool");
         let b = single.install(|| adjacency(&tris, &[], n as usize));
         assert_eq!(a, b);
         assert_eq!(a.len(), 2 * (n as usize - 2) + 1);
-        let keys: Vec<(u32, u32)> = a.vertices.iter().map(|v| (v[0].min(v[1]), v[0].max(v[1]))).collect();
+        let keys: Vec<(u32, u32)> = a
+            .vertices
+            .iter()
+            .map(|v| (v[0].min(v[1]), v[0].max(v[1])))
+            .collect();
         assert!(keys.windows(2).all(|w| w[0] < w[1]), "sorted and unique");
     }
 }

@@ -52,10 +52,32 @@ pub fn bake_file(path: &Path, options: &BakeOptions) -> Result<Baked, Error> {
     options.validate()?;
     let start = Instant::now();
     let loaded = load::load(path)?;
-    let parse = start.elapsed();
-    let name = path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
+    bake_loaded(path, loaded, start.elapsed(), options)
+}
+
+/// Bakes a mesh file's bytes already in memory (see [`load::load_bytes`]); errors name `path`.
+pub fn bake_bytes(path: &Path, bytes: &[u8], options: &BakeOptions) -> Result<Baked, Error> {
+    options.validate()?;
+    let start = Instant::now();
+    let loaded = load::load_bytes(path, bytes)?;
+    bake_loaded(path, loaded, start.elapsed(), options)
+}
+
+fn bake_loaded(
+    path: &Path,
+    loaded: load::Loaded,
+    parse: Duration,
+    options: &BakeOptions,
+) -> Result<Baked, Error> {
+    let name = path.file_name().map_or_else(
+        || path.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    );
     let mut baked = bake(loaded.mesh, &name, options).map_err(|e| match e {
-        Error::Mesh { source, .. } => Error::Mesh { path: path.to_owned(), source },
+        Error::Mesh { source, .. } => Error::Mesh {
+            path: path.to_owned(),
+            source,
+        },
         other => other,
     })?;
     baked.timings.parse = parse;
@@ -69,7 +91,10 @@ pub fn bake_file(path: &Path, options: &BakeOptions) -> Result<Baked, Error> {
 /// The result depends only on the mesh and the options, never on the thread count.
 pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Error> {
     options.validate()?;
-    let mesh_error = |source_error| Error::Mesh { path: source.into(), source: source_error };
+    let mesh_error = |source_error| Error::Mesh {
+        path: source.into(),
+        source: source_error,
+    };
     mesh.validate().map_err(mesh_error)?;
     let mesh_bytes = mesh.memory_bytes();
     let mut stats = Stats {
@@ -84,22 +109,36 @@ pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Er
         clock = Instant::now();
     };
 
-    let Mesh { positions, mut triangles, mut materials, marks, .. } = mesh;
+    let Mesh {
+        positions,
+        mut triangles,
+        mut materials,
+        marks,
+        ..
+    } = mesh;
     let welded = weld::weld(&positions, options.weld_epsilon);
     drop(positions);
     for t in &mut triangles {
         *t = t.map(|i| welded.remap[i as usize]);
     }
-    let marks: Vec<Mark> =
-        marks.iter().map(|m| Mark { vertices: m.vertices.map(|i| welded.remap[i as usize]), ..*m }).collect();
+    let marks: Vec<Mark> = marks
+        .iter()
+        .map(|m| Mark {
+            vertices: m.vertices.map(|i| welded.remap[i as usize]),
+            ..*m
+        })
+        .collect();
     let positions = welded.positions;
     stats.welded_vertices = positions.len() as u64;
     if materials.windows(2).all(|w| w[0] == w[1]) {
         materials = Vec::new(); // one material: no seams to look for
     }
-    stats.degenerate_triangles = degenerate::remove_degenerate(&mut triangles, &mut materials, &positions) as u64;
+    stats.degenerate_triangles =
+        degenerate::remove_degenerate(&mut triangles, &mut materials, &positions) as u64;
     if triangles.is_empty() {
-        return Err(mesh_error(MeshError::AllDegenerate { count: stats.degenerate_triangles as usize }));
+        return Err(mesh_error(MeshError::AllDegenerate {
+            count: stats.degenerate_triangles as usize,
+        }));
     }
     lap(&mut timings.weld);
 
@@ -107,7 +146,13 @@ pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Er
     drop(materials);
     lap(&mut timings.adjacency);
 
-    stats.edges = classify::classify(&positions, &mut edges, &marks, options.coplanar_deg, options.crease_deg);
+    stats.edges = classify::classify(
+        &positions,
+        &mut edges,
+        &marks,
+        options.coplanar_deg,
+        options.crease_deg,
+    );
     lap(&mut timings.classify);
 
     let render = normals::split_normals(&positions, &triangles, &edges);
@@ -116,7 +161,12 @@ pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Er
 
     let asset = assemble(source, options, stats, &positions, edges, render);
     lap(&mut timings.assemble);
-    Ok(Baked { asset, timings, mesh_bytes, warnings: Vec::new() })
+    Ok(Baked {
+        asset,
+        timings,
+        mesh_bytes,
+        warnings: Vec::new(),
+    })
 }
 
 /// Packs the results into the asset's sections, as narrow as the counts allow.
@@ -130,13 +180,21 @@ fn assemble(
 ) -> Asset {
     let (bounds_min, bounds_max) = positions
         .iter()
-        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| {
+            (lo.min(p), hi.max(p))
+        });
     let radius_scale = edges.radii.iter().fold(0.0f32, |m, &r| m.max(r));
     let edge_attributes = edges
         .flags
         .iter()
         .enumerate()
-        .map(|(e, &flags)| pack_attributes(flags, edges.radii.get(e).copied().unwrap_or(0.0), radius_scale))
+        .map(|(e, &flags)| {
+            pack_attributes(
+                flags,
+                edges.radii.get(e).copied().unwrap_or(0.0),
+                radius_scale,
+            )
+        })
         .collect();
     let render_vertices = render.positions.len();
     let edge_vertices: Vec<u32> = bytemuck::allocation::cast_vec(edges.vertices);

@@ -18,11 +18,36 @@ use crate::mesh::Mark;
 /// ([`EdgeFlags::FLIPPED`]). Uses atan2(|na × nb|, na · nb), which is accurate at small angles
 /// (unlike acos of a dot product) and needs no normalization.
 pub fn dihedral_angle(positions: &[Vec3], v: [u32; 4], flipped: bool) -> f32 {
+    let (sin, cos) = dihedral_sin_cos(positions, v, flipped);
+    sin.atan2(cos)
+}
+
+/// The dihedral angle as an unnormalized (sine, cosine) pair: (|na × nb|, na · nb).
+fn dihedral_sin_cos(positions: &[Vec3], v: [u32; 4], flipped: bool) -> (f32, f32) {
     let p = v.map(|i| positions[i as usize]);
     let na = (p[1] - p[0]).cross(p[2] - p[0]);
     let nb = (p[3] - p[0]).cross(p[1] - p[0]);
     let nb = if flipped { -nb } else { nb };
-    na.cross(nb).length().atan2(na.dot(nb))
+    (na.cross(nb).length(), na.dot(nb))
+}
+
+/// "Angle >= threshold" for angles in [0, π] given as (sine, cosine) of any common scale:
+/// the point (cos, sin) lies on or beyond the threshold's ray, so no atan2 is needed per edge.
+#[derive(Clone, Copy)]
+struct AngleThreshold {
+    cos: f32,
+    sin: f32,
+}
+
+impl AngleThreshold {
+    fn degrees(threshold: f32) -> Self {
+        let (sin, cos) = threshold.to_radians().sin_cos();
+        Self { cos, sin }
+    }
+
+    fn reached_by(self, sin: f32, cos: f32) -> bool {
+        self.cos * sin - self.sin * cos >= 0.0
+    }
 }
 
 /// True if the edge is convex: face b's far vertex lies below face a's plane (thesis §6.1).
@@ -42,8 +67,17 @@ fn is_ridge(positions: &[Vec3], v: [u32; 4]) -> bool {
 /// Contract: `edges` comes from [`adjacency`](crate::adjacency::adjacency) over `positions`;
 /// marks use the same vertex numbering. Returns the class counts, counting each edge in every class
 /// it belongs to, before the drop (except `kept` and `smooth`, which count what remains).
-pub fn classify(positions: &[Vec3], edges: &mut Edges, marks: &[Mark], coplanar_deg: f32, crease_deg: f32) -> EdgeStats {
-    let mut stats = EdgeStats { total: edges.len() as u64, ..EdgeStats::default() };
+pub fn classify(
+    positions: &[Vec3],
+    edges: &mut Edges,
+    marks: &[Mark],
+    coplanar_deg: f32,
+    crease_deg: f32,
+) -> EdgeStats {
+    let mut stats = EdgeStats {
+        total: edges.len() as u64,
+        ..EdgeStats::default()
+    };
     for mark in marks {
         let Some(e) = edges.find(mark.vertices[0], mark.vertices[1]) else {
             stats.marks_unmatched += 1;
@@ -59,7 +93,10 @@ pub fn classify(positions: &[Vec3], edges: &mut Edges, marks: &[Mark], coplanar_
         }
     }
 
-    let (coplanar, crease) = (coplanar_deg.to_radians(), crease_deg.to_radians());
+    let (coplanar, crease) = (
+        AngleThreshold::degrees(coplanar_deg),
+        AngleThreshold::degrees(crease_deg),
+    );
     let keep: Vec<bool> = edges
         .vertices
         .par_iter()
@@ -68,11 +105,16 @@ pub fn classify(positions: &[Vec3], edges: &mut Edges, marks: &[Mark], coplanar_
             if flags.intersects(EdgeFlags::BOUNDARY | EdgeFlags::NON_MANIFOLD) {
                 return true;
             }
-            let angle = dihedral_angle(positions, v, flags.contains(EdgeFlags::FLIPPED));
-            if angle >= crease {
-                *flags |= if is_ridge(positions, v) { EdgeFlags::RIDGE } else { EdgeFlags::VALLEY };
+            let (sin, cos) = dihedral_sin_cos(positions, v, flags.contains(EdgeFlags::FLIPPED));
+            if crease.reached_by(sin, cos) {
+                *flags |= if is_ridge(positions, v) {
+                    EdgeFlags::RIDGE
+                } else {
+                    EdgeFlags::VALLEY
+                };
             }
-            angle >= coplanar || flags.intersects(EdgeFlags::MARKED | EdgeFlags::MATERIAL)
+            coplanar.reached_by(sin, cos)
+                || flags.intersects(EdgeFlags::MARKED | EdgeFlags::MATERIAL)
         })
         .collect();
 
@@ -85,7 +127,9 @@ pub fn classify(positions: &[Vec3], edges: &mut Edges, marks: &[Mark], coplanar_
         stats.valley += count(EdgeFlags::VALLEY);
         stats.marked += count(EdgeFlags::MARKED);
         stats.material += count(EdgeFlags::MATERIAL);
-        stats.flipped += u64::from(flags.contains(EdgeFlags::FLIPPED) && !flags.contains(EdgeFlags::NON_MANIFOLD));
+        stats.flipped += u64::from(
+            flags.contains(EdgeFlags::FLIPPED) && !flags.contains(EdgeFlags::NON_MANIFOLD),
+        );
         stats.kept += u64::from(kept);
         stats.smooth += u64::from(kept && !flags.intersects(EdgeFlags::STATIC));
     }
@@ -101,9 +145,21 @@ pub(crate) mod tests {
 
     /// A unit cube, two triangles per face, outward winding.
     pub(crate) fn cube() -> (Vec<Vec3>, Vec<[u32; 3]>) {
-        let p = (0..8).map(|i| Vec3::new((i & 1) as f32, (i >> 1 & 1) as f32, (i >> 2 & 1) as f32)).collect();
-        let quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
-        let t = quads.iter().flat_map(|q: &[u32; 4]| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]).collect();
+        let p = (0..8)
+            .map(|i| Vec3::new((i & 1) as f32, (i >> 1 & 1) as f32, (i >> 2 & 1) as f32))
+            .collect();
+        let quads = [
+            [0, 2, 3, 1],
+            [4, 5, 7, 6],
+            [0, 1, 5, 4],
+            [2, 6, 7, 3],
+            [0, 4, 6, 2],
+            [1, 3, 7, 5],
+        ];
+        let t = quads
+            .iter()
+            .flat_map(|q: &[u32; 4]| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
+            .collect();
         (p, t)
     }
 
@@ -112,8 +168,14 @@ pub(crate) mod tests {
         let (p, t) = cube();
         let mut edges = adjacency(&t, &[], p.len());
         let stats = classify(&p, &mut edges, &[], 0.01, 30.0);
-        assert_eq!((stats.total, stats.kept, stats.coplanar_dropped), (18, 12, 6));
-        assert_eq!((stats.crease, stats.ridge, stats.valley, stats.smooth), (12, 12, 0, 0));
+        assert_eq!(
+            (stats.total, stats.kept, stats.coplanar_dropped),
+            (18, 12, 6)
+        );
+        assert_eq!(
+            (stats.crease, stats.ridge, stats.valley, stats.smooth),
+            (12, 12, 0, 0)
+        );
         assert!(edges.flags.iter().all(|f| f.contains(EdgeFlags::RIDGE)));
     }
 
@@ -121,23 +183,51 @@ pub(crate) mod tests {
     fn a_fold_is_a_ridge_from_one_side_and_a_valley_from_the_other() {
         // Faces in the planes z = 0 (through 2) and y = 0 (through 3) meet at 90 degrees along 0-1.
         // Wound [0 1 2], [1 0 3] their normals are +z and +y, facing each other: an inside corner.
-        let p = vec![Vec3::ZERO, Vec3::X, Vec3::new(0.5, 1.0, 0.0), Vec3::new(0.5, 0.0, 1.0)];
+        let p = vec![
+            Vec3::ZERO,
+            Vec3::X,
+            Vec3::new(0.5, 1.0, 0.0),
+            Vec3::new(0.5, 0.0, 1.0),
+        ];
         let mut valley = adjacency(&[[0, 1, 2], [1, 0, 3]], &[], 4);
         classify(&p, &mut valley, &[], 0.01, 30.0);
         let mut ridge = adjacency(&[[0, 2, 1], [1, 3, 0]], &[], 4);
         classify(&p, &mut ridge, &[], 0.01, 30.0);
-        let (r, v) = (ridge.find(0, 1).expect("edge"), valley.find(0, 1).expect("edge"));
-        assert!(ridge.flags[r].contains(EdgeFlags::RIDGE), "{:?}", ridge.flags[r]);
-        assert!(valley.flags[v].contains(EdgeFlags::VALLEY), "{:?}", valley.flags[v]);
+        let (r, v) = (
+            ridge.find(0, 1).expect("edge"),
+            valley.find(0, 1).expect("edge"),
+        );
+        assert!(
+            ridge.flags[r].contains(EdgeFlags::RIDGE),
+            "{:?}",
+            ridge.flags[r]
+        );
+        assert!(
+            valley.flags[v].contains(EdgeFlags::VALLEY),
+            "{:?}",
+            valley.flags[v]
+        );
     }
 
     #[test]
     fn marks_keep_coplanar_edges_and_carry_their_radius() {
         let (p, t) = cube();
         let mut edges = adjacency(&t, &[], p.len());
-        let marks = [Mark { vertices: [0, 3], radius: Some(0.25) }, Mark { vertices: [0, 7], radius: None }];
+        let marks = [
+            Mark {
+                vertices: [0, 3],
+                radius: Some(0.25),
+            },
+            Mark {
+                vertices: [0, 7],
+                radius: None,
+            },
+        ];
         let stats = classify(&p, &mut edges, &marks, 0.01, 30.0);
-        assert_eq!((stats.kept, stats.marked, stats.marks_unmatched), (13, 1, 1));
+        assert_eq!(
+            (stats.kept, stats.marked, stats.marks_unmatched),
+            (13, 1, 1)
+        );
         let e = edges.find(3, 0).expect("marked diagonal kept");
         assert!(edges.flags[e].contains(EdgeFlags::MARKED | EdgeFlags::CHAMFER));
         assert_eq!(edges.radii[e], 0.25);
@@ -146,7 +236,12 @@ pub(crate) mod tests {
     #[test]
     fn dihedral_angle_is_accurate_for_tiny_folds() {
         let tiny = 1e-4_f32; // radians
-        let p = vec![Vec3::ZERO, Vec3::X, Vec3::new(0.5, 1.0, 0.0), Vec3::new(0.5, -tiny.cos(), tiny.sin())];
+        let p = vec![
+            Vec3::ZERO,
+            Vec3::X,
+            Vec3::new(0.5, 1.0, 0.0),
+            Vec3::new(0.5, -tiny.cos(), tiny.sin()),
+        ];
         let angle = dihedral_angle(&p, [0, 1, 2, 3], false);
         assert!((angle - tiny).abs() < 1e-6, "{angle}");
     }

@@ -19,19 +19,26 @@ pub fn is_degenerate(triangle: [u32; 3], positions: &[Vec3]) -> bool {
 /// Removes degenerate triangles (and their materials) in place, keeping the others in order.
 /// Returns how many were removed.
 ///
-/// Contract: every index is below `positions.len()`; `materials` has one entry per triangle.
-pub fn remove_degenerate(triangles: &mut Vec<[u32; 3]>, materials: &mut Vec<u32>, positions: &[Vec3]) -> usize {
+/// Contract: every index is below `positions.len()`; `materials` is empty (one material) or has
+/// one entry per triangle.
+pub fn remove_degenerate(
+    triangles: &mut Vec<[u32; 3]>,
+    materials: &mut Vec<u32>,
+    positions: &[Vec3],
+) -> usize {
     let before = triangles.len();
     let mut write = 0;
     for read in 0..before {
         if !is_degenerate(triangles[read], positions) {
             triangles[write] = triangles[read];
-            materials[write] = materials[read];
+            if !materials.is_empty() {
+                materials[write] = materials[read];
+            }
             write += 1;
         }
     }
     triangles.truncate(write);
-    materials.truncate(write);
+    materials.truncate(write.min(materials.len()));
     before - write
 }
 

@@ -23,6 +23,6 @@ mod options;
 pub mod weld;
 pub mod write;
 
-pub use bake::{Baked, Timings, bake, bake_file};
+pub use bake::{Baked, Timings, bake, bake_bytes, bake_file};
 pub use error::Error;
 pub use options::{BakeOptions, OptionsError};

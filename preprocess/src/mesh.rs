@@ -50,7 +50,9 @@ pub enum MeshError {
         position: [f32; 3],
     },
     /// A triangle refers to a vertex that does not exist.
-    #[error("triangle {triangle} refers to vertex {index}, but there are only {vertex_count} vertices")]
+    #[error(
+        "triangle {triangle} refers to vertex {index}, but there are only {vertex_count} vertices"
+    )]
     IndexOutOfRange {
         /// The triangle.
         triangle: usize,
@@ -60,7 +62,9 @@ pub enum MeshError {
         vertex_count: usize,
     },
     /// A marked edge refers to a vertex that does not exist.
-    #[error("marked edge {mark} refers to vertex {index}, but there are only {vertex_count} vertices")]
+    #[error(
+        "marked edge {mark} refers to vertex {index}, but there are only {vertex_count} vertices"
+    )]
     MarkOutOfRange {
         /// The mark.
         mark: usize,
@@ -108,7 +112,11 @@ impl Mesh {
         let vertex_count = self.positions.len();
         for (what, count) in [("vertex", vertex_count), ("triangle", self.triangles.len())] {
             if count > MAX_ELEMENTS {
-                return Err(MeshError::TooLarge { what, count, limit: MAX_ELEMENTS });
+                return Err(MeshError::TooLarge {
+                    what,
+                    count,
+                    limit: MAX_ELEMENTS,
+                });
             }
         }
         if self.triangles.is_empty() {
@@ -120,12 +128,20 @@ impl Mesh {
         }
         for (triangle, t) in self.triangles.iter().enumerate() {
             if let Some(&index) = t.iter().find(|&&i| i as usize >= vertex_count) {
-                return Err(MeshError::IndexOutOfRange { triangle, index, vertex_count });
+                return Err(MeshError::IndexOutOfRange {
+                    triangle,
+                    index,
+                    vertex_count,
+                });
             }
         }
         for (mark, m) in self.marks.iter().enumerate() {
             if let Some(&index) = m.vertices.iter().find(|&&i| i as usize >= vertex_count) {
-                return Err(MeshError::MarkOutOfRange { mark, index, vertex_count });
+                return Err(MeshError::MarkOutOfRange {
+                    mark,
+                    index,
+                    vertex_count,
+                });
             }
             if let Some(radius) = m.radius.filter(|r| !r.is_finite() || *r < 0.0) {
                 return Err(MeshError::BadRadius { mark, radius });
@@ -133,12 +149,24 @@ impl Mesh {
         }
         let lengths = [
             ("materials", self.materials.len(), self.triangles.len()),
-            ("normals", self.normals.as_ref().map_or(vertex_count, Vec::len), vertex_count),
-            ("uvs", self.uvs.as_ref().map_or(vertex_count, Vec::len), vertex_count),
+            (
+                "normals",
+                self.normals.as_ref().map_or(vertex_count, Vec::len),
+                vertex_count,
+            ),
+            (
+                "uvs",
+                self.uvs.as_ref().map_or(vertex_count, Vec::len),
+                vertex_count,
+            ),
         ];
         for (what, found, expected) in lengths {
             if found != expected {
-                return Err(MeshError::LengthMismatch { what, found, expected });
+                return Err(MeshError::LengthMismatch {
+                    what,
+                    found,
+                    expected,
+                });
             }
         }
         Ok(())
@@ -159,17 +187,33 @@ impl Mesh {
     pub fn append(&mut self, other: Mesh) {
         let base = self.positions.len() as u32;
         let (self_len, other_len) = (self.positions.len(), other.positions.len());
-        merge_optional(&mut self.normals, other.normals, self_len, other_len, Vec3::ZERO);
+        merge_optional(
+            &mut self.normals,
+            other.normals,
+            self_len,
+            other_len,
+            Vec3::ZERO,
+        );
         merge_optional(&mut self.uvs, other.uvs, self_len, other_len, Vec2::ZERO);
         self.positions.extend(other.positions);
-        self.triangles.extend(other.triangles.iter().map(|t| t.map(|i| i + base)));
+        self.triangles
+            .extend(other.triangles.iter().map(|t| t.map(|i| i + base)));
         self.materials.extend(other.materials);
-        self.marks.extend(other.marks.into_iter().map(|m| Mark { vertices: m.vertices.map(|i| i + base), ..m }));
+        self.marks.extend(other.marks.into_iter().map(|m| Mark {
+            vertices: m.vertices.map(|i| i + base),
+            ..m
+        }));
     }
 }
 
 /// Concatenates optional per-vertex attributes, filling the side that lacks them.
-fn merge_optional<T: Copy>(ours: &mut Option<Vec<T>>, theirs: Option<Vec<T>>, ours_len: usize, theirs_len: usize, fill: T) {
+fn merge_optional<T: Copy>(
+    ours: &mut Option<Vec<T>>,
+    theirs: Option<Vec<T>>,
+    ours_len: usize,
+    theirs_len: usize,
+    fill: T,
+) {
     match (ours.as_mut(), theirs) {
         (None, None) => {}
         (Some(a), Some(b)) => a.extend(b),

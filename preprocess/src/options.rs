@@ -29,16 +29,26 @@ pub struct OptionsError {
 
 impl BakeOptions {
     /// Exact weld, 0.01° coplanar threshold, 30° creases.
-    pub const DEFAULT: Self = Self { weld_epsilon: 0.0, coplanar_deg: 0.01, crease_deg: 30.0 };
+    pub const DEFAULT: Self = Self {
+        weld_epsilon: 0.0,
+        coplanar_deg: 0.01,
+        crease_deg: 30.0,
+    };
 
     /// Sets [`weld_epsilon`](Self::weld_epsilon).
     pub fn with_weld_epsilon(self, weld_epsilon: f32) -> Self {
-        Self { weld_epsilon, ..self }
+        Self {
+            weld_epsilon,
+            ..self
+        }
     }
 
     /// Sets [`coplanar_deg`](Self::coplanar_deg).
     pub fn with_coplanar_deg(self, coplanar_deg: f32) -> Self {
-        Self { coplanar_deg, ..self }
+        Self {
+            coplanar_deg,
+            ..self
+        }
     }
 
     /// Sets [`crease_deg`](Self::crease_deg).
@@ -48,9 +58,29 @@ impl BakeOptions {
 
     /// Checks every field's range.
     pub fn validate(&self) -> Result<(), OptionsError> {
-        let check = |ok: bool, name, value, reason| if ok { Ok(()) } else { Err(OptionsError { name, value, reason }) };
-        check(self.weld_epsilon.is_finite() && self.weld_epsilon >= 0.0, "weld-epsilon", self.weld_epsilon, "must be a finite number >= 0")?;
-        check(self.crease_deg > 0.0 && self.crease_deg <= 180.0, "crease-deg", self.crease_deg, "must be in (0, 180]")?;
+        let check = |ok: bool, name, value, reason| {
+            if ok {
+                Ok(())
+            } else {
+                Err(OptionsError {
+                    name,
+                    value,
+                    reason,
+                })
+            }
+        };
+        check(
+            self.weld_epsilon.is_finite() && self.weld_epsilon >= 0.0,
+            "weld-epsilon",
+            self.weld_epsilon,
+            "must be a finite number >= 0",
+        )?;
+        check(
+            self.crease_deg > 0.0 && self.crease_deg <= 180.0,
+            "crease-deg",
+            self.crease_deg,
+            "must be in (0, 180]",
+        )?;
         check(
             self.coplanar_deg >= 0.0 && self.coplanar_deg < self.crease_deg,
             "coplanar-deg",

@@ -39,7 +39,14 @@ pub fn weld(positions: &[Vec3], epsilon: f32) -> Weld {
         return exact;
     }
     let near = weld_near(&exact.positions, epsilon);
-    Weld { remap: exact.remap.iter().map(|&i| near.remap[i as usize]).collect(), positions: near.positions }
+    Weld {
+        remap: exact
+            .remap
+            .iter()
+            .map(|&i| near.remap[i as usize])
+            .collect(),
+        positions: near.positions,
+    }
 }
 
 /// Bits of a coordinate with the two zeros made equal.
@@ -69,7 +76,10 @@ const EMPTY: u32 = u32::MAX;
 impl Table {
     fn new(n: usize) -> Self {
         let size = (n * 2).next_power_of_two().max(16);
-        Self { slots: vec![EMPTY; size], mask: size - 1 }
+        Self {
+            slots: vec![EMPTY; size],
+            mask: size - 1,
+        }
     }
 
     /// Finds the slot holding an id for which `same` is true, or the empty slot where it belongs.
@@ -102,7 +112,10 @@ fn weld_exact(positions: &[Vec3]) -> Weld {
             *slot
         })
         .collect();
-    Weld { remap, positions: unique }
+    Weld {
+        remap,
+        positions: unique,
+    }
 }
 
 /// Tolerance weld of positions that are already unique.
@@ -126,12 +139,23 @@ fn weld_near(positions: &[Vec3], epsilon: f32) -> Weld {
         let base = cell_of(p);
         let scaled = p / cell_size;
         // The neighbour to probe on each axis: below if p is in its cell's lower half.
-        let side = [0, 1, 2].map(|a| if scaled[a] - scaled[a].floor() < 0.5 { -1 } else { 1 });
+        let side = [0, 1, 2].map(|a| {
+            if scaled[a] - scaled[a].floor() < 0.5 {
+                -1
+            } else {
+                1
+            }
+        });
         let mut best = EMPTY;
         for corner in 0..8 {
-            let c = [0, 1, 2].map(|a| base[a].saturating_add(if corner >> a & 1 == 1 { side[a] } else { 0 }));
+            let c = [0, 1, 2]
+                .map(|a| base[a].saturating_add(if corner >> a & 1 == 1 { side[a] } else { 0 }));
             let slot = cells.find(cell_hash(c), |id| cell_keys[id as usize] == c);
-            let mut v = if *slot == EMPTY { EMPTY } else { cell_head[*slot as usize] };
+            let mut v = if *slot == EMPTY {
+                EMPTY
+            } else {
+                cell_head[*slot as usize]
+            };
             while v != EMPTY {
                 let d = (kept[v as usize].as_dvec3() - p.as_dvec3()).length_squared();
                 if d <= epsilon_sq && v < best {
@@ -155,7 +179,10 @@ fn weld_near(positions: &[Vec3], epsilon: f32) -> Weld {
         }
         remap.push(best);
     }
-    Weld { remap, positions: kept }
+    Weld {
+        remap,
+        positions: kept,
+    }
 }
 
 #[cfg(test)]
@@ -164,7 +191,11 @@ mod tests {
 
     #[test]
     fn exact_weld_joins_bitwise_equal_and_both_zeros() {
-        let p = [Vec3::new(0.0, 1.0, 2.0), Vec3::new(-0.0, 1.0, 2.0), Vec3::new(0.0, 1.0, 2.0000002)];
+        let p = [
+            Vec3::new(0.0, 1.0, 2.0),
+            Vec3::new(-0.0, 1.0, 2.0),
+            Vec3::new(0.0, 1.0, 2.0000002),
+        ];
         let w = weld(&p, 0.0);
         assert_eq!(w.remap, [0, 0, 1]);
         assert_eq!(w.positions, [p[0], p[2]]);
@@ -174,7 +205,12 @@ mod tests {
     fn tolerance_weld_finds_neighbours_across_cell_boundaries() {
         // Cells are 2e wide with boundaries at multiples of 0.2; each pair straddles one on some axis.
         let e = 0.1;
-        for boundary in [Vec3::X * 0.2, Vec3::Y * -0.4, Vec3::Z * 0.6, Vec3::splat(0.2)] {
+        for boundary in [
+            Vec3::X * 0.2,
+            Vec3::Y * -0.4,
+            Vec3::Z * 0.6,
+            Vec3::splat(0.2),
+        ] {
             let a = boundary - Vec3::splat(0.02);
             let b = boundary + Vec3::splat(0.02); // |a - b| = 0.069 < e
             let w = weld(&[a, b], e);
@@ -205,15 +241,20 @@ mod tests {
             state ^= state << 5;
             state as f32 / u32::MAX as f32
         };
-        let points: Vec<Vec3> =
-            (0..2000).map(|_| Vec3::new(rand(), rand(), rand()) * 0.5 + Vec3::splat((rand() * 4.0).floor() * 0.05)).collect();
+        let points: Vec<Vec3> = (0..2000)
+            .map(|_| {
+                Vec3::new(rand(), rand(), rand()) * 0.5 + Vec3::splat((rand() * 4.0).floor() * 0.05)
+            })
+            .collect();
         let e = 0.013;
         let w = weld(&points, e);
         // Reference: the same greedy rule, by brute force.
         let mut kept: Vec<usize> = Vec::new();
         let mut expected = Vec::new();
         for (i, &p) in points.iter().enumerate() {
-            match kept.iter().position(|&k| points[k].as_dvec3().distance_squared(p.as_dvec3()) <= f64::from(e) * f64::from(e)) {
+            match kept.iter().position(|&k| {
+                points[k].as_dvec3().distance_squared(p.as_dvec3()) <= f64::from(e) * f64::from(e)
+            }) {
                 Some(cluster) => expected.push(cluster as u32),
                 None => {
                     expected.push(kept.len() as u32);
@@ -222,6 +263,9 @@ mod tests {
             }
         }
         assert_eq!(w.remap, expected);
-        assert!(w.positions.len() < points.len(), "the test must actually weld something");
+        assert!(
+            w.positions.len() < points.len(),
+            "the test must actually weld something"
+        );
     }
 }

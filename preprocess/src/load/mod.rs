@@ -47,27 +47,45 @@ pub struct Loaded {
 
 /// Loads a mesh file, choosing the loader by extension, and validates it.
 pub fn load(path: &Path) -> Result<Loaded, Error> {
-    let format = format_of(path).ok_or_else(|| Error::UnknownFormat { path: path.to_owned() })?;
-    let bytes = read(path)?;
+    format_of(path).ok_or_else(|| Error::UnknownFormat {
+        path: path.to_owned(),
+    })?;
+    load_bytes(path, &read(path)?)
+}
+
+/// Parses a mesh already in memory; `path` picks the format and resolves files it refers to
+/// (an OBJ's `.mtl`, a `.gltf`'s buffers). `bytes` must already be inflated if the name ends in `.gz`.
+pub fn load_bytes(path: &Path, bytes: &[u8]) -> Result<Loaded, Error> {
+    let format = format_of(path).ok_or_else(|| Error::UnknownFormat {
+        path: path.to_owned(),
+    })?;
     let mut warnings = Vec::new();
     let mesh = match format {
-        Format::Obj => obj::parse(path, &bytes, &mut warnings)?,
-        Format::Gltf => gltf::parse(path, &bytes, &mut warnings)?,
-        Format::Ply => ply::parse(path, &bytes, &mut warnings)?,
+        Format::Obj => obj::parse(path, bytes, &mut warnings)?,
+        Format::Gltf => gltf::parse(path, bytes, &mut warnings)?,
+        Format::Ply => ply::parse(path, bytes, &mut warnings)?,
     };
-    mesh.validate().map_err(|source| Error::Mesh { path: path.to_owned(), source })?;
+    mesh.validate().map_err(|source| Error::Mesh {
+        path: path.to_owned(),
+        source,
+    })?;
     Ok(Loaded { mesh, warnings })
 }
 
 /// Reads a file, inflating it if its name ends in `.gz`.
 pub(crate) fn read(path: &Path) -> Result<Vec<u8>, Error> {
-    let read_error = |source| Error::Read { path: path.to_owned(), source };
+    let read_error = |source| Error::Read {
+        path: path.to_owned(),
+        source,
+    };
     let bytes = std::fs::read(path).map_err(read_error)?;
     if !path.to_string_lossy().to_ascii_lowercase().ends_with(".gz") {
         return Ok(bytes);
     }
     let mut inflated = Vec::new();
-    flate2::read::GzDecoder::new(bytes.as_slice()).read_to_end(&mut inflated).map_err(read_error)?;
+    flate2::read::GzDecoder::new(bytes.as_slice())
+        .read_to_end(&mut inflated)
+        .map_err(read_error)?;
     Ok(inflated)
 }
 

@@ -28,10 +28,16 @@ pub(super) fn parse(path: &Path, bytes: &[u8], warnings: &mut Vec<String>) -> Re
         }
     };
     let (models, _materials) = tobj::load_obj_buf(&mut BufReader::new(bytes), &options, load_mtl)
-        .map_err(|e| Error::Parse { path: path.to_owned(), format: "OBJ", message: e.to_string() })?;
+        .map_err(|e| Error::Parse {
+        path: path.to_owned(),
+        format: "OBJ",
+        message: e.to_string(),
+    })?;
 
     for mtl in missing.into_inner() {
-        warnings.push(format!("material library {mtl} not found: all faces get one material"));
+        warnings.push(format!(
+            "material library {mtl} not found: all faces get one material"
+        ));
     }
     let mut mesh = Mesh::default();
     for model in models {
@@ -39,9 +45,15 @@ pub(super) fn parse(path: &Path, bytes: &[u8], warnings: &mut Vec<String>) -> Re
         let count = m.positions.len() / 3;
         let part = Mesh {
             positions: m.positions.chunks_exact(3).map(Vec3::from_slice).collect(),
-            normals: (m.normals.len() == 3 * count).then(|| m.normals.chunks_exact(3).map(Vec3::from_slice).collect()),
-            uvs: (m.texcoords.len() == 2 * count).then(|| m.texcoords.chunks_exact(2).map(Vec2::from_slice).collect()),
-            triangles: m.indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect(),
+            normals: (m.normals.len() == 3 * count)
+                .then(|| m.normals.chunks_exact(3).map(Vec3::from_slice).collect()),
+            uvs: (m.texcoords.len() == 2 * count)
+                .then(|| m.texcoords.chunks_exact(2).map(Vec2::from_slice).collect()),
+            triangles: m
+                .indices
+                .chunks_exact(3)
+                .map(|t| [t[0], t[1], t[2]])
+                .collect(),
             materials: vec![m.material_id.map_or(0, |id| id as u32 + 1); m.indices.len() / 3],
             marks: Vec::new(),
         };

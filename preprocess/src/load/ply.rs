@@ -6,64 +6,121 @@
 //! of any integer type and length, fanned into triangles) and `edge` (`vertex1 vertex2`, optional
 //! `radius`) as marked edges. Other elements and properties are skipped.
 
-use std::io::BufReader;
+use std::io::{BufRead, BufReader};
 use std::path::Path;
 
 use glam::Vec3;
 use ply_rs_bw::parser::{Parser, Reader};
-use ply_rs_bw::ply::{BeginList, Property, PropertyAccess, PropertyAccessResult};
+use ply_rs_bw::ply::{
+    BeginList, ElementDef, Encoding, Header, Property, PropertyAccess, PropertyAccessResult,
+};
 
 use crate::Error;
 use crate::mesh::{Mark, Mesh};
 
 pub(super) fn parse(path: &Path, bytes: &[u8], _warnings: &mut Vec<String>) -> Result<Mesh, Error> {
-    let parse_error = |message: String| Error::Parse { path: path.to_owned(), format: "PLY", message };
+    let parse_error = |message: String| Error::Parse {
+        path: path.to_owned(),
+        format: "PLY",
+        message,
+    };
     let mut reader = Reader::new(BufReader::new(bytes));
-    let header = Parser::<Skip>::new().read_header(&mut reader).map_err(|e| parse_error(e.to_string()))?;
+    let header = Parser::<Skip>::new()
+        .read_header(&mut reader)
+        .map_err(|e| parse_error(e.to_string()))?;
+    let input = reader.get_mut();
 
     let mut mesh = Mesh::default();
-    let mut negative = None;
     for (name, element) in header.elements.iter() {
-        let err = |e: ply_rs_bw::parser::ParseError| parse_error(format!("element '{name}': {e}"));
+        // Elements stream one at a time into the mesh: a million faces never exist as a million Vecs.
+        let err = |(index, e): (usize, String)| {
+            parse_error(format!(
+                "element '{name}' number {index} of {}: {e}",
+                element.count
+            ))
+        };
+        // Counts come from the (untrusted) header: reserve no more than the bytes could hold.
+        let plausible = element.count.min(bytes.len());
         match name.as_str() {
             "vertex" => {
-                let has_normals = ["nx", "ny", "nz"].iter().all(|p| element.properties.contains_key(*p));
-                let vertices = Parser::<Vertex>::new().read_payload_for_element(&mut reader, element, &header).map_err(err)?;
-                mesh.positions = vertices.iter().map(|v| Vec3::from(v.position)).collect();
-                if has_normals {
-                    mesh.normals = Some(vertices.iter().map(|v| Vec3::from(v.normal)).collect());
-                }
+                let has_normals = ["nx", "ny", "nz"]
+                    .iter()
+                    .all(|p| element.properties.contains_key(*p));
+                mesh.positions.reserve(plausible);
+                let mut normals = Vec::with_capacity(if has_normals { plausible } else { 0 });
+                for_each_element(input, &header, element, |v: Vertex| {
+                    mesh.positions.push(Vec3::from(v.position));
+                    if has_normals {
+                        normals.push(Vec3::from(v.normal));
+                    }
+                    Ok(())
+                })
+                .map_err(err)?;
+                mesh.normals = has_normals.then_some(normals);
             }
             "face" => {
-                let faces = Parser::<Face>::new().read_payload_for_element(&mut reader, element, &header).map_err(err)?;
-                mesh.triangles.reserve(faces.len());
-                for (f, mut face) in faces.into_iter().enumerate() {
+                mesh.triangles.reserve(plausible);
+                for_each_element(input, &header, element, |mut face: Face| {
                     // `int` lists arrive unconverted through the in-place fast path.
                     if !face.signed.is_empty() {
                         let signed = std::mem::take(&mut face.signed);
                         face.take(signed.into_iter().map(i64::from));
                     }
-                    negative = negative.or(face.negative.map(|v| ("face", f, v)));
+                    if let Some(v) = face.negative {
+                        return Err(format!("negative vertex index {v}"));
+                    }
                     super::fan(&face.indices, &mut mesh.triangles);
-                }
+                    Ok(())
+                })
+                .map_err(err)?;
             }
             "edge" => {
-                let edges = Parser::<Edge>::new().read_payload_for_element(&mut reader, element, &header).map_err(err)?;
-                for (e, edge) in edges.iter().enumerate() {
-                    negative = negative.or(edge.negative.map(|v| ("edge", e, v)));
-                    mesh.marks.push(Mark { vertices: edge.vertices, radius: edge.radius });
-                }
+                for_each_element(input, &header, element, |edge: Edge| {
+                    if let Some(v) = edge.negative {
+                        return Err(format!("negative vertex index {v}"));
+                    }
+                    mesh.marks.push(Mark {
+                        vertices: edge.vertices,
+                        radius: edge.radius,
+                    });
+                    Ok(())
+                })
+                .map_err(err)?;
             }
-            _ => {
-                Parser::<Skip>::new().read_payload_for_element(&mut reader, element, &header).map_err(err)?;
-            }
+            _ => for_each_element(input, &header, element, |_: Skip| Ok(())).map_err(err)?,
         }
-    }
-    if let Some((element, index, value)) = negative {
-        return Err(parse_error(format!("{element} {index} has the negative vertex index {value}")));
     }
     mesh.materials = vec![0; mesh.triangles.len()];
     Ok(mesh)
+}
+
+/// Reads `element.count` elements of type `E` in the file's encoding, handing each to `consume`.
+/// Errors carry the element's index.
+fn for_each_element<E: PropertyAccess>(
+    input: &mut impl BufRead,
+    header: &Header,
+    element: &ElementDef,
+    mut consume: impl FnMut(E) -> Result<(), String>,
+) -> Result<(), (usize, String)> {
+    let parser = Parser::<E>::new();
+    let mut line = String::new();
+    for index in 0..element.count {
+        let parsed = match header.encoding {
+            Encoding::Ascii => {
+                line.clear();
+                match input.read_line(&mut line) {
+                    Ok(0) => return Err((index, "unexpected end of file".into())),
+                    Ok(_) => parser.read_ascii_element(&line, element),
+                    Err(e) => return Err((index, e.to_string())),
+                }
+            }
+            Encoding::BinaryLittleEndian => parser.read_little_endian_element(input, element),
+            Encoding::BinaryBigEndian => parser.read_big_endian_element(input, element),
+        };
+        let value = parsed.map_err(|e| (index, e.to_string()))?;
+        consume(value).map_err(|message| (index, message))?;
+    }
+    Ok(())
 }
 
 /// An element this loader does not use: parsed (to advance the reader) and dropped.
@@ -152,10 +209,18 @@ impl PropertyAccess for Face {
         Self::default()
     }
     fn begin_list_uint(&mut self, name: &str, _len: usize) -> BeginList<'_, u32> {
-        if Self::is_index_list(name) { BeginList::Fill(&mut self.indices) } else { BeginList::UseSetter }
+        if Self::is_index_list(name) {
+            BeginList::Fill(&mut self.indices)
+        } else {
+            BeginList::UseSetter
+        }
     }
     fn begin_list_int(&mut self, name: &str, _len: usize) -> BeginList<'_, i32> {
-        if Self::is_index_list(name) { BeginList::Fill(&mut self.signed) } else { BeginList::UseSetter }
+        if Self::is_index_list(name) {
+            BeginList::Fill(&mut self.signed)
+        } else {
+            BeginList::UseSetter
+        }
     }
     fn set_property(&mut self, name: &str, property: Property) -> PropertyAccessResult {
         if !Self::is_index_list(name) {

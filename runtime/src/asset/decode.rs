@@ -17,40 +17,79 @@ impl Asset {
         let ranges = section_ranges(&header, bytes.len() as u64)?;
         let section = |kind: SectionKind| &bytes[ranges[kind as usize - 1].clone()];
 
-        let render_positions = read_vec3s(SectionKind::RenderPositions, section(SectionKind::RenderPositions))?;
+        let render_positions = read_vec3s(
+            SectionKind::RenderPositions,
+            section(SectionKind::RenderPositions),
+        )?;
         let render_vertices = render_positions.len();
-        let render_normals = read_vec3s(SectionKind::RenderNormals, section(SectionKind::RenderNormals))?;
+        let render_normals = read_vec3s(
+            SectionKind::RenderNormals,
+            section(SectionKind::RenderNormals),
+        )?;
         if render_normals.len() != render_vertices {
-            return Err(length_error(SectionKind::RenderNormals, format!(
-                "{} normals for {} render vertices",
-                render_normals.len(),
-                render_vertices
-            )));
+            return Err(length_error(
+                SectionKind::RenderNormals,
+                format!(
+                    "{} normals for {} render vertices",
+                    render_normals.len(),
+                    render_vertices
+                ),
+            ));
         }
-        let mesh_indices = read_indices(SectionKind::MeshIndices, section(SectionKind::MeshIndices), render_vertices, 3)?;
-        let topology_positions =
-            read_vec3s(SectionKind::TopologyPositions, section(SectionKind::TopologyPositions))?;
-        let edge_attributes = read_u32s(SectionKind::EdgeAttributes, section(SectionKind::EdgeAttributes))?;
+        let mesh_indices = read_indices(
+            SectionKind::MeshIndices,
+            section(SectionKind::MeshIndices),
+            render_vertices,
+            3,
+        )?;
+        let topology_positions = read_vec3s(
+            SectionKind::TopologyPositions,
+            section(SectionKind::TopologyPositions),
+        )?;
+        let edge_attributes = read_u32s(
+            SectionKind::EdgeAttributes,
+            section(SectionKind::EdgeAttributes),
+        )?;
         let edges = edge_attributes.len();
-        let edge_vertices =
-            read_indices(SectionKind::EdgeVertices, section(SectionKind::EdgeVertices), topology_positions.len(), 4)?;
+        let edge_vertices = read_indices(
+            SectionKind::EdgeVertices,
+            section(SectionKind::EdgeVertices),
+            topology_positions.len(),
+            4,
+        )?;
         if edge_vertices.len() != 4 * edges {
-            return Err(length_error(SectionKind::EdgeVertices, format!(
-                "{} indices for {} edges (4 per edge)",
-                edge_vertices.len(),
-                edges
-            )));
+            return Err(length_error(
+                SectionKind::EdgeVertices,
+                format!(
+                    "{} indices for {} edges (4 per edge)",
+                    edge_vertices.len(),
+                    edges
+                ),
+            ));
         }
         let ends = 2 * edges;
-        let next_ends = read_indices(SectionKind::NextEnds, section(SectionKind::NextEnds), ends, 1)?;
+        let next_ends = read_indices(
+            SectionKind::NextEnds,
+            section(SectionKind::NextEnds),
+            ends,
+            1,
+        )?;
         if !next_ends.is_empty() && next_ends.len() != ends {
-            return Err(length_error(SectionKind::NextEnds, format!(
-                "{} entries for {} edge ends (must be 0 or one per end)",
-                next_ends.len(),
-                ends
-            )));
+            return Err(length_error(
+                SectionKind::NextEnds,
+                format!(
+                    "{} entries for {} edge ends (must be 0 or one per end)",
+                    next_ends.len(),
+                    ends
+                ),
+            ));
         }
-        let cap_heads = read_indices(SectionKind::CapHeads, section(SectionKind::CapHeads), ends, 1)?;
+        let cap_heads = read_indices(
+            SectionKind::CapHeads,
+            section(SectionKind::CapHeads),
+            ends,
+            1,
+        )?;
 
         let asset = Asset {
             header,
@@ -71,14 +110,28 @@ impl Asset {
 
 fn read_header(bytes: &[u8]) -> Result<Header, DecodeError> {
     let available = bytes.len() as u64;
-    let preamble = bytes.get(..16).ok_or(DecodeError::Truncated { what: "preamble", needed: 16, available })?;
+    let preamble = bytes.get(..16).ok_or(DecodeError::Truncated {
+        what: "preamble",
+        needed: 16,
+        available,
+    })?;
     if preamble[..8] != MAGIC {
         return Err(DecodeError::BadMagic);
     }
-    let word = |at: usize| u32::from_le_bytes([preamble[at], preamble[at + 1], preamble[at + 2], preamble[at + 3]]);
+    let word = |at: usize| {
+        u32::from_le_bytes([
+            preamble[at],
+            preamble[at + 1],
+            preamble[at + 2],
+            preamble[at + 3],
+        ])
+    };
     let version = word(8);
     if version != FORMAT_VERSION {
-        return Err(DecodeError::UnsupportedVersion { found: version, supported: FORMAT_VERSION });
+        return Err(DecodeError::UnsupportedVersion {
+            found: version,
+            supported: FORMAT_VERSION,
+        });
     }
     let header_len = word(12);
     if header_len > MAX_HEADER_BYTES {
@@ -93,21 +146,31 @@ fn read_header(bytes: &[u8]) -> Result<Header, DecodeError> {
         available,
     })?;
     let header = envelope::decode_header(header_bytes)?;
-    let finite = header.bounds_min.iter().chain(&header.bounds_max).all(|v| v.is_finite());
+    let finite = header
+        .bounds_min
+        .iter()
+        .chain(&header.bounds_max)
+        .all(|v| v.is_finite());
     if !finite || !header.radius_scale.is_finite() || header.radius_scale < 0.0 {
-        return Err(DecodeError::BadHeader("bounds or radius scale not finite and non-negative".into()));
+        return Err(DecodeError::BadHeader(
+            "bounds or radius scale not finite and non-negative".into(),
+        ));
     }
     Ok(header)
 }
 
 /// The byte range of every section, indexed by `kind - 1`.
-fn section_ranges(header: &Header, file_len: u64) -> Result<Vec<std::ops::Range<usize>>, DecodeError> {
+fn section_ranges(
+    header: &Header,
+    file_len: u64,
+) -> Result<Vec<std::ops::Range<usize>>, DecodeError> {
     let header_end = 16 + envelope_len(header);
     let mut ranges = vec![None; SectionKind::ALL.len()];
     let mut previous_end = header_end;
     for entry in &header.sections {
-        let kind = SectionKind::from_u32(entry.kind)
-            .ok_or_else(|| DecodeError::BadSectionTable(format!("unknown section kind {}", entry.kind)))?;
+        let kind = SectionKind::from_u32(entry.kind).ok_or_else(|| {
+            DecodeError::BadSectionTable(format!("unknown section kind {}", entry.kind))
+        })?;
         if entry.offset % SECTION_ALIGN as u64 != 0 {
             return Err(DecodeError::BadSectionTable(format!(
                 "{kind:?} starts at {}, not a multiple of {SECTION_ALIGN}",
@@ -124,11 +187,17 @@ fn section_ranges(header: &Header, file_len: u64) -> Result<Vec<std::ops::Range<
             DecodeError::BadSectionTable(format!("{kind:?} length {} overflows", entry.length))
         })?;
         if end > file_len {
-            return Err(DecodeError::Truncated { what: kind.name(), needed: end, available: file_len });
+            return Err(DecodeError::Truncated {
+                what: kind.name(),
+                needed: end,
+                available: file_len,
+            });
         }
         let slot = &mut ranges[kind as usize - 1];
         if slot.is_some() {
-            return Err(DecodeError::BadSectionTable(format!("{kind:?} appears twice")));
+            return Err(DecodeError::BadSectionTable(format!(
+                "{kind:?} appears twice"
+            )));
         }
         *slot = Some(entry.offset as usize..end as usize);
         previous_end = end;
@@ -157,41 +226,79 @@ fn length_error(kind: SectionKind, reason: String) -> DecodeError {
 
 fn read_u32s(kind: SectionKind, bytes: &[u8]) -> Result<Vec<u32>, DecodeError> {
     if bytes.len() % 4 != 0 {
-        return Err(length_error(kind, format!("{} bytes is not a whole number of u32", bytes.len())));
+        return Err(length_error(
+            kind,
+            format!("{} bytes is not a whole number of u32", bytes.len()),
+        ));
     }
-    Ok(bytes.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect())
+    Ok(bytes
+        .chunks_exact(4)
+        .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+        .collect())
 }
 
 fn read_vec3s(kind: SectionKind, bytes: &[u8]) -> Result<Vec<[f32; 3]>, DecodeError> {
     if bytes.len() % 12 != 0 {
-        return Err(length_error(kind, format!("{} bytes is not a whole number of 3 × f32", bytes.len())));
+        return Err(length_error(
+            kind,
+            format!("{} bytes is not a whole number of 3 × f32", bytes.len()),
+        ));
     }
     let values: Vec<[f32; 3]> = bytes
         .chunks_exact(12)
-        .map(|c| std::array::from_fn(|k| f32::from_le_bytes([c[4 * k], c[4 * k + 1], c[4 * k + 2], c[4 * k + 3]])))
+        .map(|c| {
+            std::array::from_fn(|k| {
+                f32::from_le_bytes([c[4 * k], c[4 * k + 1], c[4 * k + 2], c[4 * k + 3]])
+            })
+        })
         .collect();
     if let Some(position) = values.iter().position(|v| !v.iter().all(|x| x.is_finite())) {
-        return Err(DecodeError::NonFinite { kind, position: position as u64 });
+        return Err(DecodeError::NonFinite {
+            kind,
+            position: position as u64,
+        });
     }
     Ok(values)
 }
 
 /// Reads an index section whose values must be below `bound`, in groups of `group`.
-fn read_indices(kind: SectionKind, bytes: &[u8], bound: usize, group: usize) -> Result<Indices, DecodeError> {
+fn read_indices(
+    kind: SectionKind,
+    bytes: &[u8],
+    bound: usize,
+    group: usize,
+) -> Result<Indices, DecodeError> {
     let width = IndexWidth::for_bound(bound);
     let stride = width.bytes() * group;
     if bytes.len() % stride != 0 {
-        return Err(length_error(kind, format!(
-            "{} bytes is not a whole number of groups of {group} {width:?} indices",
-            bytes.len()
-        )));
+        return Err(length_error(
+            kind,
+            format!(
+                "{} bytes is not a whole number of groups of {group} {width:?} indices",
+                bytes.len()
+            ),
+        ));
     }
     let indices = match width {
-        IndexWidth::U16 => Indices::U16(bytes.chunks_exact(2).map(|c| u16::from_le_bytes([c[0], c[1]])).collect()),
+        IndexWidth::U16 => Indices::U16(
+            bytes
+                .chunks_exact(2)
+                .map(|c| u16::from_le_bytes([c[0], c[1]]))
+                .collect(),
+        ),
         IndexWidth::U32 => Indices::U32(read_u32s(kind, bytes)?),
     };
-    if let Some((position, value)) = indices.iter().enumerate().find(|&(_, v)| v as usize >= bound) {
-        return Err(DecodeError::IndexOutOfRange { kind, position: position as u64, value, bound: bound as u64 });
+    if let Some((position, value)) = indices
+        .iter()
+        .enumerate()
+        .find(|&(_, v)| v as usize >= bound)
+    {
+        return Err(DecodeError::IndexOutOfRange {
+            kind,
+            position: position as u64,
+            value,
+            bound: bound as u64,
+        });
     }
     Ok(indices)
 }
@@ -200,13 +307,22 @@ fn validate_attributes(asset: &Asset) -> Result<(), DecodeError> {
     let kind = SectionKind::EdgeAttributes;
     for (position, &word) in asset.edge_attributes.iter().enumerate() {
         let flags = attribute_flags(word);
-        let invalid = |reason: String| DecodeError::Invalid { kind, position: position as u64, reason };
+        let invalid = |reason: String| DecodeError::Invalid {
+            kind,
+            position: position as u64,
+            reason,
+        };
         if flags.0 & !EdgeFlags::ALL.0 != 0 {
-            return Err(invalid(format!("unknown flag bits {:#06x}", flags.0 & !EdgeFlags::ALL.0)));
+            return Err(invalid(format!(
+                "unknown flag bits {:#06x}",
+                flags.0 & !EdgeFlags::ALL.0
+            )));
         }
         let radius = half::f16::from_bits((word >> 16) as u16);
         if !radius.is_finite() || radius.is_sign_negative() && radius.to_f32() != 0.0 {
-            return Err(invalid(format!("radius {radius} is not finite and non-negative")));
+            return Err(invalid(format!(
+                "radius {radius} is not finite and non-negative"
+            )));
         }
     }
     Ok(())
@@ -217,12 +333,18 @@ fn validate_rings(asset: &Asset) -> Result<(), DecodeError> {
     let kind = SectionKind::NextEnds;
     let mut seen = vec![false; asset.next_ends.len()];
     for (end, next) in asset.next_ends.iter().enumerate() {
-        let invalid = |reason: String| DecodeError::Invalid { kind, position: end as u64, reason };
+        let invalid = |reason: String| DecodeError::Invalid {
+            kind,
+            position: end as u64,
+            reason,
+        };
         if asset.end_vertex(next) != asset.end_vertex(end as u32) {
             return Err(invalid(format!("next end {next} is at another vertex")));
         }
         if std::mem::replace(&mut seen[next as usize], true) {
-            return Err(invalid(format!("end {next} is the next of two ends (rings must be cycles)")));
+            return Err(invalid(format!(
+                "end {next} is the next of two ends (rings must be cycles)"
+            )));
         }
     }
     Ok(())

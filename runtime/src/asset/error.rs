@@ -10,7 +10,9 @@ pub enum DecodeError {
     #[error("not a .chamfer asset (bad magic bytes)")]
     BadMagic,
     /// Written by a different format version.
-    #[error("asset format version {found} is not supported (this build reads version {supported}); re-bake the source mesh")]
+    #[error(
+        "asset format version {found} is not supported (this build reads version {supported}); re-bake the source mesh"
+    )]
     UnsupportedVersion {
         /// Version in the file.
         found: u32,
@@ -45,7 +47,9 @@ pub enum DecodeError {
         reason: String,
     },
     /// An index points past the end of what it indexes.
-    #[error("section {kind:?}: element {position} is {value}, out of range (must be below {bound})")]
+    #[error(
+        "section {kind:?}: element {position} is {value}, out of range (must be below {bound})"
+    )]
     IndexOutOfRange {
         /// The section.
         kind: SectionKind,

@@ -40,7 +40,9 @@
 
 // Sections are written and uploaded as they lie in memory.
 #[cfg(target_endian = "big")]
-compile_error!("the .chamfer format is little-endian and this crate maps it directly: big-endian hosts are not supported");
+compile_error!(
+    "the .chamfer format is little-endian and this crate maps it directly: big-endian hosts are not supported"
+);
 
 mod decode;
 mod encode;
@@ -89,7 +91,11 @@ impl EdgeFlags {
     pub const CREASE: Self = Self(Self::RIDGE.0 | Self::VALLEY.0);
     /// Classes that are drawable from every camera (the thesis' "pre-calculated" edges).
     pub const STATIC: Self = Self(
-        Self::BOUNDARY.0 | Self::NON_MANIFOLD.0 | Self::CREASE.0 | Self::MARKED.0 | Self::MATERIAL.0,
+        Self::BOUNDARY.0
+            | Self::NON_MANIFOLD.0
+            | Self::CREASE.0
+            | Self::MARKED.0
+            | Self::MATERIAL.0,
     );
 
     /// True if any bit of `other` is set in `self`.
@@ -121,7 +127,11 @@ impl std::ops::BitOrAssign for EdgeFlags {
 /// The radius is stored as an f16 of `radius / radius_scale` (relative precision about 5e-4);
 /// `radius_scale` is the asset's [`Header::radius_scale`].
 pub fn pack_attributes(flags: EdgeFlags, radius: f32, radius_scale: f32) -> u32 {
-    let scaled = if radius_scale > 0.0 { radius / radius_scale } else { 0.0 };
+    let scaled = if radius_scale > 0.0 {
+        radius / radius_scale
+    } else {
+        0.0
+    };
     let half = half::f16::from_f32(scaled).to_bits();
     u32::from(flags.0) | (u32::from(half) << 16)
 }
@@ -148,7 +158,11 @@ pub enum IndexWidth {
 impl IndexWidth {
     /// The narrowest width that holds every value below `bound`.
     pub const fn for_bound(bound: usize) -> Self {
-        if bound <= 1 << 16 { Self::U16 } else { Self::U32 }
+        if bound <= 1 << 16 {
+            Self::U16
+        } else {
+            Self::U32
+        }
     }
 
     /// Bytes per index.
@@ -452,7 +466,8 @@ impl Asset {
 
     /// The topology vertex at edge end `end` (`2 * edge + 0` is `v0`, `+ 1` is `v1`).
     pub fn end_vertex(&self, end: u32) -> u32 {
-        self.edge_vertices.get(2 * end as usize - (end as usize & 1))
+        self.edge_vertices
+            .get(2 * end as usize - (end as usize & 1))
     }
 
     /// The raw bytes of one section, as written to the file.

@@ -1,1 +1,42 @@
-fn main(){}
+//! `chamfer`: bake meshes into `.chamfer` edge assets and inspect them.
+
+mod bake;
+mod demo;
+mod inspect;
+mod memory;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+/// Chamfer bakes the feature edges of meshes (OBJ, glTF/GLB, PLY) into compact `.chamfer` assets
+/// for real-time edge rendering with wgpu.
+#[derive(Parser)]
+#[command(name = "chamfer", version, about, propagate_version = true)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    Bake(bake::BakeArgs),
+    Inspect(inspect::InspectArgs),
+    Demo(demo::DemoArgs),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Bake(args) => bake::run(&args),
+        Command::Inspect(args) => inspect::run(&args),
+        Command::Demo(args) => demo::run(&args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}

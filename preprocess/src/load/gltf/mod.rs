@@ -20,19 +20,30 @@ use crate::Error;
 use crate::mesh::Mesh;
 
 /// Compression schemes whose data this loader cannot decode.
-const COMPRESSION_EXTENSIONS: [&str; 3] = ["KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_meshopt_compression"];
+const COMPRESSION_EXTENSIONS: [&str; 3] = [
+    "KHR_draco_mesh_compression",
+    "EXT_meshopt_compression",
+    "KHR_meshopt_compression",
+];
 /// Required extensions that do not change how geometry is read.
 const HARMLESS_EXTENSIONS: [&str; 1] = ["KHR_mesh_quantization"];
 
 pub(super) fn parse(path: &Path, bytes: &[u8], warnings: &mut Vec<String>) -> Result<Mesh, Error> {
-    let invalid = |message: String| Error::Parse { path: path.to_owned(), format: "glTF", message };
-    let gltf = gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| invalid(e.to_string()))?;
+    let invalid = |message: String| Error::Parse {
+        path: path.to_owned(),
+        format: "glTF",
+        message,
+    };
+    let gltf =
+        gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| invalid(e.to_string()))?;
     let root = gltf.document.as_json();
     for ext in &root.extensions_required {
         if COMPRESSION_EXTENSIONS.contains(&ext.as_str()) {
             return Err(Error::Unsupported {
                 path: path.to_owned(),
-                what: format!("{ext} compressed geometry (decompress it first, e.g. `gltf-transform copy`)"),
+                what: format!(
+                    "{ext} compressed geometry (decompress it first, e.g. `gltf-transform copy`)"
+                ),
             });
         }
         if !HARMLESS_EXTENSIONS.contains(&ext.as_str()) {
@@ -40,19 +51,29 @@ pub(super) fn parse(path: &Path, bytes: &[u8], warnings: &mut Vec<String>) -> Re
         }
     }
     let buffers = buffers::load(root, gltf.blob.as_deref(), path).map_err(|e| match e {
-        buffers::BufferError::Read(source) => Error::Read { path: path.to_owned(), source },
+        buffers::BufferError::Read(source) => Error::Read {
+            path: path.to_owned(),
+            source,
+        },
         buffers::BufferError::Invalid(message) => invalid(message),
     })?;
-    let accessors = Accessors { root, buffers: &buffers };
+    let accessors = Accessors {
+        root,
+        buffers: &buffers,
+    };
 
     let mut mesh = Mesh::default();
     for (mesh_index, transform) in mesh_instances(root).map_err(invalid)? {
         let Some(m) = root.meshes.get(mesh_index) else {
-            return Err(invalid(format!("a node refers to mesh {mesh_index}, which does not exist")));
+            return Err(invalid(format!(
+                "a node refers to mesh {mesh_index}, which does not exist"
+            )));
         };
         for (p, primitive) in m.primitives.iter().enumerate() {
             let name = format!("mesh {mesh_index} primitive {p}");
-            if let Some(part) = read_primitive(&accessors, primitive, transform, &name, warnings).map_err(|e| invalid(format!("{name}: {e}")))? {
+            if let Some(part) = read_primitive(&accessors, primitive, transform, &name, warnings)
+                .map_err(|e| invalid(format!("{name}: {e}")))?
+            {
                 mesh.append(part);
             }
         }
@@ -63,19 +84,34 @@ pub(super) fn parse(path: &Path, bytes: &[u8], warnings: &mut Vec<String>) -> Re
 /// Every (mesh, world transform) the document draws: the default scene's node tree, or each mesh
 /// once, untransformed, when the file has no scene.
 fn mesh_instances(root: &json::Root) -> Result<Vec<(usize, Mat4)>, String> {
-    let scene = root.scene.map(|s| s.value()).or((!root.scenes.is_empty()).then_some(0));
+    let scene = root
+        .scene
+        .map(|s| s.value())
+        .or((!root.scenes.is_empty()).then_some(0));
     let Some(scene) = scene else {
-        return Ok((0..root.meshes.len()).map(|m| (m, Mat4::IDENTITY)).collect());
+        return Ok((0..root.meshes.len())
+            .map(|m| (m, Mat4::IDENTITY))
+            .collect());
     };
-    let scene = root.scenes.get(scene).ok_or_else(|| format!("default scene {scene} does not exist"))?;
+    let scene = root
+        .scenes
+        .get(scene)
+        .ok_or_else(|| format!("default scene {scene} does not exist"))?;
     let mut instances = Vec::new();
-    let mut stack: Vec<(usize, Mat4, usize)> = scene.nodes.iter().map(|n| (n.value(), Mat4::IDENTITY, 0)).collect();
+    let mut stack: Vec<(usize, Mat4, usize)> = scene
+        .nodes
+        .iter()
+        .map(|n| (n.value(), Mat4::IDENTITY, 0))
+        .collect();
     while let Some((index, parent, depth)) = stack.pop() {
         // A node tree is at most as deep as there are nodes; deeper means a cycle.
         if depth > root.nodes.len() {
             return Err(format!("node {index} is part of a cycle"));
         }
-        let node = root.nodes.get(index).ok_or_else(|| format!("node {index} does not exist"))?;
+        let node = root
+            .nodes
+            .get(index)
+            .ok_or_else(|| format!("node {index} does not exist"))?;
         let world = parent * local_transform(node);
         if let Some(m) = node.mesh {
             instances.push((m.value(), world));
@@ -93,7 +129,9 @@ fn local_transform(node: &json::scene::Node) -> Mat4 {
         return Mat4::from_cols_array(&m);
     }
     let t = node.translation.map_or(Vec3::ZERO, Vec3::from);
-    let r = node.rotation.map_or(Quat::IDENTITY, |q| Quat::from_array(q.0).normalize());
+    let r = node
+        .rotation
+        .map_or(Quat::IDENTITY, |q| Quat::from_array(q.0).normalize());
     let s = node.scale.map_or(Vec3::ONE, Vec3::from);
     Mat4::from_scale_rotation_translation(s, r, t)
 }
@@ -111,16 +149,37 @@ fn read_primitive(
         Checked::Valid(mode) => mode,
         Checked::Invalid => return Err("invalid primitive mode".into()),
     };
-    if !matches!(mode, Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan) {
-        warnings.push(format!("{name}: {mode:?} primitive skipped (only triangles are baked)"));
+    if !matches!(
+        mode,
+        Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan
+    ) {
+        warnings.push(format!(
+            "{name}: {mode:?} primitive skipped (only triangles are baked)"
+        ));
         return Ok(None);
     }
-    if primitive.extensions.as_ref().is_some_and(|e| e.others.contains_key(COMPRESSION_EXTENSIONS[0])) {
-        return Err(format!("{} compressed primitive (decompress it first)", COMPRESSION_EXTENSIONS[0]));
+    if primitive
+        .extensions
+        .as_ref()
+        .is_some_and(|e| e.others.contains_key(COMPRESSION_EXTENSIONS[0]))
+    {
+        return Err(format!(
+            "{} compressed primitive (decompress it first)",
+            COMPRESSION_EXTENSIONS[0]
+        ));
     }
-    let attribute = |semantic: Semantic| primitive.attributes.get(&Checked::Valid(semantic)).map(|a| a.value());
+    let attribute = |semantic: Semantic| {
+        primitive
+            .attributes
+            .get(&Checked::Valid(semantic))
+            .map(|a| a.value())
+    };
     let position = attribute(Semantic::Positions).ok_or("no POSITION attribute")?;
-    let positions: Vec<Vec3> = accessors.read_vectors::<3>(position)?.into_iter().map(Vec3::from).collect();
+    let positions: Vec<Vec3> = accessors
+        .read_vectors::<3>(position)?
+        .into_iter()
+        .map(Vec3::from)
+        .collect();
     let normals = attribute(Semantic::Normals)
         .map(|a| accessors.read_vectors::<3>(a))
         .transpose()?
@@ -142,15 +201,28 @@ fn read_primitive(
     let mirrored = transform.determinant() < 0.0;
     let normal_matrix = Mat3::from_mat4(transform).inverse().transpose();
     let part = Mesh {
-        positions: positions.iter().map(|&p| transform.transform_point3(p)).collect(),
-        normals: normals.map(|n| n.iter().map(|&v| (normal_matrix * v).normalize_or_zero()).collect()),
+        positions: positions
+            .iter()
+            .map(|&p| transform.transform_point3(p))
+            .collect(),
+        normals: normals.map(|n| {
+            n.iter()
+                .map(|&v| (normal_matrix * v).normalize_or_zero())
+                .collect()
+        }),
         uvs,
-        triangles: triangles.into_iter().map(|[a, b, c]| if mirrored { [a, c, b] } else { [a, b, c] }).collect(),
+        triangles: triangles
+            .into_iter()
+            .map(|[a, b, c]| if mirrored { [a, c, b] } else { [a, b, c] })
+            .collect(),
         materials: Vec::new(),
         marks: Vec::new(),
     };
     let material = primitive.material.map_or(0, |m| m.value() as u32 + 1);
-    Ok(Some(Mesh { materials: vec![material; part.triangles.len()], ..part }))
+    Ok(Some(Mesh {
+        materials: vec![material; part.triangles.len()],
+        ..part
+    }))
 }
 
 /// Triangles from a triangle list, strip or fan, as the glTF specification numbers them.
@@ -159,10 +231,21 @@ fn assemble_triangles(mode: json::mesh::Mode, indices: &[u32]) -> Vec<[u32; 3]> 
     let n = indices.len();
     match mode {
         Mode::TriangleStrip => (0..n.saturating_sub(2))
-            .map(|i| if i % 2 == 0 { [indices[i], indices[i + 1], indices[i + 2]] } else { [indices[i], indices[i + 2], indices[i + 1]] })
+            .map(|i| {
+                if i % 2 == 0 {
+                    [indices[i], indices[i + 1], indices[i + 2]]
+                } else {
+                    [indices[i], indices[i + 2], indices[i + 1]]
+                }
+            })
             .collect(),
-        Mode::TriangleFan => (1..n.saturating_sub(1)).map(|i| [indices[0], indices[i], indices[i + 1]]).collect(),
-        _ => indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect(),
+        Mode::TriangleFan => (1..n.saturating_sub(1))
+            .map(|i| [indices[0], indices[i], indices[i + 1]])
+            .collect(),
+        _ => indices
+            .chunks_exact(3)
+            .map(|t| [t[0], t[1], t[2]])
+            .collect(),
     }
 }
 
@@ -173,8 +256,17 @@ mod tests {
 
     #[test]
     fn strips_alternate_winding_and_fans_share_the_first_vertex() {
-        assert_eq!(assemble_triangles(Mode::TriangleStrip, &[0, 1, 2, 3, 4]), [[0, 1, 2], [1, 3, 2], [2, 3, 4]]);
-        assert_eq!(assemble_triangles(Mode::TriangleFan, &[0, 1, 2, 3]), [[0, 1, 2], [0, 2, 3]]);
-        assert_eq!(assemble_triangles(Mode::Triangles, &[0, 1, 2, 3]), [[0, 1, 2]]);
+        assert_eq!(
+            assemble_triangles(Mode::TriangleStrip, &[0, 1, 2, 3, 4]),
+            [[0, 1, 2], [1, 3, 2], [2, 3, 4]]
+        );
+        assert_eq!(
+            assemble_triangles(Mode::TriangleFan, &[0, 1, 2, 3]),
+            [[0, 1, 2], [0, 2, 3]]
+        );
+        assert_eq!(
+            assemble_triangles(Mode::Triangles, &[0, 1, 2, 3]),
+            [[0, 1, 2]]
+        );
     }
 }

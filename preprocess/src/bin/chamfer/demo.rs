@@ -1,0 +1,39 @@
+//! `chamfer demo`: bake the bundled fandisk (a CAD part with creases and flat regions) and show it.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Context;
+use chamfer_preprocess::bake_bytes;
+use chamfer_preprocess::write::write_atomically;
+use clap::Args;
+
+use crate::bake::OptionArgs;
+
+/// The bundled mesh: Hoppe's fandisk, 12,946 triangles (see fixtures/meshes/SOURCES.md).
+const FANDISK: &[u8] = include_bytes!("../../../../fixtures/meshes/fandisk.obj");
+
+/// Bake the bundled fandisk mesh and print what the asset holds.
+#[derive(Args)]
+pub struct DemoArgs {
+    /// Where to write the asset.
+    #[arg(short, long, default_value = "demo-output/fandisk.chamfer")]
+    output: PathBuf,
+    #[command(flatten)]
+    options: OptionArgs,
+}
+
+pub fn run(args: &DemoArgs) -> anyhow::Result<()> {
+    let options = args.options.to_options()?;
+    let baked = bake_bytes(Path::new("fandisk.obj"), FANDISK, &options)?;
+    if let Some(dir) = args.output.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir)
+            .with_context(|| format!("{}: cannot create directory", dir.display()))?;
+    }
+    write_atomically(&args.output, |out| baked.asset.encode(out))?;
+    println!(
+        "baked the bundled fandisk.obj in {:.1} ms -> {}\n",
+        baked.timings.processing().as_secs_f64() * 1e3,
+        args.output.display()
+    );
+    crate::inspect::run(&crate::inspect::InspectArgs::for_path(args.output.clone()))
+}

@@ -1,0 +1,148 @@
+//! `chamfer inspect`: what an asset holds, as a table or as JSON for pipelines.
+
+use std::path::PathBuf;
+
+use anyhow::Context;
+use chamfer_runtime::asset::{Asset, SectionKind};
+use clap::Args;
+use serde_json::json;
+
+/// Show the counts, edge classes and section sizes of a .chamfer asset.
+#[derive(Args)]
+#[command(after_help = "Examples:
+  chamfer inspect model.chamfer
+  chamfer inspect model.chamfer --json | jq .edges.crease")]
+pub struct InspectArgs {
+    /// The asset.
+    asset: PathBuf,
+    /// Print JSON (stable keys: vertices, welded_vertices, triangles, degenerate_triangles, edges, bytes).
+    #[arg(long)]
+    json: bool,
+}
+
+impl InspectArgs {
+    /// Inspect `asset` as a table.
+    pub fn for_path(asset: PathBuf) -> Self {
+        Self { asset, json: false }
+    }
+}
+
+pub fn run(args: &InspectArgs) -> anyhow::Result<()> {
+    let bytes = std::fs::read(&args.asset)
+        .with_context(|| format!("{}: cannot read", args.asset.display()))?;
+    let asset = Asset::decode(&bytes)
+        .with_context(|| format!("{}: not a valid .chamfer asset", args.asset.display()))?;
+    let report = summary(&asset, bytes.len() as u64);
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        print_table(&args.asset.display().to_string(), &asset, &report);
+    }
+    Ok(())
+}
+
+/// Bytes of the sections that describe edges, per kept edge: the figure the thesis compares (§11.2).
+pub fn edge_bytes(asset: &Asset) -> u64 {
+    [
+        SectionKind::EdgeVertices,
+        SectionKind::EdgeAttributes,
+        SectionKind::NextEnds,
+        SectionKind::CapHeads,
+    ]
+    .iter()
+    .map(|&k| asset.section_bytes(k).len() as u64)
+    .sum()
+}
+
+/// The report `--json` prints; the table shows the same numbers.
+pub fn summary(asset: &Asset, total_bytes: u64) -> serde_json::Value {
+    let s = &asset.header.stats;
+    let e = &s.edges;
+    let per_section: serde_json::Map<String, serde_json::Value> = SectionKind::ALL
+        .iter()
+        .map(|&k| (k.name().to_owned(), json!(asset.section_bytes(k).len())))
+        .collect();
+    let per_edge = if asset.edge_count() == 0 {
+        0.0
+    } else {
+        edge_bytes(asset) as f64 / asset.edge_count() as f64
+    };
+    json!({
+        "source": asset.header.source,
+        "generator": asset.header.generator,
+        "settings": asset.header.settings.iter().cloned().collect::<std::collections::BTreeMap<_, _>>(),
+        "vertices": s.input_vertices,
+        "welded_vertices": s.welded_vertices,
+        "render_vertices": asset.render_positions.len(),
+        "input_triangles": s.input_triangles,
+        "triangles": asset.triangle_count(),
+        "degenerate_triangles": s.degenerate_triangles,
+        "edges": {
+            "total": e.total,
+            "kept": e.kept,
+            "boundary": e.boundary,
+            "crease": e.crease,
+            "ridge": e.ridge,
+            "valley": e.valley,
+            "marked": e.marked,
+            "material": e.material,
+            "non_manifold": e.non_manifold,
+            "smooth": e.smooth,
+            "coplanar_dropped": e.coplanar_dropped,
+            "flipped": e.flipped,
+            "marks_unmatched": e.marks_unmatched,
+        },
+        "bounds": { "min": asset.header.bounds_min, "max": asset.header.bounds_max },
+        "bytes": { "total": total_bytes, "per_section": per_section, "per_edge": per_edge },
+    })
+}
+
+fn print_table(name: &str, asset: &Asset, r: &serde_json::Value) {
+    println!(
+        "{name}  ({}, baked from {})",
+        asset.header.generator, asset.header.source
+    );
+    let settings: Vec<String> = asset
+        .header
+        .settings
+        .iter()
+        .map(|(k, v)| format!("{k}={v}"))
+        .collect();
+    println!("  settings       {}", settings.join(" "));
+    println!(
+        "  vertices       {} input, {} welded, {} render",
+        r["vertices"], r["welded_vertices"], r["render_vertices"]
+    );
+    println!(
+        "  triangles      {} ({} input, {} degenerate skipped)",
+        r["triangles"], r["input_triangles"], r["degenerate_triangles"]
+    );
+    let e = &r["edges"];
+    println!(
+        "  edges          {} unique, {} kept, {} coplanar dropped",
+        e["total"], e["kept"], e["coplanar_dropped"]
+    );
+    for class in [
+        "boundary",
+        "crease",
+        "ridge",
+        "valley",
+        "marked",
+        "material",
+        "non_manifold",
+        "smooth",
+        "flipped",
+        "marks_unmatched",
+    ] {
+        println!("    {class:<14} {}", e[class]);
+    }
+    let b = &r["bytes"];
+    println!(
+        "  bytes          {} total, {:.1} per kept edge (edge + attribute + next + cap sections)",
+        b["total"],
+        b["per_edge"].as_f64().unwrap_or(0.0)
+    );
+    for kind in SectionKind::ALL {
+        println!("    {:<18} {}", kind.name(), b["per_section"][kind.name()]);
+    }
+}
