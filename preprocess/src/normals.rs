@@ -258,7 +258,8 @@ fn fast_atan2(y: f32, x: f32) -> f32 {
     // Minimax polynomial for atan on [0, 1] (max error about 1e-5 rad): plenty for a weight.
     let mut r = a
         * (0.999_977_26
-            + s * (-0.332_623_47 + s * (0.193_543_46 + s * (-0.116_432_87 + s * (0.052_653_32 - 0.011_721_2 * s)))));
+            + s * (-0.332_623_47
+                + s * (0.193_543_46 + s * (-0.116_432_87 + s * (0.052_653_32 - 0.011_721_2 * s)))));
     if ay > ax {
         r = std::f32::consts::FRAC_PI_2 - r;
     }

@@ -484,3 +484,6 @@ impl Asset {
         }
     }
 }
+
+#[cfg(test)]
+mod tests;

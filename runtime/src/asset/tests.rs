@@ -1,0 +1,295 @@
+//! Format tests: exact round trips, and every kind of damage is a typed error, never a panic.
+
+use super::*;
+
+/// A tetrahedron with one next-index ring per vertex and a cap head per vertex.
+fn tetrahedron() -> Asset {
+    let p = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0],
+    ];
+    let tris = [[0u32, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]];
+    // v0 v1 and the opposite vertices of the two faces.
+    let edges: [[u32; 4]; 6] = [
+        [0, 1, 2, 3],
+        [0, 2, 3, 1],
+        [0, 3, 1, 2],
+        [1, 2, 0, 3],
+        [1, 3, 2, 0],
+        [2, 3, 0, 1],
+    ];
+    let mut next = vec![0u32; 12];
+    let mut heads = Vec::new();
+    for v in 0..4u32 {
+        let ends: Vec<u32> = (0..12u32)
+            .filter(|&end| edges[end as usize / 2][end as usize % 2] == v)
+            .collect();
+        for (k, &end) in ends.iter().enumerate() {
+            next[end as usize] = ends[(k + 1) % ends.len()];
+        }
+        heads.push(ends[0]);
+    }
+    let attributes: Vec<u32> = (0..6)
+        .map(|e| {
+            pack_attributes(
+                if e == 0 {
+                    EdgeFlags::RIDGE | EdgeFlags::CHAMFER
+                } else {
+                    EdgeFlags::RIDGE
+                },
+                0.25,
+                0.25,
+            )
+        })
+        .collect();
+    Asset {
+        header: Header {
+            source: "tetra.obj".into(),
+            generator: "test".into(),
+            settings: vec![("crease_deg".into(), "30".into())],
+            bounds_min: [0.0; 3],
+            bounds_max: [1.0; 3],
+            radius_scale: 0.25,
+            stats: Stats {
+                input_vertices: 4,
+                welded_vertices: 4,
+                input_triangles: 4,
+                ..Stats::default()
+            },
+            sections: Vec::new(),
+        },
+        render_positions: tris.iter().flatten().map(|&i| p[i as usize]).collect(),
+        render_normals: vec![[0.0, 0.0, 1.0]; 12],
+        mesh_indices: Indices::with_bound((0..12).collect(), 12),
+        topology_positions: p.to_vec(),
+        edge_vertices: Indices::with_bound(edges.iter().flatten().copied().collect(), 4),
+        edge_attributes: attributes,
+        next_ends: Indices::with_bound(next, 12),
+        cap_heads: Indices::with_bound(heads, 12),
+    }
+}
+
+fn decoded(asset: &Asset) -> Asset {
+    Asset::decode(&asset.encode_to_vec()).expect("a freshly encoded asset decodes")
+}
+
+#[test]
+fn round_trip_is_exact() {
+    let asset = tetrahedron();
+    let bytes = asset.encode_to_vec();
+    assert_eq!(bytes.len() as u64, asset.encoded_len());
+    let back = Asset::decode(&bytes).expect("decodes");
+    assert_eq!(
+        back.encode_to_vec(),
+        bytes,
+        "re-encoding gives the same bytes"
+    );
+    assert_eq!(back.render_positions, asset.render_positions);
+    assert_eq!(back.edge_vertices, asset.edge_vertices);
+    assert_eq!(back.next_ends, asset.next_ends);
+    assert_eq!(back.edge_radius(0), 0.25);
+    assert!(back.edge_flags(0).contains(EdgeFlags::CHAMFER));
+    assert!(!back.edge_flags(1).contains(EdgeFlags::CHAMFER));
+    assert_eq!(back.header.source, "tetra.obj");
+}
+
+#[test]
+fn sections_are_aligned_and_use_narrow_indices() {
+    let asset = decoded(&tetrahedron());
+    for entry in &asset.header.sections {
+        assert_eq!(entry.offset % SECTION_ALIGN as u64, 0);
+    }
+    assert_eq!(asset.edge_vertices.width(), IndexWidth::U16);
+    assert_eq!(
+        asset.section_bytes(SectionKind::EdgeVertices).len(),
+        6 * 4 * 2
+    );
+}
+
+#[test]
+fn u32_indices_past_65536() {
+    let mut asset = tetrahedron();
+    let n = 70_000;
+    asset.topology_positions = (0..n).map(|i| [i as f32, 0.0, 0.0]).collect();
+    let mut ev = asset.edge_vertices.to_u32_vec();
+    ev[0] = n as u32 - 1;
+    asset.edge_vertices = Indices::with_bound(ev, n);
+    asset.next_ends = Indices::default();
+    asset.cap_heads = Indices::default();
+    let back = decoded(&asset);
+    assert_eq!(back.edge_vertices.width(), IndexWidth::U32);
+    assert_eq!(back.edge(0)[0], n as u32 - 1);
+}
+
+#[test]
+fn every_truncation_is_an_error() {
+    let bytes = tetrahedron().encode_to_vec();
+    for len in 0..bytes.len() {
+        assert!(
+            Asset::decode(&bytes[..len]).is_err(),
+            "truncated to {len} bytes was accepted"
+        );
+    }
+}
+
+#[test]
+fn trailing_bytes_are_an_error() {
+    let mut bytes = tetrahedron().encode_to_vec();
+    bytes.push(0);
+    assert_eq!(Asset::decode(&bytes), Err(DecodeError::TrailingBytes(1)));
+}
+
+#[test]
+fn magic_and_version_are_checked() {
+    let bytes = tetrahedron().encode_to_vec();
+    let mut bad = bytes.clone();
+    bad[0] = b'X';
+    assert_eq!(Asset::decode(&bad), Err(DecodeError::BadMagic));
+    let mut newer = bytes;
+    newer[8..12].copy_from_slice(&(FORMAT_VERSION + 1).to_le_bytes());
+    assert_eq!(
+        Asset::decode(&newer),
+        Err(DecodeError::UnsupportedVersion {
+            found: FORMAT_VERSION + 1,
+            supported: FORMAT_VERSION
+        })
+    );
+}
+
+#[test]
+fn a_huge_header_length_is_refused_before_allocating() {
+    let mut bytes = tetrahedron().encode_to_vec();
+    bytes[12..16].copy_from_slice(&u32::MAX.to_le_bytes());
+    assert!(matches!(
+        Asset::decode(&bytes),
+        Err(DecodeError::BadHeader(_))
+    ));
+}
+
+#[test]
+fn every_single_byte_corruption_is_handled() {
+    // Flipping any bit of any byte either still decodes (e.g. a float's low bits) or is a typed error.
+    let bytes = tetrahedron().encode_to_vec();
+    let mut rejected = 0;
+    for at in 0..bytes.len() {
+        for bit in [0x01u8, 0x80] {
+            let mut bad = bytes.clone();
+            bad[at] ^= bit;
+            if Asset::decode(&bad).is_err() {
+                rejected += 1;
+            }
+        }
+    }
+    assert!(
+        rejected > bytes.len() / 4,
+        "only {rejected} corruptions were noticed"
+    );
+}
+
+#[test]
+fn out_of_range_index_names_the_section() {
+    let mut asset = tetrahedron();
+    let mut ev = asset.edge_vertices.to_u32_vec();
+    ev[5] = 4;
+    asset.edge_vertices = Indices::U16(ev.iter().map(|&v| v as u16).collect());
+    let err = Asset::decode(&asset.encode_to_vec()).unwrap_err();
+    assert_eq!(
+        err,
+        DecodeError::IndexOutOfRange {
+            kind: SectionKind::EdgeVertices,
+            position: 5,
+            value: 4,
+            bound: 4
+        }
+    );
+    assert!(err.to_string().contains("EdgeVertices"));
+}
+
+#[test]
+fn non_finite_positions_are_refused() {
+    let mut asset = tetrahedron();
+    asset.topology_positions[2][1] = f32::NAN;
+    assert_eq!(
+        Asset::decode(&asset.encode_to_vec()),
+        Err(DecodeError::NonFinite {
+            kind: SectionKind::TopologyPositions,
+            position: 2
+        })
+    );
+}
+
+#[test]
+fn unknown_flags_and_negative_radii_are_refused() {
+    let mut asset = tetrahedron();
+    asset.edge_attributes[3] |= 1 << 12;
+    assert!(matches!(
+        Asset::decode(&asset.encode_to_vec()),
+        Err(DecodeError::Invalid { position: 3, .. })
+    ));
+    let mut asset = tetrahedron();
+    asset.edge_attributes[1] = pack_attributes(EdgeFlags::RIDGE, -1.0, 1.0);
+    assert!(matches!(
+        Asset::decode(&asset.encode_to_vec()),
+        Err(DecodeError::Invalid { position: 1, .. })
+    ));
+}
+
+#[test]
+fn broken_rings_are_refused() {
+    // Pointing two ends at the same next end breaks the permutation.
+    let mut asset = tetrahedron();
+    let mut next = asset.next_ends.to_u32_vec();
+    let end_at_v0 = next[0];
+    let other = (0..12)
+        .find(|&e| e != 0 && next[e] != end_at_v0 && asset.end_vertex(e as u32) == 0)
+        .unwrap_or(0);
+    next[other] = end_at_v0;
+    asset.next_ends = Indices::with_bound(next.clone(), 12);
+    assert!(matches!(
+        Asset::decode(&asset.encode_to_vec()),
+        Err(DecodeError::Invalid {
+            kind: SectionKind::NextEnds,
+            ..
+        })
+    ));
+    // Pointing to an end at another vertex leaves the vertex.
+    next = tetrahedron().next_ends.to_u32_vec();
+    next[0] = 1; // end 1 is edge 0's v1 = vertex 1, while end 0 is vertex 0
+    asset.next_ends = Indices::with_bound(next, 12);
+    assert!(matches!(
+        Asset::decode(&asset.encode_to_vec()),
+        Err(DecodeError::Invalid {
+            kind: SectionKind::NextEnds,
+            ..
+        })
+    ));
+}
+
+#[test]
+fn mismatched_lengths_are_refused() {
+    let mut asset = tetrahedron();
+    asset.render_normals.pop();
+    assert!(matches!(
+        Asset::decode(&asset.encode_to_vec()),
+        Err(DecodeError::BadSectionLength {
+            kind: SectionKind::RenderNormals,
+            ..
+        })
+    ));
+    let mut asset = tetrahedron();
+    asset.edge_attributes.pop();
+    asset.next_ends = Indices::default();
+    asset.cap_heads = Indices::default();
+    assert!(Asset::decode(&asset.encode_to_vec()).is_err());
+}
+
+#[test]
+fn radius_packing_keeps_half_precision() {
+    for r in [0.0f32, 1e-3, 0.1, 0.5, 1.0] {
+        let word = pack_attributes(EdgeFlags::MARKED, r, 1.0);
+        assert!((attribute_radius(word, 1.0) - r).abs() <= r * 1e-3, "{r}");
+        assert_eq!(attribute_flags(word), EdgeFlags::MARKED);
+    }
+}
