@@ -64,24 +64,23 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
     let options = args.options.to_options()?;
     let jobs = plan(&args.inputs, &args.output)?;
     let progress = Progress::start(jobs.len());
-    let results: Vec<(PathBuf, anyhow::Result<String>)> = jobs
+    let results: Vec<anyhow::Result<String>> = jobs
         .par_iter()
         .map(|(input, output)| {
             let result = bake_one(input, output, &options, args.timings);
             progress.done_one();
-            (input.clone(), result)
+            result
         })
         .collect();
     progress.finish();
 
     let mut failed = 0;
-    for (input, result) in results {
+    for result in results {
         match result {
             Ok(report) => println!("{report}"),
             Err(e) => {
                 failed += 1;
-                eprintln!("error: {e:#}");
-                let _ = input;
+                eprintln!("error: {}", crate::describe(&e));
             }
         }
     }

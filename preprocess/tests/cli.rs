@@ -1,0 +1,208 @@
+//! The `chamfer` command as a user runs it: exit codes, messages, files written and left alone.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn fixture(relative: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../fixtures")
+        .join(relative)
+}
+
+fn chamfer(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_chamfer"))
+        .args(args)
+        .output()
+        .expect("run chamfer")
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+fn path_str(p: &Path) -> &str {
+    p.to_str().expect("utf-8 path")
+}
+
+#[test]
+fn bake_then_inspect_json_has_the_documented_keys() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("cube.chamfer");
+    let run = chamfer(&[
+        "bake",
+        path_str(&fixture("shapes/cube.obj")),
+        "-o",
+        path_str(&out),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let run = chamfer(&["inspect", path_str(&out), "--json"]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&run.stdout).expect("valid JSON");
+    for key in [
+        "vertices",
+        "welded_vertices",
+        "triangles",
+        "degenerate_triangles",
+        "edges",
+        "bytes",
+    ] {
+        assert!(json.get(key).is_some(), "missing {key}: {json}");
+    }
+    for key in [
+        "total",
+        "boundary",
+        "crease",
+        "ridge",
+        "valley",
+        "marked",
+        "material",
+        "non_manifold",
+        "smooth",
+        "coplanar_dropped",
+    ] {
+        assert!(
+            json["edges"].get(key).is_some(),
+            "missing edges.{key}: {json}"
+        );
+    }
+    assert_eq!(json["edges"]["total"], 18);
+    assert_eq!(json["edges"]["crease"], 12);
+    assert_eq!(json["edges"]["coplanar_dropped"], 6);
+    assert_eq!(
+        json["bytes"]["total"].as_u64(),
+        Some(std::fs::metadata(&out).expect("asset").len())
+    );
+    assert!(json["bytes"]["per_section"].is_object());
+    assert!(json["bytes"]["per_edge"].as_f64().is_some_and(|b| b > 0.0));
+
+    let table = chamfer(&["inspect", path_str(&out)]);
+    assert!(table.status.success());
+    assert!(
+        text(&table.stdout).contains("coplanar"),
+        "{}",
+        text(&table.stdout)
+    );
+}
+
+#[test]
+fn many_inputs_bake_into_a_directory() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("baked");
+    let inputs = [
+        "shapes/cube.obj",
+        "shapes/cone-16.obj",
+        "shapes/two-materials.glb",
+        "shapes/cube-marked-le.ply",
+    ];
+    let mut args = vec!["bake".to_owned()];
+    args.extend(inputs.iter().map(|i| path_str(&fixture(i)).to_owned()));
+    args.extend(["-o".to_owned(), path_str(&out).to_owned()]);
+    let run = chamfer(&args.iter().map(String::as_str).collect::<Vec<_>>());
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    for name in ["cube", "cone-16", "two-materials", "cube-marked-le"] {
+        assert!(
+            out.join(format!("{name}.chamfer")).is_file(),
+            "{name}.chamfer missing"
+        );
+    }
+}
+
+#[test]
+fn broken_input_fails_naming_the_file_and_leaves_the_old_output() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("model.chamfer");
+    std::fs::write(&out, b"previous bake").expect("write");
+    for broken in [
+        "empty.obj",
+        "truncated.ply",
+        "nan-position.obj",
+        "draco-required.gltf",
+        "truncated.glb",
+    ] {
+        let input = fixture(&format!("broken/{broken}"));
+        let run = chamfer(&["bake", path_str(&input), "-o", path_str(&out)]);
+        let stderr = text(&run.stderr);
+        assert_eq!(run.status.code(), Some(1), "{broken}: {stderr}");
+        assert!(
+            stderr.contains(broken),
+            "{broken}: stderr does not name the file: {stderr}"
+        );
+        assert!(!stderr.contains("panicked"), "{broken}: {stderr}");
+        assert_eq!(
+            std::fs::read(&out).expect("output"),
+            b"previous bake",
+            "{broken}: old output replaced"
+        );
+    }
+    let leftovers: Vec<_> = std::fs::read_dir(dir.path()).expect("dir").collect();
+    assert_eq!(
+        leftovers.len(),
+        1,
+        "temporary files left behind: {leftovers:?}"
+    );
+}
+
+#[test]
+fn refuses_to_overwrite_an_input_and_bad_options() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let input = dir.path().join("cube.obj");
+    std::fs::copy(fixture("shapes/cube.obj"), &input).expect("copy");
+    let before = std::fs::read(&input).expect("read");
+    let run = chamfer(&["bake", path_str(&input), "-o", path_str(&input)]);
+    assert!(!run.status.success());
+    assert!(
+        text(&run.stderr).contains("overwrite"),
+        "{}",
+        text(&run.stderr)
+    );
+    assert_eq!(std::fs::read(&input).expect("read"), before);
+
+    let out = dir.path().join("x.chamfer");
+    let run = chamfer(&[
+        "bake",
+        path_str(&input),
+        "--crease-deg=200",
+        "-o",
+        path_str(&out),
+    ]);
+    assert!(!run.status.success());
+    assert!(
+        text(&run.stderr).contains("crease"),
+        "{}",
+        text(&run.stderr)
+    );
+    let run = chamfer(&[
+        "bake",
+        path_str(&input),
+        "--weld-epsilon=nan",
+        "-o",
+        path_str(&out),
+    ]);
+    assert!(!run.status.success());
+    assert!(!out.exists());
+}
+
+#[test]
+fn inspect_rejects_what_is_not_an_asset() {
+    let run = chamfer(&["inspect", path_str(&fixture("shapes/cube.obj"))]);
+    assert_eq!(run.status.code(), Some(1));
+    let stderr = text(&run.stderr);
+    assert!(
+        stderr.contains("cube.obj") && stderr.contains("magic"),
+        "{stderr}"
+    );
+    let run = chamfer(&["inspect", "/no/such/file.chamfer"]);
+    assert_eq!(run.status.code(), Some(1));
+    assert!(text(&run.stderr).contains("/no/such/file.chamfer"));
+}
+
+#[test]
+fn help_shows_examples() {
+    let run = chamfer(&["bake", "--help"]);
+    assert!(run.status.success());
+    assert!(
+        text(&run.stdout).contains("chamfer bake"),
+        "{}",
+        text(&run.stdout)
+    );
+}

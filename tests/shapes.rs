@@ -1,0 +1,220 @@
+//! Small fixtures with answers known by construction (fixtures/make_fixtures.py), and broken files.
+
+use chamfer_preprocess::{BakeOptions, Error, bake_file};
+use chamfer_runtime::asset::{Asset, EdgeFlags, EdgeStats};
+use chamfer_tests::fixture;
+
+fn bake(relative: &str) -> Asset {
+    let asset = bake_file(&fixture(relative), &BakeOptions::DEFAULT)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .asset;
+    Asset::decode(&asset.encode_to_vec()).unwrap_or_else(|e| panic!("{relative}: {e}"))
+}
+
+fn edges(relative: &str) -> EdgeStats {
+    bake(relative).header.stats.edges
+}
+
+#[test]
+fn cube_keeps_twelve_creases_and_drops_six_diagonals() {
+    let e = edges("shapes/cube.obj");
+    assert_eq!(
+        (e.total, e.kept, e.crease, e.ridge, e.coplanar_dropped),
+        (18, 12, 12, 12, 6)
+    );
+    assert_eq!(
+        (e.boundary, e.non_manifold, e.smooth, e.valley),
+        (0, 0, 0, 0)
+    );
+}
+
+#[test]
+fn cylinder_drops_half_its_edges_and_keeps_its_sides_as_contour_candidates() {
+    // 16 sides: 96 edges; 16 side diagonals and 32 cap spokes are coplanar; 32 rim edges are 90° creases;
+    // the 16 side edges bend by 22.5°, below the 30° crease angle: smooth, kept for contours.
+    let e = edges("shapes/cylinder-16.obj");
+    assert_eq!(
+        (e.total, e.coplanar_dropped, e.crease, e.smooth, e.kept),
+        (96, 48, 32, 16, 48)
+    );
+}
+
+#[test]
+fn cone_keeps_its_rim_as_crease_and_its_sides_as_smooth() {
+    let e = edges("shapes/cone-16.obj");
+    assert_eq!(
+        (e.total, e.coplanar_dropped, e.crease, e.ridge, e.smooth),
+        (48, 16, 16, 16, 16)
+    );
+}
+
+#[test]
+fn open_plane_keeps_only_its_boundary() {
+    let asset = bake("shapes/plane-4x4.obj");
+    let e = asset.header.stats.edges;
+    assert_eq!(
+        (e.total, e.boundary, e.coplanar_dropped, e.kept),
+        (56, 16, 40, 16)
+    );
+    for k in 0..asset.edge_count() {
+        let [v0, _, _, v3] = asset.edge(k);
+        assert_eq!(v3, v0, "boundary edges carry v3 = v0");
+    }
+}
+
+#[test]
+fn non_manifold_fan_keeps_and_flags_the_shared_edge() {
+    let asset = bake("shapes/nonmanifold-fan.obj");
+    let e = asset.header.stats.edges;
+    assert_eq!((e.total, e.non_manifold, e.boundary), (7, 1, 6));
+    let shared: Vec<usize> = (0..asset.edge_count())
+        .filter(|&k| asset.edge_flags(k).contains(EdgeFlags::NON_MANIFOLD))
+        .collect();
+    assert_eq!(shared.len(), 1);
+    let [v0, v1, ..] = asset.edge(shared[0]);
+    let ends = [v0, v1].map(|v| asset.topology_positions[v as usize]);
+    assert!(
+        ends.contains(&[0.0, 0.0, 0.0]) && ends.contains(&[1.0, 0.0, 0.0]),
+        "{ends:?}"
+    );
+}
+
+#[test]
+fn ply_edge_elements_become_marks_with_radii_in_every_encoding() {
+    let mut answers = Vec::new();
+    for name in ["ascii", "le", "be"] {
+        let asset = bake(&format!("shapes/cube-marked-{name}.ply"));
+        let e = asset.header.stats.edges;
+        // The marked diagonal (0, 3) survives coplanar dropping.
+        assert_eq!(
+            (e.marked, e.kept, e.coplanar_dropped, e.marks_unmatched),
+            (4, 13, 5, 0),
+            "{name}"
+        );
+        let mut marks: Vec<([f32; 3], [f32; 3], f32)> = (0..asset.edge_count())
+            .filter(|&k| asset.edge_flags(k).contains(EdgeFlags::MARKED))
+            .map(|k| {
+                let [v0, v1, ..] = asset.edge(k);
+                let (a, b) = (
+                    asset.topology_positions[v0 as usize],
+                    asset.topology_positions[v1 as usize],
+                );
+                (
+                    if a < b { a } else { b },
+                    if a < b { b } else { a },
+                    asset.edge_radius(k),
+                )
+            })
+            .collect();
+        marks.sort_by(|x, y| x.partial_cmp(y).expect("finite"));
+        answers.push(marks);
+    }
+    let close = |a: f32, b: f32| (a - b).abs() <= b * 1e-3;
+    let m = &answers[0];
+    assert_eq!(m.len(), 4);
+    let radius_of = |a: [f32; 3], b: [f32; 3]| m.iter().find(|x| x.0 == a && x.1 == b).map(|x| x.2);
+    assert!(close(
+        radius_of([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]).expect("edge 0-1"),
+        0.05
+    ));
+    assert!(close(
+        radius_of([0.0, 0.0, 0.0], [1.0, 0.0, 0.0]).expect("edge 0-4"),
+        0.1
+    ));
+    assert!(close(
+        radius_of([0.0, 0.0, 0.0], [0.0, 1.0, 1.0]).expect("diagonal 0-3"),
+        0.02
+    ));
+    assert_eq!(radius_of([1.0, 1.0, 0.0], [1.0, 1.0, 1.0]), Some(0.0));
+    assert_eq!(answers[0], answers[1], "ascii and little-endian agree");
+    assert_eq!(answers[0], answers[2], "ascii and big-endian agree");
+}
+
+#[test]
+fn gltf_primitives_with_different_materials_leave_a_seam() {
+    for file in [
+        "two-materials.gltf",
+        "two-materials.glb",
+        "two-materials-external.gltf",
+    ] {
+        let baked = bake_file(&fixture(&format!("shapes/{file}")), &BakeOptions::DEFAULT)
+            .unwrap_or_else(|e| panic!("{e}"));
+        let asset = &baked.asset;
+        let e = asset.header.stats.edges;
+        // Two coplanar quads: the seam between them is kept as a material edge, the diagonals dropped.
+        assert_eq!(
+            (e.total, e.material, e.boundary, e.coplanar_dropped, e.kept),
+            (9, 1, 6, 2, 7),
+            "{file}"
+        );
+        assert_eq!(
+            asset.header.stats.welded_vertices, 6,
+            "{file}: the seam's duplicated vertices weld"
+        );
+        assert_eq!(
+            asset.triangle_count(),
+            4,
+            "{file}: list + strip; the points primitive is skipped"
+        );
+        assert!(
+            baked.warnings.iter().any(|w| w.contains("Points")),
+            "{file}: {:?}",
+            baked.warnings
+        );
+        // The node's translation is applied.
+        assert_eq!(asset.header.bounds_min, [10.0, 0.0, 0.0], "{file}");
+        assert_eq!(asset.header.bounds_max, [12.0, 1.0, 0.0], "{file}");
+    }
+}
+
+#[test]
+fn quantized_sparse_gltf_under_nested_transforms() {
+    // Normalized u8 positions (KHR_mesh_quantization), a sparse accessor, a matrix node inside a scaled node.
+    let asset = bake("shapes/cube-quantized.gltf");
+    let e = asset.header.stats.edges;
+    assert_eq!(
+        (e.total, e.kept, e.crease, e.coplanar_dropped),
+        (18, 12, 12, 6)
+    );
+    assert_eq!(asset.header.bounds_min, [2.0, 4.0, 6.0]);
+    assert_eq!(asset.header.bounds_max, [3.0, 5.0, 7.0]);
+}
+
+/// Each broken file gives an error that names it and says what is wrong.
+#[test]
+fn broken_files_are_typed_errors_naming_the_file() {
+    let cases = [
+        ("empty.obj", "no triangles"),
+        ("nan-position.obj", "non-finite"),
+        ("index-out-of-range.obj", "out of bounds"),
+        ("all-degenerate.obj", "degenerate"),
+        ("truncated.ply", "element 'edge'"),
+        ("wrong-header.ply", "invalid PLY"),
+        ("truncated.glb", "invalid glTF"),
+        ("bad-index.gltf", "runs past the end"),
+        ("draco-required.gltf", "KHR_draco_mesh_compression"),
+    ];
+    for (file, what) in cases {
+        let path = fixture(&format!("broken/{file}"));
+        let before = std::fs::read(&path).expect("fixture");
+        let error = match bake_file(&path, &BakeOptions::DEFAULT) {
+            Ok(_) => panic!("{file}: broken input was baked"),
+            Err(e) => e,
+        };
+        let message = error.to_string();
+        assert!(
+            message.contains(file),
+            "{file}: message does not name the file: {message}"
+        );
+        assert!(
+            message.contains(what),
+            "{file}: expected '{what}' in: {message}"
+        );
+        assert!(!matches!(error, Error::Read { .. }), "{file}: {message}");
+        assert_eq!(
+            std::fs::read(&path).expect("fixture"),
+            before,
+            "{file}: input was modified"
+        );
+    }
+}
