@@ -77,6 +77,7 @@ pub fn split_normals(positions: &[Vec3], triangles: &[[u32; 3]], edges: &Edges) 
             normals
         })
         .collect();
+    drop((corners, split));
 
     // Number render vertices: vertex by vertex, fan by fan.
     let mut first_render = Vec::with_capacity(vertex_count);

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs what building and testing Chamfer needs on a fresh Debian/Ubuntu machine: a C toolchain,
+# the Vulkan loader and Mesa's software Vulkan driver (lavapipe, for headless wgpu), and Rust.
+# Sourced by demo.sh and test.sh; safe to run again (installs only what is missing).
+set -euo pipefail
+
+apt_packages=(build-essential pkg-config curl ca-certificates libvulkan1 mesa-vulkan-drivers)
+
+missing=()
+for p in "${apt_packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+    sudo=""
+    [[ $(id -u) -ne 0 ]] && sudo="sudo"
+    echo "setup: installing ${missing[*]}"
+    $sudo apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}" >/dev/null
+fi
+
+if ! command -v cargo >/dev/null; then
+    if [[ -x "$HOME/.cargo/bin/cargo" ]]; then
+        export PATH="$HOME/.cargo/bin:$PATH"
+    else
+        echo "setup: installing Rust (rustup, stable)"
+        curl --proto '=https' --tlsv1.2 -sSf https://sh.rustup.rs | sh -s -- -y --profile minimal
+        export PATH="$HOME/.cargo/bin:$PATH"
+    fi
+fi
