@@ -194,3 +194,40 @@ fn baked_assets_round_trip_exactly() {
         assert_eq!(back.mesh_indices, asset.mesh_indices);
     }
 }
+
+/// The trimesh peer figures of SOURCES.md: creases above 30° and coplanar edges below 1e-3° (float64).
+/// Crease counts must match exactly; coplanar counts may differ by a few edges whose angle sits at the
+/// threshold, because the bake measures angles from f32 positions.
+#[test]
+fn crease_and_coplanar_counts_match_the_trimesh_peer() {
+    const PEER: [(&str, u64, u64); 12] = [
+        ("stanford-bunny.obj", 1_355, 136),
+        ("teapot.obj", 286, 1_938),
+        ("suzanne.obj", 594, 15),
+        ("cow.obj", 1_477, 73),
+        ("spot.obj", 284, 2),
+        ("armadillo.obj", 4_406, 8),
+        ("fandisk.obj", 722, 7_095),
+        ("beast.obj", 9_856, 19),
+        ("cube.obj", 12, 6),
+        ("cylinder.obj", 40, 414),
+        ("cylinder-trimesh-32.obj", 64, 96),
+        ("bunny-loop2.ply.gz", 96, 2_516),
+    ];
+    let options = BakeOptions::DEFAULT.with_coplanar_deg(1e-3);
+    for (file, crease, coplanar) in PEER {
+        let stats = bake_file(&fixture(&format!("meshes/{file}")), &options)
+            .unwrap_or_else(|e| panic!("{e}"))
+            .asset
+            .header
+            .stats
+            .edges;
+        assert_eq!(stats.crease, crease, "{file}: creases");
+        let slack = (coplanar / 200).max(3);
+        assert!(
+            stats.coplanar_dropped.abs_diff(coplanar) <= slack,
+            "{file}: {} coplanar, peer {coplanar}",
+            stats.coplanar_dropped
+        );
+    }
+}
