@@ -77,3 +77,62 @@ pub fn brute_force_edges(mesh: &Mesh) -> EdgeCounts {
     counts.non_manifold = faces.values().filter(|&&n| n > 2).count();
     counts
 }
+
+/// Checks the next-index rings and cap heads of an asset: from every kept edge end, following `next`
+/// returns to the start after visiting exactly the kept ends at that vertex; one head per vertex with
+/// two or more kept edges, in vertex order. Returns a description of the first failure.
+pub fn check_rings(asset: &chamfer_runtime::asset::Asset) -> Result<(), String> {
+    let ends = 2 * asset.edge_count();
+    let next = asset.next_ends.to_u32_vec();
+    if next.len() != ends {
+        return Err(format!("{} next entries for {ends} ends", next.len()));
+    }
+    let mut degree: HashMap<u32, usize> = HashMap::new();
+    for end in 0..ends as u32 {
+        *degree.entry(asset.end_vertex(end)).or_default() += 1;
+    }
+    for start in 0..ends as u32 {
+        let v = asset.end_vertex(start);
+        let mut seen = std::collections::HashSet::new();
+        let mut end = start;
+        loop {
+            if asset.end_vertex(end) != v {
+                return Err(format!("walk from end {start} left vertex {v}"));
+            }
+            if !seen.insert(end) {
+                return Err(format!("walk from end {start} loops without returning"));
+            }
+            end = next[end as usize];
+            if end == start {
+                break;
+            }
+        }
+        if seen.len() != degree[&v] {
+            return Err(format!(
+                "walk from end {start} visits {} of the {} ends at vertex {v}",
+                seen.len(),
+                degree[&v]
+            ));
+        }
+    }
+    let heads: Vec<u32> = asset
+        .cap_heads
+        .to_u32_vec()
+        .iter()
+        .map(|&h| asset.end_vertex(h))
+        .collect();
+    let mut expected: Vec<u32> = degree
+        .iter()
+        .filter(|&(_, &d)| d >= 2)
+        .map(|(&v, _)| v)
+        .collect();
+    expected.sort_unstable();
+    if heads != expected {
+        return Err(format!(
+            "cap heads at {} vertices, expected {}",
+            heads.len(),
+            expected.len()
+        ));
+    }
+    Ok(())
+}

@@ -231,3 +231,23 @@ fn crease_and_coplanar_counts_match_the_trimesh_peer() {
         );
     }
 }
+
+#[test]
+fn next_index_walks_are_closed_and_complete_on_every_mesh() {
+    let mut paths = public_meshes();
+    for shape in [
+        "shapes/cone-16.obj",
+        "shapes/plane-4x4.obj",
+        "shapes/nonmanifold-fan.obj",
+        "shapes/cylinder-16.obj",
+    ] {
+        paths.push(fixture(shape));
+    }
+    for path in paths {
+        let asset = bake_file(&path, &BakeOptions::DEFAULT)
+            .unwrap_or_else(|e| panic!("{e}"))
+            .asset;
+        let asset = Asset::decode(&asset.encode_to_vec()).unwrap_or_else(|e| panic!("{e}"));
+        chamfer_tests::check_rings(&asset).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    }
+}

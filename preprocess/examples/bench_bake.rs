@@ -46,9 +46,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         rayon::current_num_threads()
     );
     println!(
-        "| mesh | triangles | parse | weld | adjacency | classify | normals | assemble | write | non-parse | M tri/s | mesh MB | peak RSS MB | peak / mesh |"
+        "| mesh | triangles | parse | weld | adjacency | classify | caps | normals | assemble | write | non-parse | M tri/s | mesh MB | peak RSS MB | peak / mesh |"
     );
-    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     let mut baselines = Vec::new();
     for mesh in &meshes {
         let ours = median_of(runs, || run_child("--child-ours", mesh))?;
@@ -66,13 +66,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .map(|k| ms(k))
         .sum::<f64>();
         println!(
-            "| {} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.2} | {:.1} | {:.1} | {:.2}× |",
+            "| {} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.2} | {:.1} | {:.1} | {:.2}× |",
             name(mesh),
             ours["triangles"],
             ms("parse"),
             ms("weld"),
             ms("adjacency"),
             ms("classify"),
+            ms("caps"),
             ms("normals"),
             ms("assemble"),
             ms("write"),
@@ -168,6 +169,7 @@ fn child_ours(path: &Path) -> Result<(), Box<dyn std::error::Error>> {
         ("weld", s(t.weld)),
         ("adjacency", s(t.adjacency)),
         ("classify", s(t.classify)),
+        ("caps", s(t.caps)),
         ("normals", s(t.normals)),
         ("assemble", s(t.assemble)),
         ("write", s(write)),

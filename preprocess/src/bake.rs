@@ -7,8 +7,9 @@ use std::time::{Duration, Instant};
 use chamfer_runtime::asset::{Asset, Header, Indices, Stats, pack_attributes};
 use glam::Vec3;
 
+use crate::corners::VertexCorners;
 use crate::mesh::{Mark, Mesh, MeshError};
-use crate::{BakeOptions, Error, adjacency, classify, degenerate, load, normals, weld};
+use crate::{BakeOptions, Error, adjacency, caps, classify, degenerate, load, normals, weld};
 
 /// A baked asset and what it took.
 #[derive(Clone, Debug)]
@@ -34,6 +35,8 @@ pub struct Timings {
     pub adjacency: Duration,
     /// Classifying and dropping coplanar edges.
     pub classify: Duration,
+    /// Building next-index rings and cap heads.
+    pub caps: Duration,
     /// Splitting normals into render vertices.
     pub normals: Duration,
     /// Packing the asset's sections.
@@ -43,7 +46,7 @@ pub struct Timings {
 impl Timings {
     /// Everything but parsing.
     pub fn processing(&self) -> Duration {
-        self.weld + self.adjacency + self.classify + self.normals + self.assemble
+        self.weld + self.adjacency + self.classify + self.caps + self.normals + self.assemble
     }
 }
 
@@ -155,11 +158,15 @@ pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Er
     );
     lap(&mut timings.classify);
 
-    let render = normals::split_normals(&positions, &triangles, &edges);
+    let corners = VertexCorners::new(&triangles, positions.len());
+    let rings = caps::rings_around(&corners, &triangles, &edges, positions.len());
+    lap(&mut timings.caps);
+
+    let render = normals::split_normals_around(corners, &positions, &triangles, &edges);
     drop(triangles);
     lap(&mut timings.normals);
 
-    let asset = assemble(source, options, stats, &positions, edges, render);
+    let asset = assemble(source, options, stats, &positions, edges, rings, render);
     lap(&mut timings.assemble);
     Ok(Baked {
         asset,
@@ -176,6 +183,7 @@ fn assemble(
     stats: Stats,
     positions: &[Vec3],
     edges: adjacency::Edges,
+    rings: caps::Rings,
     render: normals::RenderMesh,
 ) -> Asset {
     let (bounds_min, bounds_max) = positions
@@ -197,6 +205,7 @@ fn assemble(
         })
         .collect();
     let render_vertices = render.positions.len();
+    let edge_count = edges.len();
     let edge_vertices: Vec<u32> = bytemuck::allocation::cast_vec(edges.vertices);
     Asset {
         header: Header {
@@ -215,7 +224,7 @@ fn assemble(
         topology_positions: positions.iter().map(|p| p.to_array()).collect(),
         edge_vertices: Indices::with_bound(edge_vertices, positions.len()),
         edge_attributes,
-        next_ends: Indices::default(),
-        cap_heads: Indices::default(),
+        next_ends: Indices::with_bound(rings.next, 2 * edge_count),
+        cap_heads: Indices::with_bound(rings.heads, 2 * edge_count),
     }
 }

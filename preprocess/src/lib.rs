@@ -13,7 +13,9 @@
 
 pub mod adjacency;
 mod bake;
+pub mod caps;
 pub mod classify;
+mod corners;
 pub mod degenerate;
 mod error;
 pub mod load;

@@ -23,7 +23,8 @@ pub struct Mesh {
     pub uvs: Option<Vec<Vec2>>,
     /// Triangles as indices into `positions`, in the file's winding.
     pub triangles: Vec<[u32; 3]>,
-    /// Material (or glTF primitive material) of each triangle; same length as `triangles`.
+    /// Material (or glTF primitive material) of each triangle: one per triangle, or empty when the
+    /// whole mesh has one material.
     pub materials: Vec<u32>,
     /// Edges marked in the file.
     pub marks: Vec<Mark>,
@@ -148,7 +149,14 @@ impl Mesh {
             }
         }
         let lengths = [
-            ("materials", self.materials.len(), self.triangles.len()),
+            (
+                "materials",
+                match self.materials.len() {
+                    0 => self.triangles.len(),
+                    n => n,
+                },
+                self.triangles.len(),
+            ),
             (
                 "normals",
                 self.normals.as_ref().map_or(vertex_count, Vec::len),
@@ -196,9 +204,18 @@ impl Mesh {
         );
         merge_optional(&mut self.uvs, other.uvs, self_len, other_len, Vec2::ZERO);
         self.positions.extend(other.positions);
+        // An empty material list means "all material 0": expand it only when the other side has one.
+        if self.materials.is_empty() != other.materials.is_empty() {
+            self.materials.resize(self.triangles.len(), 0);
+        }
+        if !self.materials.is_empty() && other.materials.is_empty() {
+            self.materials
+                .resize(self.triangles.len() + other.triangles.len(), 0);
+        } else {
+            self.materials.extend(other.materials);
+        }
         self.triangles
             .extend(other.triangles.iter().map(|t| t.map(|i| i + base)));
-        self.materials.extend(other.materials);
         self.marks.extend(other.marks.into_iter().map(|m| Mark {
             vertices: m.vertices.map(|i| i + base),
             ..m

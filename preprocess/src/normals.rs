@@ -17,6 +17,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use crate::adjacency::Edges;
+use crate::corners::VertexCorners;
 
 /// Render buffers with normals split at creases.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -47,8 +48,18 @@ const VERTICES_PER_CHUNK: usize = 4096;
 /// them). Render vertices are numbered by topology vertex, then by each fan's first corner, so the
 /// output is the same for any thread count.
 pub fn split_normals(positions: &[Vec3], triangles: &[[u32; 3]], edges: &Edges) -> RenderMesh {
+    let corners = VertexCorners::new(triangles, positions.len());
+    split_normals_around(corners, positions, triangles, edges)
+}
+
+/// [`split_normals`] with the corner lists already built; frees them as soon as it is done with them.
+pub(crate) fn split_normals_around(
+    corners: VertexCorners,
+    positions: &[Vec3],
+    triangles: &[[u32; 3]],
+    edges: &Edges,
+) -> RenderMesh {
     let vertex_count = positions.len();
-    let corners = VertexCorners::new(triangles, vertex_count);
     let split = SplitLookup::new(edges, vertex_count);
 
     // Per vertex: how many fans; per corner: its fan (local to the vertex); per fan: its normal.
@@ -96,35 +107,6 @@ pub fn split_normals(positions: &[Vec3], triangles: &[[u32; 3]], edges: &Edges) 
         positions: render_positions,
         normals: chunk_normals.concat(),
         indices,
-    }
-}
-
-/// The corners around each vertex, in triangle order (a counting sort).
-struct VertexCorners {
-    starts: Vec<u32>,
-    corners: Vec<u32>,
-}
-
-impl VertexCorners {
-    fn new(triangles: &[[u32; 3]], vertex_count: usize) -> Self {
-        let mut starts = vec![0u32; vertex_count + 1];
-        for &v in triangles.as_flattened() {
-            starts[v as usize + 1] += 1;
-        }
-        for v in 0..vertex_count {
-            starts[v + 1] += starts[v];
-        }
-        let mut cursor = starts.clone();
-        let mut corners = vec![0u32; triangles.len() * 3];
-        for (c, &v) in triangles.as_flattened().iter().enumerate() {
-            corners[cursor[v as usize] as usize] = c as u32;
-            cursor[v as usize] += 1;
-        }
-        Self { starts, corners }
-    }
-
-    fn of(&self, v: u32) -> &[u32] {
-        &self.corners[self.starts[v as usize] as usize..self.starts[v as usize + 1] as usize]
     }
 }
 

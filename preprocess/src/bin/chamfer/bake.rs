@@ -172,11 +172,12 @@ fn report(input: &Path, output: &Path, baked: &Baked, write: Duration, timings: 
         let ms = |d: Duration| d.as_secs_f64() * 1e3;
         let triangles = stats.input_triangles as f64;
         text += &format!(
-            "\n  parse {:.1} ms | weld {:.1} | adjacency {:.1} | classify {:.1} | normals {:.1} | assemble {:.1} | write {:.1} ms\n  processing (all but parse): {:.1} ms = {:.2} M triangles/s; mesh {:.1} MB, peak RSS {}",
+            "\n  parse {:.1} ms | weld {:.1} | adjacency {:.1} | classify {:.1} | caps {:.1} | normals {:.1} | assemble {:.1} | write {:.1} ms\n  processing (all but parse): {:.1} ms = {:.2} M triangles/s; mesh {:.1} MB, peak RSS {}",
             ms(t.parse),
             ms(t.weld),
             ms(t.adjacency),
             ms(t.classify),
+            ms(t.caps),
             ms(t.normals),
             ms(t.assemble),
             ms(write),
