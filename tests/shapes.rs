@@ -1,6 +1,6 @@
 //! Small fixtures with answers known by construction (fixtures/make_fixtures.py), and broken files.
 
-use chamfer_preprocess::{BakeOptions, Error, bake_file};
+use chamfer_preprocess::{BakeOptions, Error, Radius, bake_file};
 use chamfer_runtime::asset::{Asset, EdgeFlags, EdgeStats};
 use chamfer_tests::fixture;
 
@@ -217,4 +217,61 @@ fn broken_files_are_typed_errors_naming_the_file() {
             "{file}: input was modified"
         );
     }
+}
+
+#[test]
+fn a_cube_marked_by_rule_gets_twelve_chamfer_edges() {
+    let options = BakeOptions::DEFAULT.with_radius(Radius::Absolute(0.05));
+    let asset = bake_file(&fixture("shapes/cube.obj"), &options)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .asset;
+    let chamfer = asset.header.stats.chamfer;
+    assert_eq!((chamfer.edges, chamfer.clamped), (12, 0));
+    for e in 0..asset.edge_count() {
+        assert!(asset.edge_flags(e).contains(EdgeFlags::CHAMFER));
+        assert!(
+            (asset.edge_radius(e) - 0.05).abs() < 1e-5,
+            "{}",
+            asset.edge_radius(e)
+        );
+    }
+    // Too large for the faces: clamped to the triangles' height over the edge (1 on the unit cube).
+    let options = BakeOptions::DEFAULT.with_radius(Radius::Absolute(3.0));
+    let chamfer = bake_file(&fixture("shapes/cube.obj"), &options)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .asset
+        .header
+        .stats
+        .chamfer;
+    assert_eq!((chamfer.edges, chamfer.clamped), (12, 12));
+    assert!((chamfer.radius_max - 1.0).abs() < 1e-5);
+}
+
+#[test]
+fn file_radii_win_over_the_rule_and_valleys_are_opt_in() {
+    // The marked PLY cube: three marks carry radii, one does not; the rule fills that one and the other ridges.
+    let options = BakeOptions::DEFAULT.with_radius(Radius::Absolute(0.2));
+    let asset = bake_file(&fixture("shapes/cube-marked-ascii.ply"), &options)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .asset;
+    let mut radii: Vec<f32> = (0..asset.edge_count())
+        .map(|e| asset.edge_radius(e))
+        .collect();
+    radii.sort_by(f32::total_cmp);
+    let close = |a: f32, b: f32| (a - b).abs() <= 1e-3 * b;
+    assert!(
+        close(radii[0], 0.02) && close(radii[1], 0.05) && close(radii[2], 0.1),
+        "{radii:?}"
+    );
+    assert!(radii[3..].iter().all(|&r| close(r, 0.2)), "{radii:?}");
+    // A cone's base rim is a ridge; nothing in it is a valley, so valleys change nothing there.
+    let ridges = BakeOptions::DEFAULT.with_radius(Radius::Relative(0.01));
+    let both = ridges.with_radius_valleys(true);
+    let count = |o: &BakeOptions| {
+        bake_file(&fixture("shapes/cone-16.obj"), o)
+            .map(|b| b.asset.header.stats.chamfer.edges)
+            .ok()
+    };
+    assert_eq!(count(&ridges), Some(16));
+    assert_eq!(count(&both), Some(16));
 }

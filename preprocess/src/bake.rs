@@ -9,7 +9,9 @@ use glam::Vec3;
 
 use crate::corners::VertexCorners;
 use crate::mesh::{Mark, Mesh, MeshError};
-use crate::{BakeOptions, Error, adjacency, caps, classify, degenerate, load, normals, weld};
+use crate::{
+    BakeOptions, Error, adjacency, caps, classify, degenerate, load, normals, radii, weld,
+};
 
 /// A baked asset and what it took.
 #[derive(Clone, Debug)]
@@ -155,6 +157,12 @@ pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Er
         &marks,
         options.coplanar_deg,
         options.crease_deg,
+    );
+    stats.chamfer = radii::assign_radii(
+        &positions,
+        &mut edges,
+        options.radius,
+        options.radius_valleys,
     );
     lap(&mut timings.classify);
 

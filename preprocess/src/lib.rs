@@ -2,7 +2,7 @@
 //! normals at creases and write the compact `.chamfer` asset that `chamfer-runtime` draws.
 //!
 //! One module per step, each with one public entry and its contract:
-//! [`load`] → [`weld`] → [`degenerate`] → [`adjacency`] → [`classify`] → [`normals`] → the asset.
+//! [`load`] → [`weld`] → [`degenerate`] → [`adjacency`] → [`classify`] → [`radii`] → [`caps`] → [`normals`] → the asset.
 //!
 //! ```no_run
 //! use chamfer_preprocess::{bake_file, BakeOptions};
@@ -22,9 +22,10 @@ pub mod load;
 pub mod mesh;
 pub mod normals;
 mod options;
+pub mod radii;
 pub mod weld;
 pub mod write;
 
 pub use bake::{Baked, Timings, bake, bake_bytes, bake_file};
 pub use error::Error;
-pub use options::{BakeOptions, OptionsError};
+pub use options::{BakeOptions, OptionsError, Radius};

@@ -13,6 +13,23 @@ pub struct BakeOptions {
     /// An edge whose face normals differ by this many degrees or more is a crease; normals are split
     /// across it. Default 30°. Must be in (0, 180].
     pub crease_deg: f32,
+    /// The chamfer radius given to ridge creases (and marked edges without a radius of their own).
+    /// Marks with a radius in the file always win. Default: none.
+    pub radius: Radius,
+    /// Also give [`radius`](Self::radius) to valley creases. Default false.
+    pub radius_valleys: bool,
+}
+
+/// The chamfer radius rule.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Radius {
+    /// Only marks in the file carry radii.
+    #[default]
+    None,
+    /// This radius, in mesh units.
+    Absolute(f32),
+    /// This fraction of the bounding box's diagonal.
+    Relative(f32),
 }
 
 /// Why options were refused.
@@ -33,6 +50,8 @@ impl BakeOptions {
         weld_epsilon: 0.0,
         coplanar_deg: 0.01,
         crease_deg: 30.0,
+        radius: Radius::None,
+        radius_valleys: false,
     };
 
     /// Sets [`weld_epsilon`](Self::weld_epsilon).
@@ -54,6 +73,19 @@ impl BakeOptions {
     /// Sets [`crease_deg`](Self::crease_deg).
     pub fn with_crease_deg(self, crease_deg: f32) -> Self {
         Self { crease_deg, ..self }
+    }
+
+    /// Sets [`radius`](Self::radius).
+    pub fn with_radius(self, radius: Radius) -> Self {
+        Self { radius, ..self }
+    }
+
+    /// Sets [`radius_valleys`](Self::radius_valleys).
+    pub fn with_radius_valleys(self, radius_valleys: bool) -> Self {
+        Self {
+            radius_valleys,
+            ..self
+        }
     }
 
     /// Checks every field's range.
@@ -86,7 +118,22 @@ impl BakeOptions {
             "coplanar-deg",
             self.coplanar_deg,
             "must be >= 0 and below crease-deg",
-        )
+        )?;
+        match self.radius {
+            Radius::None => Ok(()),
+            Radius::Absolute(r) => check(
+                r.is_finite() && r > 0.0,
+                "radius",
+                r,
+                "must be a finite number > 0",
+            ),
+            Radius::Relative(f) => check(
+                f.is_finite() && f > 0.0 && f <= 1.0,
+                "radius-rel",
+                f,
+                "must be in (0, 1]",
+            ),
+        }
     }
 
     /// The settings as `(name, value)` pairs, recorded in the asset for provenance.
@@ -95,6 +142,15 @@ impl BakeOptions {
             ("weld_epsilon".into(), self.weld_epsilon.to_string()),
             ("coplanar_deg".into(), self.coplanar_deg.to_string()),
             ("crease_deg".into(), self.crease_deg.to_string()),
+            (
+                "radius".into(),
+                match self.radius {
+                    Radius::None => "marks only".into(),
+                    Radius::Absolute(r) => r.to_string(),
+                    Radius::Relative(f) => format!("{f} x diagonal"),
+                },
+            ),
+            ("radius_valleys".into(), self.radius_valleys.to_string()),
         ]
     }
 }

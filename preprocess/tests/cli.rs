@@ -66,6 +66,16 @@ fn bake_then_inspect_json_has_the_documented_keys() {
         );
     }
     assert_eq!(json["edges"]["total"], 18);
+    assert_eq!(json["caps"], 8, "every cube corner joins three kept edges");
+    assert_eq!(json["chamfer"]["edges"], 0);
+    for key in ["next_ends", "cap_heads"] {
+        assert!(
+            json["bytes"]["per_section"][key]
+                .as_u64()
+                .is_some_and(|b| b > 0),
+            "{key}: {json}"
+        );
+    }
     assert_eq!(json["edges"]["crease"], 12);
     assert_eq!(json["edges"]["coplanar_dropped"], 6);
     assert_eq!(
@@ -81,6 +91,52 @@ fn bake_then_inspect_json_has_the_documented_keys() {
         text(&table.stdout).contains("coplanar"),
         "{}",
         text(&table.stdout)
+    );
+}
+
+#[test]
+fn radius_flags_mark_chamfer_edges() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("cube.chamfer");
+    let run = chamfer(&[
+        "bake",
+        path_str(&fixture("shapes/cube.obj")),
+        "--radius",
+        "0.05",
+        "-o",
+        path_str(&out),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let run = chamfer(&["inspect", path_str(&out), "--json"]);
+    let json: serde_json::Value = serde_json::from_slice(&run.stdout).expect("valid JSON");
+    assert_eq!(json["chamfer"]["edges"], 12);
+    assert_eq!(json["chamfer"]["clamped"], 0);
+    assert!((json["chamfer"]["radius_max"].as_f64().unwrap_or(0.0) - 0.05).abs() < 1e-6);
+    let run = chamfer(&[
+        "bake",
+        path_str(&fixture("shapes/cube.obj")),
+        "--radius=-1",
+        "-o",
+        path_str(&out),
+    ]);
+    assert!(
+        !run.status.success() && text(&run.stderr).contains("radius"),
+        "{}",
+        text(&run.stderr)
+    );
+    let run = chamfer(&[
+        "bake",
+        path_str(&fixture("shapes/cube.obj")),
+        "--radius",
+        "1",
+        "--radius-rel",
+        "0.1",
+        "-o",
+        path_str(&out),
+    ]);
+    assert!(
+        !run.status.success(),
+        "--radius and --radius-rel together must be refused"
     );
 }
 

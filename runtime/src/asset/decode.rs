@@ -151,9 +151,13 @@ fn read_header(bytes: &[u8]) -> Result<Header, DecodeError> {
         .iter()
         .chain(&header.bounds_max)
         .all(|v| v.is_finite());
-    if !finite || !header.radius_scale.is_finite() || header.radius_scale < 0.0 {
+    let chamfer = header.stats.chamfer;
+    let radii_ok = [header.radius_scale, chamfer.radius_min, chamfer.radius_max]
+        .iter()
+        .all(|r| r.is_finite() && *r >= 0.0);
+    if !finite || !radii_ok {
         return Err(DecodeError::BadHeader(
-            "bounds or radius scale not finite and non-negative".into(),
+            "bounds or radii not finite and non-negative".into(),
         ));
     }
     Ok(header)

@@ -376,8 +376,21 @@ pub struct EdgeStats {
     pub marks_unmatched: u64,
 }
 
+/// The chamfer edges: those with a radius (seed 000 §3.2).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct ChamferStats {
+    /// Edges with a radius (flag [`EdgeFlags::CHAMFER`]).
+    pub edges: u64,
+    /// Edges whose radius was reduced so the rounded strip stays on its two faces.
+    pub clamped: u64,
+    /// Smallest radius after clamping (0 when there is none).
+    pub radius_min: f32,
+    /// Largest radius after clamping (0 when there is none).
+    pub radius_max: f32,
+}
+
 /// What the bake saw and produced; shown by `chamfer inspect`.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Stats {
     /// Vertices in the source mesh (render vertices as loaded, seams split).
     pub input_vertices: u64,
@@ -389,6 +402,8 @@ pub struct Stats {
     pub degenerate_triangles: u64,
     /// Edge classes.
     pub edges: EdgeStats,
+    /// Chamfer radii.
+    pub chamfer: ChamferStats,
 }
 
 /// The asset's header: provenance, bounds, statistics and the section table.

@@ -7,7 +7,7 @@ use std::time::{Duration, Instant};
 
 use anyhow::{Context, bail};
 use chamfer_preprocess::write::{ensure_not_an_input, write_atomically};
-use chamfer_preprocess::{BakeOptions, Baked, bake_file};
+use chamfer_preprocess::{BakeOptions, Baked, Radius, bake_file};
 use clap::Args;
 use rayon::prelude::*;
 
@@ -46,6 +46,16 @@ pub struct OptionArgs {
     /// Edges whose faces meet at this many degrees or more are creases.
     #[arg(long, default_value_t = BakeOptions::DEFAULT.crease_deg, value_name = "DEG")]
     crease_deg: f32,
+    /// Give ridge creases (and marked edges without a radius) this chamfer radius, in mesh units.
+    /// Radii marked in the file win.
+    #[arg(long, value_name = "R", conflicts_with = "radius_rel")]
+    radius: Option<f32>,
+    /// Like --radius, as a fraction of the bounding box's diagonal (e.g. 0.005).
+    #[arg(long, value_name = "F")]
+    radius_rel: Option<f32>,
+    /// Give valley creases the radius too.
+    #[arg(long)]
+    radius_valleys: bool,
 }
 
 impl OptionArgs {
@@ -54,7 +64,13 @@ impl OptionArgs {
         let options = BakeOptions::DEFAULT
             .with_weld_epsilon(self.weld_epsilon)
             .with_coplanar_deg(self.coplanar_deg)
-            .with_crease_deg(self.crease_deg);
+            .with_crease_deg(self.crease_deg)
+            .with_radius(match (self.radius, self.radius_rel) {
+                (Some(r), _) => Radius::Absolute(r),
+                (None, Some(f)) => Radius::Relative(f),
+                (None, None) => Radius::None,
+            })
+            .with_radius_valleys(self.radius_valleys);
         options.validate()?;
         Ok(options)
     }

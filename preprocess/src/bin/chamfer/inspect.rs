@@ -92,6 +92,13 @@ pub fn summary(asset: &Asset, total_bytes: u64) -> serde_json::Value {
             "flipped": e.flipped,
             "marks_unmatched": e.marks_unmatched,
         },
+        "chamfer": {
+            "edges": s.chamfer.edges,
+            "clamped": s.chamfer.clamped,
+            "radius_min": s.chamfer.radius_min,
+            "radius_max": s.chamfer.radius_max,
+        },
+        "caps": asset.cap_heads.len(),
         "bounds": { "min": asset.header.bounds_min, "max": asset.header.bounds_max },
         "bytes": { "total": total_bytes, "per_section": per_section, "per_edge": per_edge },
     })
@@ -136,6 +143,18 @@ fn print_table(name: &str, asset: &Asset, r: &serde_json::Value) {
     ] {
         println!("    {class:<14} {}", e[class]);
     }
+    let c = &r["chamfer"];
+    println!(
+        "  chamfer        {} edges with a radius ({} clamped), radius {:.6} .. {:.6}",
+        c["edges"],
+        c["clamped"],
+        c["radius_min"].as_f64().unwrap_or(0.0),
+        c["radius_max"].as_f64().unwrap_or(0.0)
+    );
+    println!(
+        "  caps           {} vertices where two or more kept edges meet",
+        r["caps"]
+    );
     let b = &r["bytes"];
     println!(
         "  bytes          {} total, {:.1} per kept edge (edge + attribute + next + cap sections)",
