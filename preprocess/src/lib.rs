@@ -13,6 +13,7 @@
 
 pub mod adjacency;
 mod bake;
+pub mod build;
 pub mod caps;
 pub mod classify;
 mod corners;
