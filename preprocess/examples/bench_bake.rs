@@ -58,6 +58,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "weld",
             "adjacency",
             "classify",
+            "caps",
             "normals",
             "assemble",
             "write",

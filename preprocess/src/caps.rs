@@ -38,6 +38,8 @@ pub struct Rings {
 }
 
 const VERTICES_PER_CHUNK: usize = 4096;
+/// Up to this many corners at a vertex, corners are linked by a quadratic scan instead of a sort.
+const SMALL_FAN: usize = 16;
 
 /// Builds the rings of the kept `edges` of `triangles` (see the module's ordering rule).
 ///
@@ -123,6 +125,8 @@ impl VertexEnds {
 struct Walk {
     /// (neighbour, role, local corner): role 0 when the neighbour is the corner's `a`, 1 for `b`.
     links: Vec<(u32, u8, u32)>,
+    /// (a, b) per local corner, for small fans.
+    pairs: Vec<(u32, u32)>,
     /// Per local corner: the corner that follows it through its `b` edge, or `u32::MAX`.
     succ: Vec<u32>,
     has_pred: Vec<bool>,
@@ -152,29 +156,51 @@ impl Walk {
         }
         let around = corners.of(v);
         // Link corner i to corner j when i's b edge is j's a edge and no other corner uses that edge.
-        self.links.clear();
-        for (local, &c) in around.iter().enumerate() {
-            let (a, b) = corner_neighbours(triangles, c);
-            self.links.push((a, 0, local as u32));
-            self.links.push((b, 1, local as u32));
-        }
-        self.links.sort_unstable();
         self.succ.clear();
         self.succ.resize(around.len(), u32::MAX);
         self.has_pred.clear();
         self.has_pred.resize(around.len(), false);
-        let mut i = 0;
-        while i < self.links.len() {
-            let mut j = i + 1;
-            while j < self.links.len() && self.links[j].0 == self.links[i].0 {
-                j += 1;
+        if around.len() <= SMALL_FAN {
+            // Typical valence (about 6): a quadratic scan beats sorting.
+            self.pairs.clear();
+            self.pairs
+                .extend(around.iter().map(|&c| corner_neighbours(triangles, c)));
+            for (i, &(_, x)) in self.pairs.iter().enumerate() {
+                let mut to = u32::MAX;
+                let (mut as_a, mut as_b) = (0, 0);
+                for (j, &(a, b)) in self.pairs.iter().enumerate() {
+                    if a == x {
+                        as_a += 1;
+                        to = j as u32;
+                    }
+                    as_b += u32::from(b == x);
+                }
+                if as_a == 1 && as_b == 1 {
+                    self.succ[i] = to;
+                    self.has_pred[to as usize] = true;
+                }
             }
-            if j - i == 2 && self.links[i].1 == 0 && self.links[i + 1].1 == 1 {
-                let (to, from) = (self.links[i].2, self.links[i + 1].2);
-                self.succ[from as usize] = to;
-                self.has_pred[to as usize] = true;
+        } else {
+            self.links.clear();
+            for (local, &c) in around.iter().enumerate() {
+                let (a, b) = corner_neighbours(triangles, c);
+                self.links.push((a, 0, local as u32));
+                self.links.push((b, 1, local as u32));
             }
-            i = j;
+            self.links.sort_unstable();
+            let mut i = 0;
+            while i < self.links.len() {
+                let mut j = i + 1;
+                while j < self.links.len() && self.links[j].0 == self.links[i].0 {
+                    j += 1;
+                }
+                if j - i == 2 && self.links[i].1 == 0 && self.links[i + 1].1 == 1 {
+                    let (to, from) = (self.links[i].2, self.links[i + 1].2);
+                    self.succ[from as usize] = to;
+                    self.has_pred[to as usize] = true;
+                }
+                i = j;
+            }
         }
         // Walk the open fans from their starts, then the closed ones, in corner order.
         self.order.clear();
@@ -206,7 +232,14 @@ impl Walk {
         self.listed.clear();
         self.listed.resize(self.kept.len(), false);
         for &n in &self.order {
-            let at = self.kept.partition_point(|&(m, _)| m < n);
+            let at = if self.kept.len() <= SMALL_FAN {
+                self.kept
+                    .iter()
+                    .position(|&(m, _)| m == n)
+                    .unwrap_or(self.kept.len())
+            } else {
+                self.kept.partition_point(|&(m, _)| m < n)
+            };
             // Several kept edges to one neighbour cannot happen: edges are unique.
             if at < self.kept.len() && self.kept[at].0 == n && !self.listed[at] {
                 self.listed[at] = true;
