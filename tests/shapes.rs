@@ -275,3 +275,27 @@ fn file_radii_win_over_the_rule_and_valleys_are_opt_in() {
     assert_eq!(count(&ridges), Some(16));
     assert_eq!(count(&both), Some(16));
 }
+
+#[test]
+fn gltf_marks_in_extras_cesium_outline_and_edge_visibility() {
+    // extras.chamfer carries the same four marks as the PLY fixtures (three with radii).
+    for file in ["cube-marked-extras.gltf", "cube-marked-extras.glb"] {
+        let asset = bake(&format!("shapes/{file}"));
+        let e = asset.header.stats.edges;
+        assert_eq!((e.marked, e.kept, e.marks_unmatched), (4, 13, 0), "{file}");
+        assert_eq!(asset.header.stats.chamfer.edges, 3, "{file}");
+        assert!(
+            (asset.header.stats.chamfer.radius_max - 0.1).abs() < 1e-4,
+            "{file}"
+        );
+    }
+    // Both extensions list the cube's 12 edges (the visibility bits mark each as hard once, then "repeated").
+    for file in ["cube-outline.gltf", "cube-edge-visibility.gltf"] {
+        let e = bake(&format!("shapes/{file}")).header.stats.edges;
+        assert_eq!(
+            (e.marked, e.kept, e.coplanar_dropped, e.marks_unmatched),
+            (12, 12, 6, 0),
+            "{file}"
+        );
+    }
+}

@@ -24,6 +24,8 @@ pub struct Baked {
     pub mesh_bytes: usize,
     /// What the loader skipped or ignored.
     pub warnings: Vec<String>,
+    /// The exact radius of each asset edge (the asset stores them as f16); empty when none has one.
+    pub radii: Vec<f32>,
 }
 
 /// Wall-clock time of each bake step.
@@ -174,6 +176,7 @@ pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Er
     drop(triangles);
     lap(&mut timings.normals);
 
+    let radii = edges.radii.clone();
     let asset = assemble(source, options, stats, &positions, edges, rings, render);
     lap(&mut timings.assemble);
     Ok(Baked {
@@ -181,6 +184,7 @@ pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Er
         timings,
         mesh_bytes,
         warnings: Vec::new(),
+        radii,
     })
 }
 

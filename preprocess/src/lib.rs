@@ -12,6 +12,7 @@
 //! ```
 
 pub mod adjacency;
+pub mod annotate;
 mod bake;
 pub mod build;
 pub mod caps;

@@ -262,3 +262,43 @@ fn help_shows_examples() {
         text(&run.stdout)
     );
 }
+
+#[test]
+fn annotate_writes_marks_that_bake_reads_back() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("marked.ply");
+    let input = fixture("shapes/cube-marked-le.ply");
+    let run = chamfer(&[
+        "annotate",
+        path_str(&input),
+        "--radius",
+        "0.2",
+        "-o",
+        path_str(&out),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert!(
+        text(&run.stdout).contains("13 marked or chamfer edges"),
+        "{}",
+        text(&run.stdout)
+    );
+    let asset = dir.path().join("marked.chamfer");
+    let run = chamfer(&["bake", path_str(&out), "-o", path_str(&asset)]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let run = chamfer(&["inspect", path_str(&asset), "--json"]);
+    let json: serde_json::Value = serde_json::from_slice(&run.stdout).expect("valid JSON");
+    assert_eq!(json["edges"]["marked"], 13);
+    assert_eq!(json["chamfer"]["edges"], 13);
+    let run = chamfer(&[
+        "annotate",
+        path_str(&fixture("shapes/cube.obj")),
+        "-o",
+        path_str(&dir.path().join("c.obj")),
+    ]);
+    assert_eq!(run.status.code(), Some(1));
+    assert!(
+        text(&run.stderr).contains("cube.obj"),
+        "{}",
+        text(&run.stderr)
+    );
+}

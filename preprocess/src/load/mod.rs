@@ -3,7 +3,7 @@
 //! Every loader reads the whole file, checks what it reads, and reports problems as
 //! [`Error`]s naming the file. Loaders never modify their input.
 
-mod gltf;
+pub(crate) mod gltf;
 mod obj;
 mod ply;
 

@@ -1,5 +1,6 @@
-//! `chamfer`: bake meshes into `.chamfer` edge assets and inspect them.
+//! `chamfer`: bake meshes into `.chamfer` edge assets, inspect them, and write marks back into meshes.
 
+mod annotate;
 mod bake;
 mod demo;
 mod inspect;
@@ -23,6 +24,7 @@ enum Command {
     Bake(bake::BakeArgs),
     Inspect(inspect::InspectArgs),
     Demo(demo::DemoArgs),
+    Annotate(annotate::AnnotateArgs),
 }
 
 fn main() -> ExitCode {
@@ -31,6 +33,7 @@ fn main() -> ExitCode {
         Command::Bake(args) => bake::run(&args),
         Command::Inspect(args) => inspect::run(&args),
         Command::Demo(args) => demo::run(&args),
+        Command::Annotate(args) => annotate::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -9,6 +9,7 @@
 
 mod accessor;
 mod buffers;
+pub mod marks;
 
 use std::path::Path;
 
@@ -28,7 +29,32 @@ const COMPRESSION_EXTENSIONS: [&str; 3] = [
 /// Required extensions that do not change how geometry is read.
 const HARMLESS_EXTENSIONS: [&str; 1] = ["KHR_mesh_quantization"];
 
+/// Where one primitive's first drawn instance lies in the loaded mesh (for writing marks back).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct PrimitiveSpan {
+    /// Index in the document's `meshes`.
+    pub mesh: usize,
+    /// Index in that mesh's `primitives`.
+    pub primitive: usize,
+    /// Its first vertex in the loaded mesh; its vertex `i` is mesh vertex `first_vertex + i`.
+    pub first_vertex: u32,
+    /// Its first triangle in the loaded mesh.
+    pub first_triangle: u32,
+    /// How many triangles it has.
+    pub triangle_count: u32,
+}
+
 pub(super) fn parse(path: &Path, bytes: &[u8], warnings: &mut Vec<String>) -> Result<Mesh, Error> {
+    parse_with_spans(path, bytes, warnings, &mut Vec::new())
+}
+
+/// [`parse`], also listing each primitive's first instance.
+pub(crate) fn parse_with_spans(
+    path: &Path,
+    bytes: &[u8],
+    warnings: &mut Vec<String>,
+    spans: &mut Vec<PrimitiveSpan>,
+) -> Result<Mesh, Error> {
     let invalid = |message: String| Error::Parse {
         path: path.to_owned(),
         format: "glTF",
@@ -74,6 +100,18 @@ pub(super) fn parse(path: &Path, bytes: &[u8], warnings: &mut Vec<String>) -> Re
             if let Some(part) = read_primitive(&accessors, primitive, transform, &name, warnings)
                 .map_err(|e| invalid(format!("{name}: {e}")))?
             {
+                if !spans
+                    .iter()
+                    .any(|s| (s.mesh, s.primitive) == (mesh_index, p))
+                {
+                    spans.push(PrimitiveSpan {
+                        mesh: mesh_index,
+                        primitive: p,
+                        first_vertex: mesh.positions.len() as u32,
+                        first_triangle: mesh.triangles.len() as u32,
+                        triangle_count: part.triangles.len() as u32,
+                    });
+                }
                 mesh.append(part);
             }
         }
@@ -195,6 +233,15 @@ fn read_primitive(
         None => (0..positions.len() as u32).collect(),
     };
     let triangles = assemble_triangles(mode, &indices);
+    // Edge visibility bits follow the file's triangle order and corner order: read before mirroring.
+    let marks = marks::read(
+        accessors,
+        primitive,
+        &triangles,
+        positions.len(),
+        warnings,
+        name,
+    )?;
 
     // World space: positions by the matrix, normals by its inverse transpose; a mirroring
     // transform reverses the winding, so swap two corners to keep faces outward.
@@ -218,9 +265,11 @@ fn read_primitive(
         materials: Vec::new(),
         marks: Vec::new(),
     };
+
     let material = primitive.material.map_or(0, |m| m.value() as u32 + 1);
     Ok(Some(Mesh {
         materials: vec![material; part.triangles.len()],
+        marks,
         ..part
     }))
 }
