@@ -70,7 +70,7 @@ pub(crate) fn rings_around(
             let mut heads = Vec::new();
             let first = chunk * VERTICES_PER_CHUNK;
             for v in first..(first + VERTICES_PER_CHUNK).min(vertex_count) {
-                let ring = walk.ring(v as u32, corners, triangles, &ends, edges);
+                let ring = walk.ring(v as u32, corners, triangles, &ends);
                 for (k, &end) in ring.iter().enumerate() {
                     next[end as usize].store(ring[(k + 1) % ring.len()], Ordering::Relaxed);
                 }
@@ -87,10 +87,11 @@ pub(crate) fn rings_around(
     }
 }
 
-/// The kept edge ends at each vertex (a counting sort of the `2E` ends by vertex).
+/// The kept edge ends at each vertex, as (other vertex, end): a counting sort of the `2E` ends by
+/// vertex that also keeps the neighbour, so walks never fetch edges at random.
 struct VertexEnds {
     starts: Vec<u32>,
-    ends: Vec<u32>,
+    ends: Vec<(u32, u32)>,
 }
 
 impl VertexEnds {
@@ -104,18 +105,18 @@ impl VertexEnds {
             starts[v + 1] += starts[v];
         }
         let mut cursor = starts.clone();
-        let mut ends = vec![0u32; 2 * edges.len()];
+        let mut ends = vec![(0u32, 0u32); 2 * edges.len()];
         for (e, v) in edges.vertices.iter().enumerate() {
             for end in 0..2 {
                 let slot = &mut cursor[v[end] as usize];
-                ends[*slot as usize] = (2 * e + end) as u32;
+                ends[*slot as usize] = (v[1 - end], (2 * e + end) as u32);
                 *slot += 1;
             }
         }
         Self { starts, ends }
     }
 
-    fn of(&self, v: u32) -> &[u32] {
+    fn of(&self, v: u32) -> &[(u32, u32)] {
         &self.ends[self.starts[v as usize] as usize..self.starts[v as usize + 1] as usize]
     }
 }
@@ -125,7 +126,7 @@ impl VertexEnds {
 struct Walk {
     /// (neighbour, role, local corner): role 0 when the neighbour is the corner's `a`, 1 for `b`.
     links: Vec<(u32, u8, u32)>,
-    /// (a, b) per local corner, for small fans.
+    /// (a, b) per local corner.
     pairs: Vec<(u32, u32)>,
     /// Per local corner: the corner that follows it through its `b` edge, or `u32::MAX`.
     succ: Vec<u32>,
@@ -146,12 +147,11 @@ impl Walk {
         corners: &VertexCorners,
         triangles: &[[u32; 3]],
         ends: &VertexEnds,
-        edges: &Edges,
     ) -> &[u32] {
         self.ring.clear();
         let at_v = ends.of(v);
         if at_v.len() <= 1 {
-            self.ring.extend_from_slice(at_v);
+            self.ring.extend(at_v.iter().map(|&(_, end)| end));
             return &self.ring;
         }
         let around = corners.of(v);
@@ -160,11 +160,11 @@ impl Walk {
         self.succ.resize(around.len(), u32::MAX);
         self.has_pred.clear();
         self.has_pred.resize(around.len(), false);
+        self.pairs.clear();
+        self.pairs
+            .extend(around.iter().map(|&c| corner_neighbours(triangles, c)));
         if around.len() <= SMALL_FAN {
             // Typical valence (about 6): a quadratic scan beats sorting.
-            self.pairs.clear();
-            self.pairs
-                .extend(around.iter().map(|&c| corner_neighbours(triangles, c)));
             for (i, &(_, x)) in self.pairs.iter().enumerate() {
                 let mut to = u32::MAX;
                 let (mut as_a, mut as_b) = (0, 0);
@@ -182,8 +182,7 @@ impl Walk {
             }
         } else {
             self.links.clear();
-            for (local, &c) in around.iter().enumerate() {
-                let (a, b) = corner_neighbours(triangles, c);
+            for (local, &(a, b)) in self.pairs.iter().enumerate() {
                 self.links.push((a, 0, local as u32));
                 self.links.push((b, 1, local as u32));
             }
@@ -211,23 +210,18 @@ impl Walk {
                 if self.visited[start] || (pass == 0 && self.has_pred[start]) {
                     continue;
                 }
-                self.order
-                    .push(corner_neighbours(triangles, around[start]).0);
+                self.order.push(self.pairs[start].0);
                 let mut c = start as u32;
                 while c != u32::MAX && !self.visited[c as usize] {
                     self.visited[c as usize] = true;
-                    self.order
-                        .push(corner_neighbours(triangles, around[c as usize]).1);
+                    self.order.push(self.pairs[c as usize].1);
                     c = self.succ[c as usize];
                 }
             }
         }
         // Keep the kept edges, each once, in walking order; anything never met goes last.
         self.kept.clear();
-        self.kept.extend(
-            at_v.iter()
-                .map(|&end| (edges.vertices[end as usize / 2][1 - end as usize % 2], end)),
-        );
+        self.kept.extend_from_slice(at_v);
         self.kept.sort_unstable();
         self.listed.clear();
         self.listed.resize(self.kept.len(), false);
