@@ -61,8 +61,13 @@ impl Edges {
     /// Keeps the edges for which `keep[e]` is true, in order.
     pub fn retain(&mut self, keep: &[bool]) {
         let mut write = 0;
-        for read in 0..self.len() {
-            if keep[read] {
+        for (read, _) in keep
+            .iter()
+            .enumerate()
+            .take(self.len())
+            .filter(|&(_, &k)| k)
+        {
+            {
                 self.vertices[write] = self.vertices[read];
                 self.flags[write] = self.flags[read];
                 if !self.radii.is_empty() {

@@ -16,7 +16,6 @@ pub(super) fn parse(path: &Path, bytes: &[u8], warnings: &mut Vec<String>) -> Re
         triangulate: true,
         ignore_points: true,
         ignore_lines: true,
-        ..Default::default()
     };
     let dir = path.parent().unwrap_or(Path::new("."));
     let missing = std::cell::RefCell::new(Vec::new());

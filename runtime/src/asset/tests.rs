@@ -194,7 +194,7 @@ fn out_of_range_index_names_the_section() {
     let mut ev = asset.edge_vertices.to_u32_vec();
     ev[5] = 4;
     asset.edge_vertices = Indices::U16(ev.iter().map(|&v| v as u16).collect());
-    let err = Asset::decode(&asset.encode_to_vec()).unwrap_err();
+    let err = Asset::decode(&asset.encode_to_vec()).expect_err("index 4 of 4 vertices");
     assert_eq!(
         err,
         DecodeError::IndexOutOfRange {
