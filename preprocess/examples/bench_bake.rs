@@ -164,7 +164,7 @@ fn child_ours(path: &Path) -> Result<(), Box<dyn std::error::Error>> {
     let write = start.elapsed();
     let t = baked.timings;
     let s = |d: Duration| d.as_secs_f64();
-    let sample: Sample = [
+    report(&[
         ("triangles", baked.asset.header.stats.input_triangles as f64),
         ("parse", s(t.parse)),
         ("weld", s(t.weld)),
@@ -176,10 +176,12 @@ fn child_ours(path: &Path) -> Result<(), Box<dyn std::error::Error>> {
         ("write", s(write)),
         ("mesh_bytes", baked.mesh_bytes as f64),
         ("peak_rss", peak_rss()),
-    ]
-    .into_iter()
-    .map(|(k, v)| (k.to_owned(), v))
-    .collect();
+    ])
+}
+
+/// Prints a child's measurements as one JSON object for the parent.
+fn report(values: &[(&str, f64)]) -> Result<(), Box<dyn std::error::Error>> {
+    let sample: Sample = values.iter().map(|&(k, v)| (k.to_owned(), v)).collect();
     println!("{}", serde_json::to_string(&sample)?);
     Ok(())
 }
@@ -231,17 +233,12 @@ fn child_naive(path: &Path) -> Result<(), Box<dyn std::error::Error>> {
         .collect();
     let adjacency = start.elapsed();
     std::hint::black_box(&edges);
-    let sample: Sample = [
+    report(&[
         ("weld", weld.as_secs_f64()),
         ("adjacency", adjacency.as_secs_f64()),
         ("edges", edges.len() as f64),
         ("peak_rss", peak_rss()),
-    ]
-    .into_iter()
-    .map(|(k, v)| (k.to_owned(), v))
-    .collect();
-    println!("{}", serde_json::to_string(&sample)?);
-    Ok(())
+    ])
 }
 
 /// A torus whose cross-section is an octagon: flat strips (coplanar edges), 45° creases, smooth sweeps.

@@ -298,17 +298,19 @@ mod tests {
         ring
     }
 
+    /// Apex 0 over the square 1 2 3 4 (counter-clockwise seen from above), closed below.
+    const PYRAMID: [[u32; 3]; 6] = [
+        [0, 1, 2],
+        [0, 2, 3],
+        [0, 3, 4],
+        [0, 4, 1],
+        [1, 3, 2],
+        [1, 4, 3],
+    ];
+
     #[test]
     fn closed_fan_rings_turn_with_the_triangles() {
-        // A pyramid: apex 0 over the square 1 2 3 4 (counter-clockwise seen from above), closed below.
-        let triangles = [
-            [0, 1, 2],
-            [0, 2, 3],
-            [0, 3, 4],
-            [0, 4, 1],
-            [1, 3, 2],
-            [1, 4, 3],
-        ];
+        let triangles = PYRAMID;
         let edges = adjacency(&triangles, &[], 5);
         assert_eq!(
             canonical(ring_neighbours(&triangles, &edges, 0)),
@@ -329,14 +331,7 @@ mod tests {
 
     #[test]
     fn dropped_edges_are_skipped_in_turning_order() {
-        let triangles = [
-            [0, 1, 2],
-            [0, 2, 3],
-            [0, 3, 4],
-            [0, 4, 1],
-            [1, 3, 2],
-            [1, 4, 3],
-        ];
+        let triangles = PYRAMID;
         let mut edges = adjacency(&triangles, &[], 5);
         let keep: Vec<bool> = edges
             .vertices
