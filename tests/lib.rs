@@ -136,3 +136,90 @@ pub fn check_rings(asset: &chamfer_runtime::asset::Asset) -> Result<(), String> 
     }
     Ok(())
 }
+
+/// The shared headless GPU for render tests. There is no skipping: a machine without an adapter
+/// fails every render test loudly (CI installs Mesa's software Vulkan through scripts/setup.sh).
+pub fn gpu() -> &'static chamfer_runtime::render::Offscreen {
+    static GPU: std::sync::OnceLock<chamfer_runtime::render::Offscreen> = std::sync::OnceLock::new();
+    GPU.get_or_init(|| {
+        chamfer_runtime::render::Offscreen::new().unwrap_or_else(|e| {
+            panic!("render tests need a GPU adapter and found none: {e}. Run scripts/setup.sh.")
+        })
+    })
+}
+
+/// Bakes a fixture with the default options.
+pub fn bake_fixture(relative: &str) -> chamfer_runtime::asset::Asset {
+    let path = fixture(relative);
+    chamfer_preprocess::bake_file(&path, &chamfer_preprocess::BakeOptions::DEFAULT)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .asset
+}
+
+/// One headless frame: the runtime's mesh pass (if `mesh` is given), then the edges.
+pub fn render(
+    asset: &chamfer_runtime::asset::Asset,
+    camera: &chamfer_runtime::render::Camera,
+    mesh: Option<&chamfer_runtime::render::MeshStyle>,
+    edges: Option<&chamfer_runtime::render::EdgeStyle>,
+    background: [f64; 4],
+) -> chamfer_runtime::render::Image {
+    use chamfer_runtime::render::{EdgeRenderer, GpuAsset, MeshRenderer};
+    let gpu = gpu();
+    let [width, height] = camera.viewport;
+    let target = gpu.target(width, height, 1);
+    let uploaded = GpuAsset::new(&gpu.device, asset).expect("upload");
+    let mut mesh_renderer = MeshRenderer::new(&gpu.device, &target.formats(), &uploaded);
+    let mut edge_renderer =
+        EdgeRenderer::new(&gpu.device, &target.formats(), &uploaded).expect("edge renderer");
+    if let Some(style) = mesh {
+        mesh_renderer.prepare(&gpu.queue, camera, style);
+    }
+    if let Some(style) = edges {
+        edge_renderer.prepare(&gpu.queue, camera, style);
+    }
+    target
+        .draw(
+            gpu,
+            background,
+            |encoder| {
+                if edges.is_some() {
+                    edge_renderer.compute(encoder);
+                }
+            },
+            |pass| {
+                if mesh.is_some() {
+                    mesh_renderer.render(pass);
+                }
+                if edges.is_some() {
+                    edge_renderer.render(pass);
+                }
+            },
+        )
+        .expect("draw");
+    let image = target.read(gpu).expect("read back");
+    if let Ok(dir) = std::env::var("CHAMFER_TEST_IMAGES") {
+        save_png(&image, &std::path::Path::new(&dir).join(format!("{}.png", image_name())));
+    }
+    image
+}
+
+fn image_name() -> String {
+    let thread = std::thread::current();
+    let name = thread.name().unwrap_or("image").replace("::", "-");
+    static COUNTER: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let n = COUNTER.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    format!("{name}-{n}")
+}
+
+/// Writes `image` as a PNG (for looking at what a test saw: set `CHAMFER_TEST_IMAGES=dir`).
+pub fn save_png(image: &chamfer_runtime::render::Image, path: &std::path::Path) {
+    let file = std::fs::File::create(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), image.width, image.height);
+    encoder.set_color(png::ColorType::Rgba);
+    encoder.set_depth(png::BitDepth::Eight);
+    encoder
+        .write_header()
+        .and_then(|mut writer| writer.write_image_data(&image.rgba))
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+}

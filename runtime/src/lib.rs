@@ -13,3 +13,5 @@
 //! ```
 
 pub mod asset;
+#[cfg(feature = "render")]
+pub mod render;

@@ -1,0 +1,170 @@
+//! An asset's sections in GPU buffers, uploaded byte for byte as the file stores them.
+
+use std::path::Path;
+
+use wgpu::util::DeviceExt;
+
+use super::RenderError;
+use crate::asset::{Asset, IndexWidth, SectionKind};
+
+/// A validated asset on the GPU. Create it once; any number of renderers can draw from it.
+///
+/// Index sections keep their file width: 16-bit sections are read in halves by the shaders, and
+/// the mesh's index buffer uses the matching [`wgpu::IndexFormat`].
+#[derive(Debug)]
+pub struct GpuAsset {
+    pub(crate) render_positions: wgpu::Buffer,
+    pub(crate) render_normals: wgpu::Buffer,
+    pub(crate) mesh_indices: wgpu::Buffer,
+    pub(crate) index_format: wgpu::IndexFormat,
+    pub(crate) index_count: u32,
+    pub(crate) topology_positions: wgpu::Buffer,
+    pub(crate) edge_vertices: wgpu::Buffer,
+    pub(crate) edge_attributes: wgpu::Buffer,
+    /// Next ends, then cap heads.
+    pub(crate) rings: wgpu::Buffer,
+    pub(crate) edge_count: u32,
+    pub(crate) head_count: u32,
+    pub(crate) heads_offset: u32,
+    pub(crate) edges_u16: bool,
+    pub(crate) rings_u16: bool,
+    pub(crate) has_rings: bool,
+    pub(crate) bounds: [[f32; 3]; 2],
+    pub(crate) radius_scale: f32,
+}
+
+impl GpuAsset {
+    /// Uploads `asset` (already validated by [`Asset::decode`]).
+    ///
+    /// Fails with [`RenderError::TooLarge`] if a section exceeds the device's storage binding limit.
+    pub fn new(device: &wgpu::Device, asset: &Asset) -> Result<Self, RenderError> {
+        let limit = device
+            .limits()
+            .max_storage_buffer_binding_size
+            .min(device.limits().max_buffer_size);
+        let check = |what: &'static str, bytes: usize| {
+            let bytes = bytes as u64;
+            if bytes > limit {
+                Err(RenderError::TooLarge { what, bytes, limit })
+            } else {
+                Ok(())
+            }
+        };
+        let storage = wgpu::BufferUsages::STORAGE;
+        let section = |kind: SectionKind, usage| {
+            upload(device, kind.name(), asset.section_bytes(kind), usage)
+        };
+        for kind in [
+            SectionKind::TopologyPositions,
+            SectionKind::EdgeVertices,
+            SectionKind::EdgeAttributes,
+        ] {
+            check(kind.name(), asset.section_bytes(kind).len())?;
+        }
+        // One binding for both ring sections: they hold the same kind of value at the same width.
+        // Decoded assets store both at one width; a hand-built asset that mixes them is widened.
+        let rings_u16 = asset.next_ends.width() == IndexWidth::U16
+            && (asset.cap_heads.is_empty() || asset.cap_heads.width() == IndexWidth::U16);
+        let mut rings = Vec::new();
+        if rings_u16 || asset.next_ends.width() == asset.cap_heads.width() {
+            rings.extend_from_slice(asset.next_ends.as_bytes());
+            rings.extend_from_slice(asset.cap_heads.as_bytes());
+        } else {
+            let wide = asset.next_ends.iter().chain(asset.cap_heads.iter());
+            rings.extend(wide.flat_map(u32::to_le_bytes));
+        }
+        check("rings", rings.len())?;
+        let index_count = u32::try_from(asset.mesh_indices.len()).map_err(|_| RenderError::TooLarge {
+            what: "mesh_indices",
+            bytes: asset.mesh_indices.as_bytes().len() as u64,
+            limit,
+        })?;
+        let edge_count = asset.edge_count() as u32;
+        Ok(Self {
+            render_positions: section(SectionKind::RenderPositions, wgpu::BufferUsages::VERTEX),
+            render_normals: section(SectionKind::RenderNormals, wgpu::BufferUsages::VERTEX),
+            mesh_indices: section(SectionKind::MeshIndices, wgpu::BufferUsages::INDEX),
+            index_format: match asset.mesh_indices.width() {
+                IndexWidth::U16 => wgpu::IndexFormat::Uint16,
+                IndexWidth::U32 => wgpu::IndexFormat::Uint32,
+            },
+            index_count,
+            topology_positions: section(SectionKind::TopologyPositions, storage),
+            edge_vertices: section(SectionKind::EdgeVertices, storage),
+            edge_attributes: section(SectionKind::EdgeAttributes, storage),
+            rings: upload(device, "rings", &rings, storage),
+            edge_count,
+            head_count: asset.cap_heads.len() as u32,
+            heads_offset: asset.next_ends.len() as u32,
+            edges_u16: asset.edge_vertices.width() == IndexWidth::U16,
+            rings_u16,
+            has_rings: !asset.next_ends.is_empty(),
+            bounds: [asset.header.bounds_min, asset.header.bounds_max],
+            radius_scale: asset.header.radius_scale,
+        })
+    }
+
+    /// Reads, validates and uploads the asset file at `path`.
+    pub fn load(device: &wgpu::Device, path: &Path) -> Result<Self, RenderError> {
+        let bytes = std::fs::read(path).map_err(|source| RenderError::Read {
+            path: path.to_owned(),
+            source,
+        })?;
+        let asset = Asset::decode(&bytes).map_err(|source| RenderError::Decode {
+            path: path.to_owned(),
+            source,
+        })?;
+        Self::new(device, &asset)
+    }
+
+    /// Minimum and maximum corners of the model's bounding box.
+    pub fn bounds(&self) -> [[f32; 3]; 2] {
+        self.bounds
+    }
+
+    /// Chamfer radii in the edge attributes are multiples of this (the asset header's `radius_scale`).
+    pub fn radius_scale(&self) -> f32 {
+        self.radius_scale
+    }
+
+    /// Number of edges.
+    pub fn edge_count(&self) -> u32 {
+        self.edge_count
+    }
+
+    /// Number of triangles in the mesh.
+    pub fn triangle_count(&self) -> u32 {
+        self.index_count / 3
+    }
+
+    /// The topology positions, `[f32; 3]` per welded vertex (a storage buffer).
+    pub fn topology_positions(&self) -> &wgpu::Buffer {
+        &self.topology_positions
+    }
+
+    /// The edges' `v0 v1 v2 v3`, 16-bit if [`GpuAsset::edges_are_16_bit`] (a storage buffer).
+    pub fn edge_vertices(&self) -> &wgpu::Buffer {
+        &self.edge_vertices
+    }
+
+    /// True if [`GpuAsset::edge_vertices`] holds 16-bit indices, two per word.
+    pub fn edges_are_16_bit(&self) -> bool {
+        self.edges_u16
+    }
+
+    /// Flags and radius per edge (a storage buffer).
+    pub fn edge_attributes(&self) -> &wgpu::Buffer {
+        &self.edge_attributes
+    }
+}
+
+/// A buffer holding `bytes` (wgpu pads it to a multiple of four; an empty section gets four zero
+/// bytes, since a binding cannot be empty).
+fn upload(device: &wgpu::Device, label: &str, bytes: &[u8], usage: wgpu::BufferUsages) -> wgpu::Buffer {
+    let contents = if bytes.is_empty() { &[0u8; 4][..] } else { bytes };
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents,
+        usage,
+    })
+}

@@ -1,0 +1,257 @@
+//! Rendering without a window: a device of its own and a texture to draw into and read back.
+//! For tests, thumbnails and the `chamfer render` command; applications use their own device.
+
+use super::{RenderError, Target};
+
+/// A headless GPU device (any adapter, hardware or software, picked like `WGPU_BACKEND`,
+/// `WGPU_ADAPTER_NAME` and `WGPU_POWER_PREF` say).
+#[derive(Debug)]
+pub struct Offscreen {
+    /// The device.
+    pub device: wgpu::Device,
+    /// Its queue.
+    pub queue: wgpu::Queue,
+    /// What the adapter is (name, backend, driver).
+    pub info: wgpu::AdapterInfo,
+}
+
+impl Offscreen {
+    /// Opens a device with the adapter's own limits (software adapters bind up to 128 MiB).
+    pub fn new() -> Result<Self, RenderError> {
+        let instance =
+            wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+            power_preference: wgpu::PowerPreference::from_env()
+                .unwrap_or(wgpu::PowerPreference::HighPerformance),
+            force_fallback_adapter: false,
+            compatible_surface: None,
+            apply_limit_buckets: false,
+        }))
+        .map_err(|e| RenderError::NoAdapter(e.to_string()))?;
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("chamfer offscreen"),
+            required_features: wgpu::Features::empty(),
+            required_limits: adapter.limits(),
+            experimental_features: wgpu::ExperimentalFeatures::disabled(),
+            memory_hints: wgpu::MemoryHints::Performance,
+            trace: wgpu::Trace::Off,
+        }))
+        .map_err(|e| RenderError::Device(e.to_string()))?;
+        Ok(Self {
+            device,
+            queue,
+            info: adapter.get_info(),
+        })
+    }
+
+    /// A `width` × `height` target with `sample_count` samples per pixel (1 or 4).
+    pub fn target(&self, width: u32, height: u32, sample_count: u32) -> OffscreenTarget {
+        OffscreenTarget::new(&self.device, width.max(1), height.max(1), sample_count)
+    }
+
+    /// Blocks until the GPU has finished all submitted work.
+    pub fn wait(&self) -> Result<(), RenderError> {
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map(|_| ())
+            .map_err(|e| RenderError::Readback(e.to_string()))
+    }
+}
+
+/// Colour (RGBA8, linear values as written) and depth (32-bit float) attachments.
+#[derive(Debug)]
+pub struct OffscreenTarget {
+    width: u32,
+    height: u32,
+    sample_count: u32,
+    color: wgpu::Texture,
+    multisampled: Option<wgpu::TextureView>,
+    color_view: wgpu::TextureView,
+    depth_view: wgpu::TextureView,
+}
+
+/// The colour format of offscreen targets.
+const COLOR: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+/// The depth format of offscreen targets.
+const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+impl OffscreenTarget {
+    fn new(device: &wgpu::Device, width: u32, height: u32, sample_count: u32) -> Self {
+        let texture = |label, format, samples, usage| {
+            device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d {
+                    width,
+                    height,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: samples,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage,
+                view_formats: &[],
+            })
+        };
+        let attachment = wgpu::TextureUsages::RENDER_ATTACHMENT;
+        let color = texture("offscreen color", COLOR, 1, attachment | wgpu::TextureUsages::COPY_SRC);
+        let multisampled = (sample_count > 1).then(|| {
+            texture("offscreen msaa", COLOR, sample_count, attachment)
+                .create_view(&Default::default())
+        });
+        let depth = texture("offscreen depth", DEPTH, sample_count, attachment);
+        Self {
+            width,
+            height,
+            sample_count,
+            color_view: color.create_view(&Default::default()),
+            color,
+            multisampled,
+            depth_view: depth.create_view(&Default::default()),
+        }
+    }
+
+    /// The formats renderers must be built for to draw here.
+    pub fn formats(&self) -> Target {
+        Target {
+            color_format: COLOR,
+            depth_format: Some(DEPTH),
+            sample_count: self.sample_count,
+        }
+    }
+
+    /// Width and height in pixels.
+    pub fn size(&self) -> [u32; 2] {
+        [self.width, self.height]
+    }
+
+    /// Records `before` (compute work) and then a render pass cleared to `background` in which
+    /// `inside` draws; submits and waits until the GPU is done.
+    pub fn draw(
+        &self,
+        gpu: &Offscreen,
+        background: [f64; 4],
+        before: impl FnOnce(&mut wgpu::CommandEncoder),
+        inside: impl FnOnce(&mut wgpu::RenderPass<'_>),
+    ) -> Result<(), RenderError> {
+        let mut encoder = gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("offscreen frame"),
+            });
+        before(&mut encoder);
+        {
+            let (view, resolve_target) = match &self.multisampled {
+                Some(msaa) => (msaa, Some(&self.color_view)),
+                None => (&self.color_view, None),
+            };
+            let [r, g, b, a] = background;
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("offscreen pass"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view,
+                    depth_slice: None,
+                    resolve_target,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a }),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &self.depth_view,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Discard,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            inside(&mut pass);
+        }
+        gpu.queue.submit([encoder.finish()]);
+        gpu.wait()
+    }
+
+    /// Copies the colour attachment back to the CPU.
+    pub fn read(&self, gpu: &Offscreen) -> Result<Image, RenderError> {
+        let row = 4 * self.width;
+        let padded_row = row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("offscreen readback"),
+            size: u64::from(padded_row) * u64::from(self.height),
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        let mut encoder = gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("offscreen readback"),
+            });
+        encoder.copy_texture_to_buffer(
+            wgpu::TexelCopyTextureInfo {
+                texture: &self.color,
+                mip_level: 0,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            wgpu::TexelCopyBufferInfo {
+                buffer: &buffer,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(padded_row),
+                    rows_per_image: Some(self.height),
+                },
+            },
+            wgpu::Extent3d {
+                width: self.width,
+                height: self.height,
+                depth_or_array_layers: 1,
+            },
+        );
+        gpu.queue.submit([encoder.finish()]);
+        let (sender, receiver) = std::sync::mpsc::channel();
+        buffer.map_async(wgpu::MapMode::Read, .., move |result| {
+            let _ = sender.send(result);
+        });
+        gpu.wait()?;
+        receiver
+            .recv()
+            .map_err(|e| RenderError::Readback(e.to_string()))?
+            .map_err(|e| RenderError::Readback(e.to_string()))?;
+        let mapped = buffer
+            .get_mapped_range(..)
+            .map_err(|e| RenderError::Readback(e.to_string()))?;
+        let mut rgba = Vec::with_capacity((row * self.height) as usize);
+        for y in 0..self.height as usize {
+            let start = y * padded_row as usize;
+            rgba.extend_from_slice(&mapped[start..start + row as usize]);
+        }
+        Ok(Image {
+            width: self.width,
+            height: self.height,
+            rgba,
+        })
+    }
+}
+
+/// An RGBA8 image read back from the GPU, rows top to bottom.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Image {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Four bytes per pixel.
+    pub rgba: Vec<u8>,
+}
+
+impl Image {
+    /// The pixel at column `x`, row `y` (0 at the top).
+    pub fn pixel(&self, x: u32, y: u32) -> [u8; 4] {
+        let i = 4 * (y as usize * self.width as usize + x as usize);
+        [self.rgba[i], self.rgba[i + 1], self.rgba[i + 2], self.rgba[i + 3]]
+    }
+}

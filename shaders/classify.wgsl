@@ -1,0 +1,83 @@
+// Per frame, one thread per edge: which edges to draw (thesis §6.1, §10.4), appended to a compact
+// list whose length is the instance count of the indirect draw.
+
+@compute @workgroup_size(1)
+fn reset() {
+    out.edges.vertex_count = 6u;
+    atomicStore(&out.edges.instance_count, 0u);
+    out.edges.first_vertex = 0u;
+    out.edges.first_instance = 0u;
+    out.caps.vertex_count = 6u;
+    atomicStore(&out.caps.instance_count, 0u);
+    out.caps.first_vertex = 0u;
+    out.caps.first_instance = 0u;
+}
+
+fn faces_camera(normal: vec3<f32>, p: vec3<f32>) -> bool {
+    return dot(normal, frame.eye.xyz - p * frame.eye.w) > 0.0;
+}
+
+@compute @workgroup_size(256)
+fn classify(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+    @builtin(local_invocation_index) local: u32,
+) {
+    let e = thread_index(group, groups, local);
+    if e >= frame.edge_count {
+        return;
+    }
+    let flags = attributes[e] & 0xffffu;
+    let p0 = position(edge_vertex(4u * e));
+    let p1 = position(edge_vertex(4u * e + 1u));
+    let p2 = position(edge_vertex(4u * e + 2u));
+    let p3 = position(edge_vertex(4u * e + 3u));
+
+    let front_a = faces_camera(cross(p1 - p0, p2 - p0), p0);
+    var front_b = front_a;
+    var contour = false;
+    if (flags & (BOUNDARY | NON_MANIFOLD)) == 0u {
+        var normal_b = cross(p0 - p1, p3 - p1);
+        if (flags & FLIPPED) != 0u {
+            normal_b = -normal_b;
+        }
+        front_b = faces_camera(normal_b, p1);
+        contour = front_a != front_b;
+    }
+
+    var word = 0xffffffffu;
+    if contour && (frame.classes & CONTOUR) != 0u {
+        word = COLOR_CONTOUR | DRAWN_CONTOUR | select(0u, INSIDE_V3, !front_a);
+    } else {
+        let shown = flags & frame.classes;
+        // A crease whose faces both look away is behind the mesh: skip it before it costs a quad.
+        let seen = front_a || front_b || (flags & BOUNDARY) != 0u || frame.cull_back == 0u;
+        if shown != 0u && seen {
+            if (shown & (BOUNDARY | NON_MANIFOLD)) != 0u {
+                word = COLOR_BOUNDARY;
+            } else if (shown & (MARKED | MATERIAL)) != 0u {
+                word = COLOR_MARKED;
+            } else if (shown & RIDGE) != 0u {
+                word = COLOR_RIDGE;
+            } else {
+                word = COLOR_VALLEY;
+            }
+        }
+    }
+    if word == 0xffffffffu {
+        state[e] = 0u;
+        return;
+    }
+    let slot = atomicAdd(&out.edges.instance_count, 1u);
+    drawn[slot] = vec2<u32>(e, word);
+    joins[2u * slot] = vec2<u32>(0u);
+    joins[2u * slot + 1u] = vec2<u32>(0u);
+    state[e] = slot + 1u;
+}
+
+// The cap list is bounded; never let the draw read past it.
+@compute @workgroup_size(1)
+fn finish() {
+    let caps = atomicLoad(&out.caps.instance_count);
+    atomicStore(&out.caps.instance_count, min(caps, frame.cap_capacity));
+}

@@ -1,0 +1,187 @@
+// Shared by every edge pass: the frame uniform, the asset's read-only sections, and where an edge
+// lands on the screen. Screen positions are in framebuffer pixels (origin top left, y down), the space
+// of @builtin(position) in fragment shaders, so vertex, compute and fragment code agree to the bit.
+
+struct Frame {
+    mvp: mat4x4<f32>,
+    // The camera in model space: a point (w = 1) for perspective, a direction towards the viewer
+    // (w = 0) for orthographic, so one front-facing test serves both (thesis §6.1).
+    eye: vec4<f32>,
+    // Third column of the projection: what a step of one unit towards the camera adds to a clip position.
+    proj_z: vec4<f32>,
+    colors: array<vec4<f32>, 5>,
+    viewport: vec2<f32>,
+    // World size of one pixel at clip w = 1.
+    pixel_scale: f32,
+    width: f32,
+    min_width: f32,
+    // Clip w at which `width` holds when the width scales with depth (thesis §9.1); 0 = constant width.
+    depth_ref: f32,
+    bias_px: f32,
+    classes: u32,
+    cull_back: u32,
+    edges_u16: u32,
+    rings_u16: u32,
+    edge_count: u32,
+    head_count: u32,
+    heads_offset: u32,
+    half_quads: u32,
+    cap_capacity: u32,
+}
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var<storage, read> topology: array<f32>;
+@group(0) @binding(2) var<storage, read> edge_vertices: array<u32>;
+
+// Edge flags, as in the asset (runtime/src/asset/mod.rs), plus the per-frame contour class.
+const BOUNDARY: u32 = 1u;
+const NON_MANIFOLD: u32 = 2u;
+const RIDGE: u32 = 4u;
+const VALLEY: u32 = 8u;
+const MARKED: u32 = 16u;
+const MATERIAL: u32 = 32u;
+const FLIPPED: u32 = 64u;
+const CONTOUR: u32 = 256u;
+
+// A drawn edge's word: its colour index in the low byte, then how to build its quad.
+const COLOR_CONTOUR: u32 = 0u;
+const COLOR_BOUNDARY: u32 = 1u;
+const COLOR_MARKED: u32 = 2u;
+const COLOR_RIDGE: u32 = 3u;
+const COLOR_VALLEY: u32 = 4u;
+const DRAWN_CONTOUR: u32 = 256u;
+// The front face's opposite vertex, which lies inside the silhouette, is v3 (else v2).
+const INSIDE_V3: u32 = 512u;
+
+const PI: f32 = 3.14159265358979;
+const WORKGROUP: u32 = 256u;
+
+// Flat thread index of a 2D dispatch (one dimension holds at most 65535 workgroups).
+fn thread_index(group: vec3<u32>, groups: vec3<u32>, local: u32) -> u32 {
+    return (group.y * groups.x + group.x) * WORKGROUP + local;
+}
+
+fn edge_vertex(i: u32) -> u32 {
+    if frame.edges_u16 != 0u {
+        return (edge_vertices[i >> 1u] >> ((i & 1u) * 16u)) & 0xffffu;
+    }
+    return edge_vertices[i];
+}
+
+fn position(v: u32) -> vec3<f32> {
+    return vec3<f32>(topology[3u * v], topology[3u * v + 1u], topology[3u * v + 2u]);
+}
+
+fn cross2(a: vec2<f32>, b: vec2<f32>) -> f32 {
+    return a.x * b.y - a.y * b.x;
+}
+
+// The left normal of a direction: cross2(a, perp(a)) = 1.
+fn perp(a: vec2<f32>) -> vec2<f32> {
+    return vec2<f32>(-a.y, a.x);
+}
+
+fn to_pixels(c: vec4<f32>) -> vec2<f32> {
+    let ndc = c.xy / c.w;
+    return vec2<f32>((ndc.x + 1.0) * 0.5 * frame.viewport.x, (1.0 - ndc.y) * 0.5 * frame.viewport.y);
+}
+
+fn from_pixels(px: vec2<f32>, depth: f32, w: f32) -> vec4<f32> {
+    let ndc = vec2<f32>(px.x / frame.viewport.x * 2.0 - 1.0, 1.0 - px.y / frame.viewport.y * 2.0);
+    return vec4<f32>(ndc * w, depth * w, w);
+}
+
+// Depth of a clip position moved `bias_px` pixels' worth of world distance towards the camera: the
+// edge wins against the faces it lies on, while anything farther behind a surface stays hidden.
+fn biased_depth(c: vec4<f32>) -> f32 {
+    let b = c + frame.bias_px * frame.pixel_scale * c.w * frame.proj_z;
+    return max(b.z / b.w, 0.0);
+}
+
+fn half_width(w: f32) -> f32 {
+    var px = frame.width;
+    if frame.depth_ref > 0.0 {
+        px = px * frame.depth_ref / w;
+    }
+    return 0.5 * max(px, frame.min_width);
+}
+
+// An edge's quad on the screen. `left` and `right` are the quad's extents on either side of the
+// line, per end (x: end 0, y: end 1), measured against the direction `d` from end 0 to end 1.
+struct EdgeScreen {
+    visible: bool,
+    // Bit k: end k was moved by the near-plane clip, so it is not the mesh vertex.
+    clipped: u32,
+    s0: vec2<f32>,
+    s1: vec2<f32>,
+    d: vec2<f32>,
+    depth: vec2<f32>,
+    w: vec2<f32>,
+    left: vec2<f32>,
+    right: vec2<f32>,
+}
+
+fn edge_screen(e: u32, word: u32) -> EdgeScreen {
+    var out: EdgeScreen;
+    out.visible = false;
+    var c0 = frame.mvp * vec4<f32>(position(edge_vertex(4u * e)), 1.0);
+    var c1 = frame.mvp * vec4<f32>(position(edge_vertex(4u * e + 1u)), 1.0);
+    if c0.z < 0.0 && c1.z < 0.0 {
+        return out;
+    }
+    if c0.z < 0.0 {
+        c0 = mix(c0, c1, c0.z / (c0.z - c1.z));
+        out.clipped = 1u;
+    } else if c1.z < 0.0 {
+        c1 = mix(c1, c0, c1.z / (c1.z - c0.z));
+        out.clipped = 2u;
+    }
+    out.s0 = to_pixels(c0);
+    out.s1 = to_pixels(c1);
+    let along = out.s1 - out.s0;
+    let length_px = length(along);
+    if !(length_px > 1e-4) {
+        return out;
+    }
+    out.visible = true;
+    out.d = along / length_px;
+    out.depth = vec2<f32>(biased_depth(c0), biased_depth(c1));
+    out.w = vec2<f32>(c0.w, c1.w);
+    let h = vec2<f32>(half_width(c0.w), half_width(c1.w));
+    out.left = h;
+    out.right = h;
+    if (word & DRAWN_CONTOUR) != 0u && frame.half_quads != 0u {
+        // Half quad (thesis §8.3): the whole width goes outside the silhouette, away from the
+        // front face's opposite vertex, so no part of the quad cuts into the surface.
+        let inside = position(edge_vertex(4u * e + select(2u, 3u, (word & INSIDE_V3) != 0u)));
+        let ci = frame.mvp * vec4<f32>(inside, 1.0);
+        if ci.w > 0.0 {
+            if dot(to_pixels(ci) - out.s0, perp(out.d)) > 0.0 {
+                out.left = vec2<f32>(0.0);
+                out.right = 2.0 * h;
+            } else {
+                out.left = 2.0 * h;
+                out.right = vec2<f32>(0.0);
+            }
+        }
+    }
+    return out;
+}
+
+// One end of an edge seen from that end: its point, its direction away from it, and the quad's
+// extents on the left and right of that direction.
+struct EdgeEnd {
+    p: vec2<f32>,
+    a: vec2<f32>,
+    left: f32,
+    right: f32,
+    depth: f32,
+    w: f32,
+}
+
+fn edge_end(s: EdgeScreen, k: u32) -> EdgeEnd {
+    if k == 0u {
+        return EdgeEnd(s.s0, s.d, s.left.x, s.right.x, s.depth.x, s.w.x);
+    }
+    return EdgeEnd(s.s1, -s.d, s.right.y, s.left.y, s.depth.y, s.w.y);
+}

@@ -1,0 +1,43 @@
+// Bindings of the compute passes (classify, joins): the asset's edge sections and the per-frame lists.
+
+@group(0) @binding(3) var<storage, read> attributes: array<u32>;
+// Next edge end per edge end (thesis §13), then the ring heads of the capped vertices (§10.5).
+@group(0) @binding(4) var<storage, read> rings: array<u32>;
+// Per edge: its slot in `drawn` plus one, or 0 when it is not drawn this frame.
+@group(0) @binding(5) var<storage, read_write> state: array<u32>;
+// Per slot: (edge, drawn word).
+@group(0) @binding(6) var<storage, read_write> drawn: array<vec2<u32>>;
+// Per drawn edge end (2 * slot + end): the left and right split directions, packed snorm; 0 = none.
+@group(0) @binding(7) var<storage, read_write> joins: array<vec2<u32>>;
+@group(0) @binding(8) var<storage, read_write> out: Out;
+
+struct DrawArgs {
+    vertex_count: u32,
+    instance_count: atomic<u32>,
+    first_vertex: u32,
+    first_instance: u32,
+}
+
+// A round join filling the gap on the outside of a bend: the sector of radius `radius` around the
+// end's point, from direction `from_dir` counter-clockwise to `to_dir` (both packed snorm).
+struct Cap {
+    end: u32,
+    color: u32,
+    radius: f32,
+    from_dir: u32,
+    to_dir: u32,
+}
+
+struct Out {
+    edges: DrawArgs,
+    caps: DrawArgs,
+    _pad: array<u32, 4>,
+    cap_list: array<Cap>,
+}
+
+fn ring(i: u32) -> u32 {
+    if frame.rings_u16 != 0u {
+        return (rings[i >> 1u] >> ((i & 1u) * 16u)) & 0xffffu;
+    }
+    return rings[i];
+}

@@ -1,0 +1,23 @@
+// Bindings of the draw passes (edges, caps): the lists the compute passes wrote this frame, read-only.
+
+@group(0) @binding(6) var<storage, read> drawn: array<vec2<u32>>;
+@group(0) @binding(7) var<storage, read> joins: array<vec2<u32>>;
+@group(0) @binding(8) var<storage, read> out: Out;
+
+struct Cap {
+    end: u32,
+    color: u32,
+    radius: f32,
+    from_dir: u32,
+    to_dir: u32,
+}
+
+struct Out {
+    edges: array<u32, 4>,
+    caps: array<u32, 4>,
+    _pad: array<u32, 4>,
+    cap_list: array<Cap>,
+}
+
+// A position outside the clip volume: every triangle made of it is dropped.
+const NOWHERE: vec4<f32> = vec4<f32>(0.0, 0.0, -1.0, 1.0);

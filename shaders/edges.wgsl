@@ -1,0 +1,65 @@
+// Draws each drawn edge as a screen-space quad (thesis §8.3): six vertices per instance, pulled from
+// the compact list. The fragment shader cuts the quad where it meets its neighbours (see joins.wgsl).
+
+struct EdgeVarying {
+    @builtin(position) position: vec4<f32>,
+    @location(0) @interpolate(flat) color: vec4<f32>,
+    // End points in pixels: end 0 in xy, end 1 in zw.
+    @location(1) @interpolate(flat) ends: vec4<f32>,
+    // Split directions: end 0 left, end 0 right, end 1 left, end 1 right.
+    @location(2) @interpolate(flat) splits: vec4<u32>,
+}
+
+@vertex
+fn edge_vertex_main(
+    @builtin(vertex_index) vertex: u32,
+    @builtin(instance_index) slot: u32,
+) -> EdgeVarying {
+    var v: EdgeVarying;
+    let item = drawn[slot];
+    let s = edge_screen(item.x, item.y);
+    if !s.visible {
+        v.position = NOWHERE;
+        return v;
+    }
+    // Two triangles: (end, side) = (0,-) (1,-) (1,+) / (0,-) (1,+) (0,+).
+    let k = (0x16u >> vertex) & 1u;
+    let side_left = ((0x34u >> vertex) & 1u) == 1u;
+    let n = perp(s.d);
+    var p = s.s0;
+    var extent = select(-s.right.x, s.left.x, side_left);
+    var depth = s.depth.x;
+    var w = s.w.x;
+    if k == 1u {
+        p = s.s1;
+        extent = select(-s.right.y, s.left.y, side_left);
+        depth = s.depth.y;
+        w = s.w.y;
+    }
+    v.position = from_pixels(p + n * extent, depth, w);
+    v.color = frame.colors[item.y & 0xffu];
+    v.ends = vec4<f32>(s.s0, s.s1);
+    let j0 = joins[2u * slot];
+    let j1 = joins[2u * slot + 1u];
+    v.splits = vec4<u32>(j0.x, j0.y, j1.x, j1.y);
+    return v;
+}
+
+// False if `q` (relative to the end's point) lies on the neighbour's side of a split line.
+fn on_own_side(q: vec2<f32>, a: vec2<f32>, split_left: u32, split_right: u32) -> bool {
+    if cross2(a, q) > 0.0 {
+        return split_left == 0u || cross2(unpack2x16snorm(split_left), q) < 0.0;
+    }
+    return split_right == 0u || cross2(unpack2x16snorm(split_right), q) >= 0.0;
+}
+
+@fragment
+fn edge_fragment(v: EdgeVarying) -> @location(0) vec4<f32> {
+    let d = normalize(v.ends.zw - v.ends.xy);
+    let pixel = v.position.xy;
+    if !on_own_side(pixel - v.ends.xy, d, v.splits.x, v.splits.y)
+        || !on_own_side(pixel - v.ends.zw, -d, v.splits.z, v.splits.w) {
+        discard;
+    }
+    return v.color;
+}

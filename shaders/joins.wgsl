@@ -1,0 +1,190 @@
+// Per frame: how drawn edges meet at their shared vertices. For each drawn edge end, find its
+// nearest drawn neighbours by screen angle on either side. Where a neighbour bends towards the edge
+// (less than half a turn) the two quads overlap: both are cut along the line through the vertex and
+// the crossing of their outlines, so no pixel is covered twice. Where the gap is more than half a
+// turn, a round cap fills it; the cap lies between the two quads' end lines, so it overlaps neither.
+// Two ways to find the neighbours (thesis §13 and §10.5) give the same result:
+//   joins_next:  one thread per drawn edge end, walking the next-index ring around its vertex;
+//   joins_heads: one thread per capped vertex, walking its ring from the cap buffer's head.
+
+// Walks never need more steps than the largest ring; decode checked every ring is a closed cycle.
+const MAX_RING: u32 = 4096u;
+// Ends gathered per vertex by joins_heads; further drawn edges at the vertex get no join.
+const MAX_GATHER: u32 = 16u;
+const NO_SLOT: u32 = 0xffffffffu;
+
+// A drawn edge end as its vertex sees it.
+struct End {
+    ok: bool,
+    index: u32,
+    slot: u32,
+    color: u32,
+    g: EdgeEnd,
+}
+
+fn end_at(index: u32) -> End {
+    var end: End;
+    end.ok = false;
+    end.index = index;
+    let e = index >> 1u;
+    let k = index & 1u;
+    let state_word = state[e];
+    if state_word == 0u {
+        return end;
+    }
+    end.slot = state_word - 1u;
+    let word = drawn[end.slot].y;
+    end.color = word & 0xffu;
+    let s = edge_screen(e, word);
+    if !s.visible || (s.clipped & (1u << k)) != 0u {
+        return end;
+    }
+    end.g = edge_end(s, k);
+    end.ok = true;
+    return end;
+}
+
+// Angle from a to b, counter-clockwise in [0, 2π).
+fn turn(a: vec2<f32>, b: vec2<f32>) -> f32 {
+    let angle = atan2(cross2(a, b), dot(a, b));
+    return select(angle, angle + 2.0 * PI, angle < 0.0);
+}
+
+// The point where the lines dot(x, n1) = c1 and dot(x, n2) = c2 cross.
+fn crossing(n1: vec2<f32>, c1: f32, n2: vec2<f32>, c2: f32) -> vec2<f32> {
+    let det = cross2(n1, n2);
+    return vec2<f32>(c1 * n2.y - c2 * n1.y, n1.x * c2 - n2.x * c1) / det;
+}
+
+fn split_direction(x: vec2<f32>) -> u32 {
+    if dot(x, x) < 1e-12 {
+        return 0u;
+    }
+    return pack2x16snorm(normalize(x));
+}
+
+// Writes the joins of `me`, whose nearest neighbours counter-clockwise (`left`, at angle
+// `left_turn`) and clockwise (`right`, at `right_turn` the other way) are given; emits its left cap.
+fn resolve(me: End, left: End, left_turn: f32, right: End, right_turn: f32) {
+    let a = me.g.a;
+    var split_left = 0u;
+    var split_right = 0u;
+    if left.ok {
+        if left_turn < PI - 1e-4 {
+            // My left outline meets the neighbour's right outline.
+            let x = crossing(perp(a), me.g.left, perp(left.g.a), -left.g.right);
+            split_left = split_direction(x);
+        } else if left_turn > PI + 1e-4 {
+            let radius = max(me.g.left, left.g.right);
+            if radius > 0.0 {
+                let i = atomicAdd(&out.caps.instance_count, 1u);
+                if i < frame.cap_capacity {
+                    out.cap_list[i] = Cap(
+                        2u * me.slot + (me.index & 1u),
+                        me.color,
+                        radius,
+                        pack2x16snorm(perp(a)),
+                        pack2x16snorm(-perp(left.g.a)),
+                    );
+                }
+            }
+        }
+    }
+    if right.ok && right_turn < PI - 1e-4 {
+        let x = crossing(perp(a), -me.g.right, perp(right.g.a), right.g.left);
+        split_right = split_direction(x);
+    }
+    joins[2u * me.slot + (me.index & 1u)] = vec2<u32>(split_left, split_right);
+}
+
+@compute @workgroup_size(256)
+fn joins_next(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+    @builtin(local_invocation_index) local: u32,
+) {
+    let t = thread_index(group, groups, local);
+    if t >= 2u * atomicLoad(&out.edges.instance_count) {
+        return;
+    }
+    let start = 2u * drawn[t >> 1u].x + (t & 1u);
+    let me = end_at(start);
+    if !me.ok {
+        return;
+    }
+    var left: End;
+    left.ok = false;
+    var right: End;
+    right.ok = false;
+    var left_turn = 4.0 * PI;
+    var right_turn = 4.0 * PI;
+    var f = ring(start);
+    for (var steps = 0u; f != start && steps < MAX_RING; steps += 1u) {
+        let other = end_at(f);
+        if other.ok {
+            let ccw = turn(me.g.a, other.g.a);
+            if ccw > 1e-6 && ccw < left_turn {
+                left_turn = ccw;
+                left = other;
+            }
+            let cw = 2.0 * PI - ccw;
+            if ccw > 1e-6 && cw < right_turn {
+                right_turn = cw;
+                right = other;
+            }
+        }
+        f = ring(f);
+    }
+    resolve(me, left, left_turn, right, right_turn);
+}
+
+@compute @workgroup_size(256)
+fn joins_heads(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+    @builtin(local_invocation_index) local: u32,
+) {
+    let t = thread_index(group, groups, local);
+    if t >= frame.head_count {
+        return;
+    }
+    let head = ring(frame.heads_offset + t);
+    var ends: array<End, MAX_GATHER>;
+    var count = 0u;
+    var f = head;
+    for (var steps = 0u; steps < MAX_RING; steps += 1u) {
+        let end = end_at(f);
+        if end.ok && count < MAX_GATHER {
+            ends[count] = end;
+            count += 1u;
+        }
+        f = ring(f);
+        if f == head {
+            break;
+        }
+    }
+    for (var i = 0u; i < count; i += 1u) {
+        var left: End;
+        left.ok = false;
+        var right: End;
+        right.ok = false;
+        var left_turn = 4.0 * PI;
+        var right_turn = 4.0 * PI;
+        for (var j = 0u; j < count; j += 1u) {
+            if j == i {
+                continue;
+            }
+            let ccw = turn(ends[i].g.a, ends[j].g.a);
+            if ccw > 1e-6 && ccw < left_turn {
+                left_turn = ccw;
+                left = ends[j];
+            }
+            let cw = 2.0 * PI - ccw;
+            if ccw > 1e-6 && cw < right_turn {
+                right_turn = cw;
+                right = ends[j];
+            }
+        }
+        resolve(ends[i], left, left_turn, right, right_turn);
+    }
+}
