@@ -95,7 +95,11 @@ fn from_pixels(px: vec2<f32>, depth: f32, w: f32) -> vec4<f32> {
 // edge wins against the faces it lies on, while anything farther behind a surface stays hidden.
 fn biased_depth(c: vec4<f32>) -> f32 {
     let b = c + frame.bias_px * frame.pixel_scale * c.w * frame.proj_z;
-    return max(b.z / b.w, 0.0);
+    // A bias that reaches past the near plane puts the edge on it.
+    if b.w <= 0.0 || b.z <= 0.0 {
+        return 0.0;
+    }
+    return b.z / b.w;
 }
 
 fn half_width(w: f32) -> f32 {

@@ -140,7 +140,8 @@ pub fn check_rings(asset: &chamfer_runtime::asset::Asset) -> Result<(), String> 
 /// The shared headless GPU for render tests. There is no skipping: a machine without an adapter
 /// fails every render test loudly (CI installs Mesa's software Vulkan through scripts/setup.sh).
 pub fn gpu() -> &'static chamfer_runtime::render::Offscreen {
-    static GPU: std::sync::OnceLock<chamfer_runtime::render::Offscreen> = std::sync::OnceLock::new();
+    static GPU: std::sync::OnceLock<chamfer_runtime::render::Offscreen> =
+        std::sync::OnceLock::new();
     GPU.get_or_init(|| {
         chamfer_runtime::render::Offscreen::new().unwrap_or_else(|e| {
             panic!("render tests need a GPU adapter and found none: {e}. Run scripts/setup.sh.")
@@ -199,7 +200,10 @@ pub fn render(
         .expect("draw");
     let image = target.read(gpu).expect("read back");
     if let Ok(dir) = std::env::var("CHAMFER_TEST_IMAGES") {
-        save_png(&image, &std::path::Path::new(&dir).join(format!("{}.png", image_name())));
+        save_png(
+            &image,
+            &std::path::Path::new(&dir).join(format!("{}.png", image_name())),
+        );
     }
     image
 }

@@ -132,7 +132,8 @@ fn cube_shows_its_nine_visible_edges_and_no_hidden_one() {
                 (a, b, normals.iter().any(|&n| faces_eye(&camera, n, middle)))
             })
             .collect();
-        let on_screen = |a: usize, b: usize| (project(&camera, corner(a)), project(&camera, corner(b)));
+        let on_screen =
+            |a: usize, b: usize| (project(&camera, corner(a)), project(&camera, corner(b)));
         let near_visible_edge = |p: Vec2| {
             edges
                 .iter()
@@ -167,7 +168,10 @@ fn cube_shows_its_nine_visible_edges_and_no_hidden_one() {
                 let center = Vec3::splat(0.5) + normal * 0.5;
                 if faces_eye(&camera, normal, center) {
                     let pixel = pixel_at(&image, project(&camera, center));
-                    assert!(!is_red(pixel) && !is_background(pixel), "face {normal}: {pixel:?}");
+                    assert!(
+                        !is_red(pixel) && !is_background(pixel),
+                        "face {normal}: {pixel:?}"
+                    );
                 }
             }
         }
@@ -185,7 +189,13 @@ fn hidden_edges_are_hidden_by_the_depth_test_not_by_luck() {
         cull_back_facing: false,
         ..edges_in(RED, 3.0, CapMethod::NextIndex)
     };
-    let image = render(&asset, &camera, Some(&grey_mesh()), Some(&style), BLUE_BACKGROUND);
+    let image = render(
+        &asset,
+        &camera,
+        Some(&grey_mesh()),
+        Some(&style),
+        BLUE_BACKGROUND,
+    );
     let hidden_corner = (0..8)
         .find(|&c| {
             cube_edges()
@@ -198,5 +208,260 @@ fn hidden_edges_are_hidden_by_the_depth_test_not_by_luck() {
         })
         .expect("a corner whose three edges are all hidden");
     let p = project(&camera, corner(hidden_corner));
-    assert!(disk(&image, p, 2.0).into_iter().any(is_red), "hidden corner {hidden_corner} at {p}");
+    assert!(
+        disk(&image, p, 2.0).into_iter().any(is_red),
+        "hidden corner {hidden_corner} at {p}"
+    );
+}
+
+/// Along rays from the centre of the picture of a smooth closed mesh: the outermost drawn pixel on
+/// every ray is contour colour, and contour colour appears only near the silhouette.
+fn assert_silhouette_outlined(image: &Image, center: Vec2, what: &str) {
+    for ray in 0..64 {
+        let angle = ray as f32 / 64.0 * std::f32::consts::TAU;
+        let direction = Vec2::new(angle.cos(), angle.sin());
+        let mut samples = Vec::new();
+        let mut r = 0.0;
+        loop {
+            let p = center + direction * r;
+            if p.x < 0.0 || p.y < 0.0 || p.x >= image.width as f32 || p.y >= image.height as f32 {
+                break;
+            }
+            samples.push((r, pixel_at(image, p)));
+            r += 0.5;
+        }
+        let (outer, last) = samples
+            .iter()
+            .rev()
+            .find(|(_, p)| !is_background(*p))
+            .copied()
+            .unwrap_or_else(|| panic!("{what}: ray {ray} sees no mesh"));
+        assert!(
+            is_red(last),
+            "{what}: ray {ray} ends on {last:?} at {outer} px, not the contour"
+        );
+        let first_red = samples
+            .iter()
+            .find(|(_, p)| is_red(*p))
+            .map_or(f32::MAX, |s| s.0);
+        assert!(
+            first_red > 0.75 * outer,
+            "{what}: ray {ray} has contour colour at {first_red} px, inside the silhouette at {outer} px"
+        );
+    }
+}
+
+#[test]
+fn a_spheres_silhouette_is_drawn_as_a_contour_from_any_camera() {
+    let asset = bake_fixture("shapes/sphere-16x32.obj");
+    assert_eq!(
+        asset.header.stats.edges.crease, 0,
+        "the sphere must be smooth"
+    );
+    let bounds = [asset.header.bounds_min, asset.header.bounds_max];
+    let center = (Vec3::from(bounds[0]) + Vec3::from(bounds[1])) * 0.5;
+    let style = EdgeStyle {
+        classes: EdgeClasses::CONTOUR,
+        ..edges_in(RED, 3.0, CapMethod::NextIndex)
+    };
+    for (azimuth_deg, elevation_deg, orthographic) in [
+        (0.0, 0.0, false),
+        (60.0, 30.0, false),
+        (200.0, -50.0, false),
+        (30.0, 89.5, false),
+        (30.0, 10.0, true),
+    ] {
+        let orbit = Orbit {
+            azimuth_deg,
+            elevation_deg,
+            orthographic,
+            distance: Some(3.0 * Vec3::from(bounds[1]).distance(center)),
+            ..Orbit::default()
+        };
+        let camera = Camera::orbit(bounds, &orbit, [200, 160]);
+        let image = render(
+            &asset,
+            &camera,
+            Some(&grey_mesh()),
+            Some(&style),
+            BLUE_BACKGROUND,
+        );
+        let what =
+            format!("azimuth {azimuth_deg}, elevation {elevation_deg}, ortho {orthographic}");
+        assert_silhouette_outlined(&image, project(&camera, center), &what);
+    }
+}
+
+/// Corners of the cube that the camera sees (on at least one visible face).
+fn visible_corners(camera: &Camera) -> Vec<usize> {
+    (0..8)
+        .filter(|&c| {
+            cube_edges().iter().any(|(a, b, normals)| {
+                (*a == c || *b == c)
+                    && normals
+                        .iter()
+                        .any(|&n| faces_eye(camera, n, (corner(*a) + corner(*b)) * 0.5))
+            })
+        })
+        .collect()
+}
+
+#[test]
+fn thick_edges_join_without_gaps_with_either_cap_method() {
+    let asset = bake_fixture("shapes/cube.obj");
+    let camera = cube_camera(256, false);
+    let corners = visible_corners(&camera);
+    assert_eq!(corners.len(), 7);
+    let gaps = |caps| {
+        let style = edges_in(RED, 12.0, caps);
+        let image = render(
+            &asset,
+            &camera,
+            Some(&grey_mesh()),
+            Some(&style),
+            BLUE_BACKGROUND,
+        );
+        corners
+            .iter()
+            .filter(|&&c| {
+                disk(&image, project(&camera, corner(c)), 0.8 * 6.0)
+                    .into_iter()
+                    .any(is_background)
+            })
+            .count()
+    };
+    assert_eq!(gaps(CapMethod::NextIndex), 0, "next-index caps");
+    assert_eq!(gaps(CapMethod::CapBuffer), 0, "cap-buffer caps");
+    // Without caps the silhouette corners show the background: the check above can fail.
+    assert!(gaps(CapMethod::None) >= 3);
+}
+
+#[test]
+fn a_translucent_colour_blends_once_at_joins() {
+    let asset = bake_fixture("shapes/cube.obj");
+    let camera = cube_camera(256, false);
+    let black_mesh = MeshStyle {
+        color: [0.0, 0.0, 0.0, 1.0],
+        ambient: 1.0,
+        ..MeshStyle::default()
+    };
+    let half_white = [1.0, 1.0, 1.0, 0.5];
+    let brightest = |caps| {
+        let style = edges_in(half_white, 12.0, caps);
+        let image = render(
+            &asset,
+            &camera,
+            Some(&black_mesh),
+            Some(&style),
+            [0.0, 0.0, 0.0, 1.0],
+        );
+        let along_edge = pixel_at(&image, project(&camera, (corner(5) + corner(7)) * 0.5))[0];
+        let at_joins: Vec<u8> = visible_corners(&camera)
+            .iter()
+            .map(|&c| pixel_at(&image, project(&camera, corner(c)))[0])
+            .collect();
+        (
+            image.rgba.chunks(4).map(|p| p[0]).max(),
+            along_edge,
+            at_joins,
+        )
+    };
+    for caps in [CapMethod::NextIndex, CapMethod::CapBuffer] {
+        let (max, along_edge, at_joins) = brightest(caps);
+        // One blend of half white over black is 127.5; two would be 191.
+        assert!((126..=129).contains(&along_edge), "{caps:?}: {along_edge}");
+        assert!(
+            max <= Some(129),
+            "{caps:?}: a pixel blended twice ({max:?})"
+        );
+        for value in at_joins {
+            assert!(
+                value.abs_diff(along_edge) <= 1,
+                "{caps:?}: join {value} vs edge {along_edge}"
+            );
+        }
+    }
+    // Plain overlapping quads blend twice where they cross: the check above can fail.
+    assert!(brightest(CapMethod::None).0 > Some(180));
+}
+
+#[test]
+fn both_cap_methods_draw_the_same_pixels() {
+    for fixture in [
+        "shapes/cube.obj",
+        "shapes/cylinder-16.obj",
+        "meshes/fandisk.obj",
+    ] {
+        let asset = bake_fixture(fixture);
+        let bounds = [asset.header.bounds_min, asset.header.bounds_max];
+        let camera = Camera::orbit(bounds, &Orbit::default(), [240, 200]);
+        // One colour: where unrelated edges overlap, the draw order (atomic, so free) cannot show.
+        let style = |caps| edges_in(RED, 7.0, caps);
+        let next = render(
+            &asset,
+            &camera,
+            Some(&grey_mesh()),
+            Some(&style(CapMethod::NextIndex)),
+            BLUE_BACKGROUND,
+        );
+        let heads = render(
+            &asset,
+            &camera,
+            Some(&grey_mesh()),
+            Some(&style(CapMethod::CapBuffer)),
+            BLUE_BACKGROUND,
+        );
+        let differing = next
+            .rgba
+            .chunks(4)
+            .zip(heads.rgba.chunks(4))
+            .filter(|(a, b)| a != b)
+            .count();
+        assert_eq!(differing, 0, "{fixture}");
+    }
+}
+
+#[test]
+fn wide_and_narrow_index_sections_draw_the_same_pixels() {
+    use chamfer_runtime::asset::Indices;
+    let narrow = bake_fixture("shapes/cylinder-16.obj");
+    let widen = |indices: &Indices| Indices::U32(indices.to_u32_vec());
+    let wide = chamfer_runtime::asset::Asset {
+        mesh_indices: widen(&narrow.mesh_indices),
+        edge_vertices: widen(&narrow.edge_vertices),
+        next_ends: widen(&narrow.next_ends),
+        cap_heads: widen(&narrow.cap_heads),
+        ..narrow.clone()
+    };
+    assert!(matches!(narrow.edge_vertices, Indices::U16(_)));
+    let camera = Camera::orbit(
+        [narrow.header.bounds_min, narrow.header.bounds_max],
+        &Orbit::default(),
+        [200, 200],
+    );
+    let style = EdgeStyle {
+        width_px: 5.0,
+        ..EdgeStyle::default()
+    };
+    let a = render(
+        &narrow,
+        &camera,
+        Some(&grey_mesh()),
+        Some(&style),
+        BLUE_BACKGROUND,
+    );
+    let b = render(
+        &wide,
+        &camera,
+        Some(&grey_mesh()),
+        Some(&style),
+        BLUE_BACKGROUND,
+    );
+    assert!(a == b);
+    assert!(
+        a.rgba
+            .chunks(4)
+            .any(|p| p[..3] != [128, 128, 128] && p[2] < 200),
+        "edges were drawn"
+    );
 }

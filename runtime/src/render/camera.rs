@@ -47,7 +47,10 @@ impl Camera {
         let center = (lo + hi) * 0.5;
         let radius = ((hi - lo).length() * 0.5).max(1e-6);
         let aspect = viewport[0].max(1) as f32 / viewport[1].max(1) as f32;
-        let (azimuth, elevation) = (orbit.azimuth_deg.to_radians(), orbit.elevation_deg.to_radians());
+        let (azimuth, elevation) = (
+            orbit.azimuth_deg.to_radians(),
+            orbit.elevation_deg.to_radians(),
+        );
         let towards_eye = Vec3::new(
             elevation.cos() * azimuth.sin(),
             elevation.sin(),
@@ -58,7 +61,11 @@ impl Camera {
         let fit = radius / (fov_y.min(fov_x) * 0.5).sin();
         let distance = orbit.distance.unwrap_or(fit * 1.02).max(1e-6);
         let eye = center + towards_eye * distance;
-        let up = if towards_eye.y.abs() > 0.999 { Vec3::Z } else { Vec3::Y };
+        let up = if towards_eye.y.abs() > 0.999 {
+            Vec3::Z
+        } else {
+            Vec3::Y
+        };
         let view = Mat4::look_at_rh(eye, center, up);
         let (near, far) = (
             (distance - radius * 1.5).max(distance * 1e-3),
@@ -160,7 +167,10 @@ mod tests {
                     );
                     let c = mvp * p.extend(1.0);
                     let ndc = c.truncate() / c.w;
-                    assert!(ndc.x.abs() <= 1.0 && ndc.y.abs() <= 1.0, "{ndc} {orthographic}");
+                    assert!(
+                        ndc.x.abs() <= 1.0 && ndc.y.abs() <= 1.0,
+                        "{ndc} {orthographic}"
+                    );
                     assert!((0.0..=1.0).contains(&ndc.z), "{ndc}");
                 }
             }

@@ -190,7 +190,11 @@ impl EdgeRenderer {
     /// Builds the pipelines for `target` and the per-frame lists for `asset`.
     ///
     /// Fails with [`RenderError::TooLarge`] if a per-frame list exceeds the device's binding limit.
-    pub fn new(device: &wgpu::Device, target: &Target, asset: &GpuAsset) -> Result<Self, RenderError> {
+    pub fn new(
+        device: &wgpu::Device,
+        target: &Target,
+        asset: &GpuAsset,
+    ) -> Result<Self, RenderError> {
         let edges = u64::from(asset.edge_count);
         let cap_capacity = edges + 64;
         let limit = device.limits().max_storage_buffer_binding_size;
@@ -210,7 +214,11 @@ impl EdgeRenderer {
         let drawn = storage("drawn edges", 8 * edges, none)?;
         let joins = storage("joins", 16 * edges, none)?;
         let indirect = wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_DST;
-        let out = storage("edge draw lists", OUT_HEADER + CAP_BYTES * cap_capacity, indirect)?;
+        let out = storage(
+            "edge draw lists",
+            OUT_HEADER + CAP_BYTES * cap_capacity,
+            indirect,
+        )?;
         let dispatch = storage("joins dispatch", 16, indirect)?;
         let frame = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("edge frame"),
@@ -243,7 +251,10 @@ impl EdgeRenderer {
         );
         let args_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("edge args"),
-            entries: &[storage_entry(0, true, wgpu::ShaderStages::COMPUTE), storage_entry(1, false, wgpu::ShaderStages::COMPUTE)],
+            entries: &[
+                storage_entry(0, true, wgpu::ShaderStages::COMPUTE),
+                storage_entry(1, false, wgpu::ShaderStages::COMPUTE),
+            ],
         });
 
         let buffers: [(u32, &wgpu::Buffer); 9] = [
@@ -272,7 +283,11 @@ impl EdgeRenderer {
                 entries: &entries,
             })
         };
-        let compute_group = group("edge compute", &compute_layout, &[0, 1, 2, 3, 4, 5, 6, 7, 8]);
+        let compute_group = group(
+            "edge compute",
+            &compute_layout,
+            &[0, 1, 2, 3, 4, 5, 6, 7, 8],
+        );
         let draw_group = group("edge draw", &draw_layout, &[0, 1, 2, 6, 7, 8]);
         let args_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("edge args"),
@@ -298,7 +313,9 @@ impl EdgeRenderer {
         let classify_module = module("classify.wgsl", &shaders::classify());
         let joins_module = module("joins.wgsl", &shaders::joins());
         let args_module = module("args.wgsl", shaders::ARGS);
-        let compute_pipeline = |layout: &wgpu::BindGroupLayout, module: &wgpu::ShaderModule, entry: &str| {
+        let compute_pipeline = |layout: &wgpu::BindGroupLayout,
+                                module: &wgpu::ShaderModule,
+                                entry: &str| {
             let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
                 label: Some(entry),
                 bind_group_layouts: &[Some(layout)],
@@ -495,7 +512,11 @@ fn workgroups(items: u32) -> [u32; 2] {
     [x, if x == 0 { 0 } else { groups.div_ceil(x) }]
 }
 
-fn storage_entry(binding: u32, read_only: bool, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
+fn storage_entry(
+    binding: u32,
+    read_only: bool,
+    visibility: wgpu::ShaderStages,
+) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
         visibility,
@@ -525,7 +546,11 @@ fn layout(
         },
         count: None,
     }];
-    entries.extend(storage.iter().map(|&(binding, read_only)| storage_entry(binding, read_only, visibility)));
+    entries.extend(
+        storage
+            .iter()
+            .map(|&(binding, read_only)| storage_entry(binding, read_only, visibility)),
+    );
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some(label),
         entries: &entries,

@@ -6,7 +6,9 @@ use std::path::PathBuf;
 #[derive(Debug, thiserror::Error)]
 pub enum RenderError {
     /// No GPU adapter (hardware or software) could be opened.
-    #[error("no GPU adapter: {0} (on Debian, `apt-get install mesa-vulkan-drivers` gives a software one)")]
+    #[error(
+        "no GPU adapter: {0} (on Debian, `apt-get install mesa-vulkan-drivers` gives a software one)"
+    )]
     NoAdapter(String),
     /// The adapter refused to create a device.
     #[error("could not open the GPU device: {0}")]

@@ -74,11 +74,12 @@ impl GpuAsset {
             rings.extend(wide.flat_map(u32::to_le_bytes));
         }
         check("rings", rings.len())?;
-        let index_count = u32::try_from(asset.mesh_indices.len()).map_err(|_| RenderError::TooLarge {
-            what: "mesh_indices",
-            bytes: asset.mesh_indices.as_bytes().len() as u64,
-            limit,
-        })?;
+        let index_count =
+            u32::try_from(asset.mesh_indices.len()).map_err(|_| RenderError::TooLarge {
+                what: "mesh_indices",
+                bytes: asset.mesh_indices.as_bytes().len() as u64,
+                limit,
+            })?;
         let edge_count = asset.edge_count() as u32;
         Ok(Self {
             render_positions: section(SectionKind::RenderPositions, wgpu::BufferUsages::VERTEX),
@@ -160,8 +161,17 @@ impl GpuAsset {
 
 /// A buffer holding `bytes` (wgpu pads it to a multiple of four; an empty section gets four zero
 /// bytes, since a binding cannot be empty).
-fn upload(device: &wgpu::Device, label: &str, bytes: &[u8], usage: wgpu::BufferUsages) -> wgpu::Buffer {
-    let contents = if bytes.is_empty() { &[0u8; 4][..] } else { bytes };
+fn upload(
+    device: &wgpu::Device,
+    label: &str,
+    bytes: &[u8],
+    usage: wgpu::BufferUsages,
+) -> wgpu::Buffer {
+    let contents = if bytes.is_empty() {
+        &[0u8; 4][..]
+    } else {
+        bytes
+    };
     device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some(label),
         contents,

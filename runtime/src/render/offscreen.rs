@@ -20,14 +20,17 @@ impl Offscreen {
     pub fn new() -> Result<Self, RenderError> {
         let instance =
             wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
-        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
-            power_preference: wgpu::PowerPreference::from_env()
-                .unwrap_or(wgpu::PowerPreference::HighPerformance),
-            force_fallback_adapter: false,
-            compatible_surface: None,
-            apply_limit_buckets: false,
-        }))
-        .map_err(|e| RenderError::NoAdapter(e.to_string()))?;
+        let adapter =
+            pollster::block_on(
+                instance.request_adapter(&wgpu::RequestAdapterOptions {
+                    power_preference: wgpu::PowerPreference::from_env()
+                        .unwrap_or(wgpu::PowerPreference::HighPerformance),
+                    force_fallback_adapter: false,
+                    compatible_surface: None,
+                    apply_limit_buckets: false,
+                }),
+            )
+            .map_err(|e| RenderError::NoAdapter(e.to_string()))?;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("chamfer offscreen"),
             required_features: wgpu::Features::empty(),
@@ -94,7 +97,12 @@ impl OffscreenTarget {
             })
         };
         let attachment = wgpu::TextureUsages::RENDER_ATTACHMENT;
-        let color = texture("offscreen color", COLOR, 1, attachment | wgpu::TextureUsages::COPY_SRC);
+        let color = texture(
+            "offscreen color",
+            COLOR,
+            1,
+            attachment | wgpu::TextureUsages::COPY_SRC,
+        );
         let multisampled = (sample_count > 1).then(|| {
             texture("offscreen msaa", COLOR, sample_count, attachment)
                 .create_view(&Default::default())
@@ -178,7 +186,8 @@ impl OffscreenTarget {
     /// Copies the colour attachment back to the CPU.
     pub fn read(&self, gpu: &Offscreen) -> Result<Image, RenderError> {
         let row = 4 * self.width;
-        let padded_row = row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let padded_row =
+            row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
         let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("offscreen readback"),
             size: u64::from(padded_row) * u64::from(self.height),
@@ -252,6 +261,11 @@ impl Image {
     /// The pixel at column `x`, row `y` (0 at the top).
     pub fn pixel(&self, x: u32, y: u32) -> [u8; 4] {
         let i = 4 * (y as usize * self.width as usize + x as usize);
-        [self.rgba[i], self.rgba[i + 1], self.rgba[i + 2], self.rgba[i + 3]]
+        [
+            self.rgba[i],
+            self.rgba[i + 1],
+            self.rgba[i + 2],
+            self.rgba[i + 3],
+        ]
     }
 }

@@ -7,7 +7,12 @@ const DRAW: &str = include_str!("../../../shaders/draw.wgsl");
 
 /// Edge classification, plus the per-frame reset and the final clamp.
 pub fn classify() -> String {
-    [COMMON, COMPUTE, include_str!("../../../shaders/classify.wgsl")].concat()
+    [
+        COMMON,
+        COMPUTE,
+        include_str!("../../../shaders/classify.wgsl"),
+    ]
+    .concat()
 }
 
 /// Workgroup counts of the next-index join pass.
