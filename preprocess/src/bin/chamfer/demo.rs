@@ -1,4 +1,5 @@
-//! `chamfer demo`: bake the bundled fandisk (a CAD part with creases and flat regions) and show it.
+//! `chamfer demo`: bake the bundled fandisk (a CAD part with creases and flat regions), render it
+//! headless to a PNG and show what the asset holds.
 
 use std::path::{Path, PathBuf};
 
@@ -12,7 +13,7 @@ use crate::bake::OptionArgs;
 /// The bundled mesh: Hoppe's fandisk, 12,946 triangles (see fixtures/meshes/SOURCES.md).
 const FANDISK: &[u8] = include_bytes!("../../../../fixtures/meshes/fandisk.obj");
 
-/// Bake the bundled fandisk mesh and print what the asset holds.
+/// Bake the bundled fandisk mesh, render it to a PNG beside the asset, and print what the asset holds.
 #[derive(Args)]
 pub struct DemoArgs {
     /// Where to write the asset.
@@ -20,6 +21,8 @@ pub struct DemoArgs {
     output: PathBuf,
     #[command(flatten)]
     options: OptionArgs,
+    #[command(flatten)]
+    view: crate::render::ViewArgs,
 }
 
 pub fn run(args: &DemoArgs) -> anyhow::Result<()> {
@@ -35,5 +38,9 @@ pub fn run(args: &DemoArgs) -> anyhow::Result<()> {
         baked.timings.processing().as_secs_f64() * 1e3,
         args.output.display()
     );
+    let picture = args.output.with_extension("png");
+    let (image, adapter) = crate::render::render(&baked.asset, &args.view)?;
+    crate::render::write_png(&image, &picture)?;
+    println!("rendered it on {adapter} -> {}\n", picture.display());
     crate::inspect::run(&crate::inspect::InspectArgs::for_path(args.output.clone()))
 }

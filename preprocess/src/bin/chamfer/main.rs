@@ -1,10 +1,12 @@
-//! `chamfer`: bake meshes into `.chamfer` edge assets, inspect them, and write marks back into meshes.
+//! `chamfer`: bake meshes into `.chamfer` edge assets, inspect and render them, and write marks back
+//! into meshes.
 
 mod annotate;
 mod bake;
 mod demo;
 mod inspect;
 mod memory;
+mod render;
 
 use std::process::ExitCode;
 
@@ -25,6 +27,7 @@ enum Command {
     Inspect(inspect::InspectArgs),
     Demo(demo::DemoArgs),
     Annotate(annotate::AnnotateArgs),
+    Render(render::RenderArgs),
 }
 
 fn main() -> ExitCode {
@@ -34,6 +37,7 @@ fn main() -> ExitCode {
         Command::Inspect(args) => inspect::run(&args),
         Command::Demo(args) => demo::run(&args),
         Command::Annotate(args) => annotate::run(&args),
+        Command::Render(args) => render::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

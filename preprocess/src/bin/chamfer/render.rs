@@ -1,0 +1,233 @@
+//! `chamfer render`: draw an asset, or a mesh baked on the fly, to a PNG without a window.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, bail};
+use chamfer_preprocess::write::{ensure_not_an_input, write_atomically};
+use chamfer_runtime::asset::Asset;
+use chamfer_runtime::render::{
+    Camera, CapMethod, EdgeClasses, EdgeRenderer, EdgeStyle, GpuAsset, Image, MeshRenderer,
+    MeshStyle, Offscreen, Orbit,
+};
+use clap::{Args, ValueEnum};
+
+use crate::bake::OptionArgs;
+
+/// Render an asset (`.chamfer`) or a mesh (baked on the fly with the bake flags) to a PNG.
+#[derive(Args)]
+pub struct RenderArgs {
+    /// A `.chamfer` asset, or an OBJ, glTF/GLB or PLY mesh.
+    input: PathBuf,
+    /// The PNG to write.
+    #[arg(short, long)]
+    output: PathBuf,
+    #[command(flatten)]
+    view: ViewArgs,
+    #[command(flatten)]
+    options: OptionArgs,
+}
+
+/// How the picture is taken (shared with `chamfer demo`).
+#[derive(Args, Clone)]
+pub struct ViewArgs {
+    /// Image width in pixels.
+    #[arg(long, default_value_t = 1024)]
+    width: u32,
+    /// Image height in pixels.
+    #[arg(long, default_value_t = 768)]
+    height: u32,
+    /// Camera turn around the vertical axis, degrees (0 looks from +Z).
+    #[arg(long, default_value_t = 35.0, allow_negative_numbers = true)]
+    azimuth: f32,
+    /// Camera height above the horizontal plane, degrees.
+    #[arg(long, default_value_t = 25.0, allow_negative_numbers = true)]
+    elevation: f32,
+    /// Camera distance from the model's centre, mesh units (default: frame the model).
+    #[arg(long)]
+    distance: Option<f32>,
+    /// Orthographic camera.
+    #[arg(long)]
+    ortho: bool,
+    /// Edge width in pixels.
+    #[arg(long, default_value_t = 2.0)]
+    edge_width: f32,
+    /// Scale edge widths with depth (thesis §9.1), never below 1 px.
+    #[arg(long)]
+    depth_scaled: bool,
+    /// What to draw.
+    #[arg(long, value_enum, default_value_t = Style::Edges)]
+    style: Style,
+    /// Edge classes to draw.
+    #[arg(
+        long,
+        value_enum,
+        value_delimiter = ',',
+        default_value = "contour,boundary,marked,ridge,valley"
+    )]
+    classes: Vec<Class>,
+    /// How edges join.
+    #[arg(long, value_enum, default_value_t = Caps::NextIndex)]
+    caps: Caps,
+    /// Samples per pixel (1 or 4).
+    #[arg(long, default_value_t = 4)]
+    samples: u32,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum Style {
+    /// The lit mesh alone.
+    Mesh,
+    /// The lit mesh and its edges.
+    Edges,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum Class {
+    Contour,
+    Boundary,
+    Marked,
+    Ridge,
+    Valley,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum Caps {
+    /// Walk each drawn edge end's next-index ring (thesis §13).
+    NextIndex,
+    /// Walk each vertex's ring from the cap buffer (thesis §10.5).
+    CapBuffer,
+    /// Plain quads.
+    None,
+}
+
+impl ViewArgs {
+    fn check(&self) -> anyhow::Result<()> {
+        if !(1..=16_384).contains(&self.width) || !(1..=16_384).contains(&self.height) {
+            bail!(
+                "--width and --height must be 1 to 16384 pixels, not {}x{}",
+                self.width,
+                self.height
+            );
+        }
+        if !self.azimuth.is_finite() || !self.elevation.is_finite() {
+            bail!("--azimuth and --elevation must be finite");
+        }
+        if self.distance.is_some_and(|d| !(d.is_finite() && d > 0.0)) {
+            bail!("--distance must be a positive number");
+        }
+        if !(self.edge_width.is_finite() && (0.0..=1000.0).contains(&self.edge_width)) {
+            bail!(
+                "--edge-width must be 0 to 1000 pixels, not {}",
+                self.edge_width
+            );
+        }
+        if self.samples != 1 && self.samples != 4 {
+            bail!("--samples must be 1 or 4, not {}", self.samples);
+        }
+        Ok(())
+    }
+
+    fn edge_style(&self) -> EdgeStyle {
+        let classes = self.classes.iter().fold(EdgeClasses::NONE, |all, class| {
+            all | match class {
+                Class::Contour => EdgeClasses::CONTOUR,
+                Class::Boundary => EdgeClasses::BOUNDARY,
+                Class::Marked => EdgeClasses::MARKED,
+                Class::Ridge => EdgeClasses::RIDGE,
+                Class::Valley => EdgeClasses::VALLEY,
+            }
+        });
+        EdgeStyle {
+            classes,
+            width_px: self.edge_width,
+            depth_scaled: self.depth_scaled,
+            caps: match self.caps {
+                Caps::NextIndex => CapMethod::NextIndex,
+                Caps::CapBuffer => CapMethod::CapBuffer,
+                Caps::None => CapMethod::None,
+            },
+            ..EdgeStyle::default()
+        }
+    }
+}
+
+pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
+    args.view.check()?;
+    ensure_not_an_input(&args.output, &[&args.input])?;
+    let asset = if args
+        .input
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("chamfer"))
+    {
+        let bytes = std::fs::read(&args.input)
+            .with_context(|| format!("{}: cannot read", args.input.display()))?;
+        Asset::decode(&bytes).with_context(|| format!("{}", args.input.display()))?
+    } else {
+        chamfer_preprocess::bake_file(&args.input, &args.options.to_options()?)?.asset
+    };
+    let (image, adapter) = render(&asset, &args.view)?;
+    write_png(&image, &args.output)?;
+    println!(
+        "{} ({} triangles, {} edges) -> {} ({}x{}, {adapter})",
+        args.input.display(),
+        asset.triangle_count(),
+        asset.edge_count(),
+        args.output.display(),
+        image.width,
+        image.height,
+    );
+    Ok(())
+}
+
+/// Renders `asset` as `view` says; returns the image and the adapter's name.
+pub fn render(asset: &Asset, view: &ViewArgs) -> anyhow::Result<(Image, String)> {
+    view.check()?;
+    let gpu = Offscreen::new()?;
+    let target = gpu.target(view.width, view.height, view.samples);
+    let uploaded = GpuAsset::new(&gpu.device, asset)?;
+    let orbit = Orbit {
+        azimuth_deg: view.azimuth,
+        elevation_deg: view.elevation,
+        distance: view.distance,
+        orthographic: view.ortho,
+        ..Orbit::default()
+    };
+    let camera = Camera::orbit(uploaded.bounds(), &orbit, target.size());
+    let mut mesh = MeshRenderer::new(&gpu.device, &target.formats(), &uploaded);
+    mesh.prepare(&gpu.queue, &camera, &MeshStyle::default());
+    let mut edges = EdgeRenderer::new(&gpu.device, &target.formats(), &uploaded)?;
+    edges.prepare(&gpu.queue, &camera, &view.edge_style());
+    let draw_edges = view.style == Style::Edges;
+    target.draw(
+        &gpu,
+        [1.0, 1.0, 1.0, 1.0],
+        |encoder| {
+            if draw_edges {
+                edges.compute(encoder);
+            }
+        },
+        |pass| {
+            mesh.render(pass);
+            if draw_edges {
+                edges.render(pass);
+            }
+        },
+    )?;
+    let adapter = format!("{} ({:?})", gpu.info.name, gpu.info.backend);
+    Ok((target.read(&gpu)?, adapter))
+}
+
+/// Writes `image` as an RGBA PNG, atomically.
+pub fn write_png(image: &Image, path: &Path) -> anyhow::Result<()> {
+    write_atomically(path, |out| {
+        let mut encoder = png::Encoder::new(out, image.width, image.height);
+        encoder.set_color(png::ColorType::Rgba);
+        encoder.set_depth(png::BitDepth::Eight);
+        let mut writer = encoder.write_header().map_err(std::io::Error::other)?;
+        writer
+            .write_image_data(&image.rgba)
+            .map_err(std::io::Error::other)?;
+        writer.finish().map_err(std::io::Error::other)
+    })?;
+    Ok(())
+}
