@@ -302,3 +302,58 @@ fn annotate_writes_marks_that_bake_reads_back() {
         text(&run.stderr)
     );
 }
+
+/// Width and height of a PNG, from its IHDR chunk.
+fn png_size(bytes: &[u8]) -> (u32, u32) {
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "not a PNG");
+    let be = |at: usize| u32::from_be_bytes(bytes[at..at + 4].try_into().expect("4 bytes"));
+    (be(16), be(20))
+}
+
+#[test]
+fn render_writes_a_png_of_a_mesh_or_an_asset() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let asset = dir.path().join("cube.chamfer");
+    let cube = fixture("shapes/cube.obj");
+    assert!(chamfer(&["bake", path_str(&cube), "-o", path_str(&asset)]).status.success());
+    for (input, extra) in [
+        (&cube, vec!["--style", "mesh", "--ortho"]),
+        (&asset, vec!["--caps", "cap-buffer", "--classes", "contour,ridge", "--azimuth", "-60"]),
+    ] {
+        let png = dir.path().join("cube.png");
+        let mut args = vec!["render", path_str(input), "-o", path_str(&png), "--width", "96", "--height", "64"];
+        args.extend(extra);
+        let run = chamfer(&args);
+        assert!(run.status.success(), "{}", text(&run.stderr));
+        assert_eq!(png_size(&std::fs::read(&png).expect("png")), (96, 64));
+    }
+}
+
+#[test]
+fn render_refuses_bad_input_and_options_and_keeps_the_old_picture() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let png = dir.path().join("picture.png");
+    std::fs::write(&png, b"previous picture").expect("write");
+    let not_an_asset = dir.path().join("fake.chamfer");
+    std::fs::write(&not_an_asset, b"CHAMFER\0 but nothing else").expect("write");
+    let cube = fixture("shapes/cube.obj");
+    let truncated = fixture("broken/truncated.glb");
+    let cases: [(Vec<&str>, &str); 5] = [
+        (vec![path_str(&not_an_asset)], "fake.chamfer"),
+        (vec![path_str(&truncated)], "truncated.glb"),
+        (vec![path_str(&cube), "--width", "0"], "--width"),
+        (vec![path_str(&cube), "--edge-width", "NaN"], "--edge-width"),
+        (vec![path_str(&cube), "--samples", "3"], "--samples"),
+    ];
+    for (args, named) in cases {
+        let mut all = vec!["render", "-o", path_str(&png)];
+        all.extend(args);
+        let run = chamfer(&all);
+        let stderr = text(&run.stderr);
+        assert_eq!(run.status.code(), Some(1), "{all:?}: {stderr}");
+        assert!(stderr.contains(named), "{all:?}: {stderr}");
+        assert!(!stderr.contains("panicked"), "{stderr}");
+        assert_eq!(std::fs::read(&png).expect("png"), b"previous picture");
+    }
+    assert_eq!(std::fs::read_dir(dir.path()).expect("dir").count(), 2, "temporary files left");
+}
