@@ -315,13 +315,36 @@ fn render_writes_a_png_of_a_mesh_or_an_asset() {
     let dir = tempfile::tempdir().expect("tempdir");
     let asset = dir.path().join("cube.chamfer");
     let cube = fixture("shapes/cube.obj");
-    assert!(chamfer(&["bake", path_str(&cube), "-o", path_str(&asset)]).status.success());
+    assert!(
+        chamfer(&["bake", path_str(&cube), "-o", path_str(&asset)])
+            .status
+            .success()
+    );
     for (input, extra) in [
         (&cube, vec!["--style", "mesh", "--ortho"]),
-        (&asset, vec!["--caps", "cap-buffer", "--classes", "contour,ridge", "--azimuth", "-60"]),
+        (
+            &asset,
+            vec![
+                "--caps",
+                "cap-buffer",
+                "--classes",
+                "contour,ridge",
+                "--azimuth",
+                "-60",
+            ],
+        ),
     ] {
         let png = dir.path().join("cube.png");
-        let mut args = vec!["render", path_str(input), "-o", path_str(&png), "--width", "96", "--height", "64"];
+        let mut args = vec![
+            "render",
+            path_str(input),
+            "-o",
+            path_str(&png),
+            "--width",
+            "96",
+            "--height",
+            "64",
+        ];
         args.extend(extra);
         let run = chamfer(&args);
         assert!(run.status.success(), "{}", text(&run.stderr));
@@ -355,5 +378,9 @@ fn render_refuses_bad_input_and_options_and_keeps_the_old_picture() {
         assert!(!stderr.contains("panicked"), "{stderr}");
         assert_eq!(std::fs::read(&png).expect("png"), b"previous picture");
     }
-    assert_eq!(std::fs::read_dir(dir.path()).expect("dir").count(), 2, "temporary files left");
+    assert_eq!(
+        std::fs::read_dir(dir.path()).expect("dir").count(),
+        2,
+        "temporary files left"
+    );
 }

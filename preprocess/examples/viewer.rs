@@ -1,0 +1,347 @@
+//! An interactive window on an asset or a mesh (baked on the fly):
+//! `cargo run --release --example viewer -- INPUT`.
+//!
+//! Drag to orbit, scroll to zoom. Keys: 1 contours, 2 ridges, 3 valleys, 4 boundaries, 5 marked
+//! (toggle each class); + / - edge width; C cycles the cap method; D depth-scaled width; E edges on
+//! or off; O orthographic; Esc quits. It is also the smallest example of hosting the renderers in an
+//! application's own wgpu setup: the window, device and frame belong to this file.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use anyhow::Context;
+use chamfer_runtime::asset::Asset;
+use chamfer_runtime::render::{
+    Camera, CapMethod, EdgeClasses, EdgeRenderer, EdgeStyle, GpuAsset, MeshRenderer, MeshStyle,
+    Orbit, Target,
+};
+use winit::application::ApplicationHandler;
+use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
+use winit::event_loop::{ActiveEventLoop, EventLoop};
+use winit::keyboard::{Key, NamedKey};
+use winit::window::{Window, WindowId};
+
+const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+fn main() -> anyhow::Result<()> {
+    let input: PathBuf = std::env::args_os()
+        .nth(1)
+        .context("usage: viewer INPUT (a .chamfer asset or an OBJ, glTF/GLB or PLY mesh)")?
+        .into();
+    let asset = if input
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("chamfer"))
+    {
+        let bytes =
+            std::fs::read(&input).with_context(|| format!("{}: cannot read", input.display()))?;
+        Asset::decode(&bytes).with_context(|| format!("{}", input.display()))?
+    } else {
+        chamfer_preprocess::bake_file(&input, &chamfer_preprocess::BakeOptions::DEFAULT)?.asset
+    };
+    let event_loop = EventLoop::new()?;
+    let mut viewer = Viewer {
+        asset,
+        title: input.display().to_string(),
+        window: None,
+        orbit: Orbit::default(),
+        style: EdgeStyle::default(),
+        draw_edges: true,
+        dragging: false,
+        cursor: None,
+        error: None,
+    };
+    event_loop.run_app(&mut viewer)?;
+    viewer.error.map_or(Ok(()), Err)
+}
+
+struct Viewer {
+    asset: Asset,
+    title: String,
+    window: Option<Gpu>,
+    orbit: Orbit,
+    style: EdgeStyle,
+    draw_edges: bool,
+    dragging: bool,
+    cursor: Option<(f64, f64)>,
+    error: Option<anyhow::Error>,
+}
+
+/// Everything that belongs to the application, not to the renderers.
+struct Gpu {
+    window: Arc<Window>,
+    surface: wgpu::Surface<'static>,
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    config: wgpu::SurfaceConfiguration,
+    depth: wgpu::TextureView,
+    asset: GpuAsset,
+    mesh: MeshRenderer,
+    edges: EdgeRenderer,
+}
+
+impl Gpu {
+    fn new(event_loop: &ActiveEventLoop, asset: &Asset) -> anyhow::Result<Self> {
+        let window = Arc::new(
+            event_loop.create_window(Window::default_attributes().with_title("chamfer viewer"))?,
+        );
+        let instance = wgpu::Instance::new(
+            wgpu::InstanceDescriptor::new_with_display_handle(Box::new(
+                event_loop.owned_display_handle(),
+            ))
+            .with_env(),
+        );
+        let surface = instance.create_surface(window.clone())?;
+        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+            power_preference: wgpu::PowerPreference::HighPerformance,
+            force_fallback_adapter: false,
+            compatible_surface: Some(&surface),
+            apply_limit_buckets: false,
+        }))?;
+        let (device, queue) =
+            pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+                label: Some("viewer"),
+                required_features: wgpu::Features::empty(),
+                required_limits: adapter.limits(),
+                experimental_features: wgpu::ExperimentalFeatures::disabled(),
+                memory_hints: wgpu::MemoryHints::Performance,
+                trace: wgpu::Trace::Off,
+            }))?;
+        let size = window.inner_size();
+        let config = surface
+            .get_default_config(&adapter, size.width.max(1), size.height.max(1))
+            .context("the surface does not work with this adapter")?;
+        surface.configure(&device, &config);
+        let target = Target {
+            color_format: config.format,
+            depth_format: Some(DEPTH),
+            sample_count: 1,
+        };
+        let uploaded = GpuAsset::new(&device, asset)?;
+        let mesh = MeshRenderer::new(&device, &target, &uploaded);
+        let edges = EdgeRenderer::new(&device, &target, &uploaded)?;
+        let depth = depth_view(&device, &config);
+        Ok(Self {
+            window,
+            surface,
+            device,
+            queue,
+            config,
+            depth,
+            asset: uploaded,
+            mesh,
+            edges,
+        })
+    }
+
+    fn resize(&mut self, width: u32, height: u32) {
+        self.config.width = width.max(1);
+        self.config.height = height.max(1);
+        self.surface.configure(&self.device, &self.config);
+        self.depth = depth_view(&self.device, &self.config);
+    }
+
+    fn draw(&mut self, orbit: &Orbit, style: &EdgeStyle, draw_edges: bool) {
+        let frame = match self.surface.get_current_texture() {
+            wgpu::CurrentSurfaceTexture::Success(frame)
+            | wgpu::CurrentSurfaceTexture::Suboptimal(frame) => frame,
+            wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
+                self.surface.configure(&self.device, &self.config);
+                return;
+            }
+            _ => return,
+        };
+        let view = frame.texture.create_view(&Default::default());
+        let camera = Camera::orbit(
+            self.asset.bounds(),
+            orbit,
+            [self.config.width, self.config.height],
+        );
+        self.mesh
+            .prepare(&self.queue, &camera, &MeshStyle::default());
+        self.edges.prepare(&self.queue, &camera, style);
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        if draw_edges {
+            self.edges.compute(&mut encoder);
+        }
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("viewer"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::WHITE),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &self.depth,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Discard,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            self.mesh.render(&mut pass);
+            if draw_edges {
+                self.edges.render(&mut pass);
+            }
+        }
+        self.queue.submit([encoder.finish()]);
+        self.window.pre_present_notify();
+        self.queue.present(frame);
+    }
+}
+
+fn depth_view(device: &wgpu::Device, config: &wgpu::SurfaceConfiguration) -> wgpu::TextureView {
+    device
+        .create_texture(&wgpu::TextureDescriptor {
+            label: Some("viewer depth"),
+            size: wgpu::Extent3d {
+                width: config.width,
+                height: config.height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: DEPTH,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            view_formats: &[],
+        })
+        .create_view(&Default::default())
+}
+
+/// Applies a key press; true if the picture changed.
+fn apply_key(key: &Key, style: &mut EdgeStyle, orbit: &mut Orbit, draw_edges: &mut bool) -> bool {
+    {
+        let toggle = |classes: &mut EdgeClasses, class: EdgeClasses| {
+            *classes = if classes.contains(class) {
+                EdgeClasses(classes.0 & !class.0)
+            } else {
+                *classes | class
+            };
+        };
+        match key {
+            Key::Character(c) => match c.as_str() {
+                "1" => toggle(&mut style.classes, EdgeClasses::CONTOUR),
+                "2" => toggle(&mut style.classes, EdgeClasses::RIDGE),
+                "3" => toggle(&mut style.classes, EdgeClasses::VALLEY),
+                "4" => toggle(&mut style.classes, EdgeClasses::BOUNDARY),
+                "5" => toggle(&mut style.classes, EdgeClasses::MARKED),
+                "+" | "=" => style.width_px = (style.width_px * 1.25).min(64.0),
+                "-" => style.width_px = (style.width_px / 1.25).max(0.5),
+                "c" => {
+                    style.caps = match style.caps {
+                        CapMethod::NextIndex => CapMethod::CapBuffer,
+                        CapMethod::CapBuffer => CapMethod::None,
+                        CapMethod::None => CapMethod::NextIndex,
+                    }
+                }
+                "d" => style.depth_scaled = !style.depth_scaled,
+                "e" => *draw_edges = !*draw_edges,
+                "o" => orbit.orthographic = !orbit.orthographic,
+                _ => return false,
+            },
+            _ => return false,
+        }
+        true
+    }
+}
+
+impl ApplicationHandler for Viewer {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.window.is_some() {
+            return;
+        }
+        match Gpu::new(event_loop, &self.asset) {
+            Ok(gpu) => {
+                gpu.window
+                    .set_title(&format!("chamfer viewer: {}", self.title));
+                self.window = Some(gpu);
+            }
+            Err(e) => {
+                self.error = Some(e);
+                event_loop.exit();
+            }
+        }
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _: WindowId, event: WindowEvent) {
+        let Some(gpu) = self.window.as_mut() else {
+            return;
+        };
+        let changed = match event {
+            WindowEvent::CloseRequested => {
+                event_loop.exit();
+                false
+            }
+            WindowEvent::Resized(size) => {
+                gpu.resize(size.width, size.height);
+                true
+            }
+            WindowEvent::RedrawRequested => {
+                gpu.draw(&self.orbit, &self.style, self.draw_edges);
+                false
+            }
+            WindowEvent::MouseInput {
+                state,
+                button: MouseButton::Left,
+                ..
+            } => {
+                self.dragging = state == ElementState::Pressed;
+                false
+            }
+            WindowEvent::CursorMoved { position, .. } => {
+                let moved = self
+                    .cursor
+                    .filter(|_| self.dragging)
+                    .map(|(x, y)| (position.x - x, position.y - y));
+                self.cursor = Some((position.x, position.y));
+                if let Some((dx, dy)) = moved {
+                    self.orbit.azimuth_deg -= dx as f32 * 0.4;
+                    self.orbit.elevation_deg =
+                        (self.orbit.elevation_deg + dy as f32 * 0.4).clamp(-89.0, 89.0);
+                }
+                moved.is_some()
+            }
+            WindowEvent::MouseWheel { delta, .. } => {
+                let steps = match delta {
+                    MouseScrollDelta::LineDelta(_, y) => y,
+                    MouseScrollDelta::PixelDelta(p) => p.y as f32 / 40.0,
+                };
+                let fitted = self.orbit.distance.unwrap_or_else(|| {
+                    let camera = Camera::orbit(
+                        gpu.asset.bounds(),
+                        &self.orbit,
+                        [gpu.config.width, gpu.config.height],
+                    );
+                    let [lo, hi] = gpu.asset.bounds().map(glam::Vec3::from);
+                    camera.eye().truncate().distance((lo + hi) * 0.5)
+                });
+                self.orbit.distance = Some(fitted * 0.9f32.powf(steps));
+                true
+            }
+            WindowEvent::KeyboardInput { event, .. } if event.state == ElementState::Pressed => {
+                if event.logical_key == Key::Named(NamedKey::Escape) {
+                    event_loop.exit();
+                }
+                apply_key(
+                    &event.logical_key,
+                    &mut self.style,
+                    &mut self.orbit,
+                    &mut self.draw_edges,
+                )
+            }
+            _ => false,
+        };
+        if changed {
+            gpu.window.request_redraw();
+        }
+    }
+}
