@@ -213,7 +213,7 @@ impl EdgeRenderer {
         let state = storage("edge state", 4 * edges, none)?;
         let drawn = storage("drawn edges", 8 * edges, none)?;
         let joins = storage("joins", 16 * edges, none)?;
-        let indirect = wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_DST;
+        let indirect = wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_SRC;
         let out = storage(
             "edge draw lists",
             OUT_HEADER + CAP_BYTES * cap_capacity,
@@ -480,7 +480,12 @@ impl EdgeRenderer {
         match self.caps {
             CapMethod::NextIndex => {
                 pass.set_pipeline(&self.joins_next);
-                pass.dispatch_workgroups_indirect(&self.dispatch, 0);
+                if std::env::var("DIRECT").is_ok() {
+                    let [x, y] = workgroups(2 * self.edge_count);
+                    pass.dispatch_workgroups(x, y, 1);
+                } else {
+                    pass.dispatch_workgroups_indirect(&self.dispatch, 0);
+                }
             }
             CapMethod::CapBuffer => {
                 pass.set_pipeline(&self.joins_heads);
@@ -502,6 +507,61 @@ impl EdgeRenderer {
             pass.set_pipeline(&self.cap_pipeline);
             pass.draw_indirect(&self.out, CAP_DRAW_OFFSET);
         }
+    }
+}
+
+/// What the last computed frame drew, read back from the GPU (see [`EdgeRenderer::read_counts`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct DrawCounts {
+    /// Edges that passed classification.
+    pub edges: u32,
+    /// Caps the joins emitted.
+    pub caps: u32,
+}
+
+impl EdgeRenderer {
+    /// Reads back how many edges and caps the last submitted [`compute`](Self::compute) produced.
+    /// Blocks until the GPU is idle: for statistics, tests and benchmarks, not for every frame.
+    pub fn read_counts(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+    ) -> Result<DrawCounts, RenderError> {
+        let staging = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("edge counts readback"),
+            size: 32,
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("edge counts readback"),
+        });
+        encoder.copy_buffer_to_buffer(&self.out, 0, &staging, 0, 32);
+        queue.submit([encoder.finish()]);
+        let (sender, receiver) = std::sync::mpsc::channel();
+        staging.map_async(wgpu::MapMode::Read, .., move |result| {
+            let _ = sender.send(result);
+        });
+        let failed = |e: String| RenderError::Readback(e);
+        device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| failed(e.to_string()))?;
+        receiver
+            .recv()
+            .map_err(|e| failed(e.to_string()))?
+            .map_err(|e| failed(e.to_string()))?;
+        let bytes = staging
+            .get_mapped_range(..)
+            .map_err(|e| failed(e.to_string()))?;
+        let words: &[u32] = bytemuck::cast_slice(&bytes);
+        Ok(DrawCounts {
+            edges: words[1],
+            caps: if self.caps == CapMethod::None {
+                0
+            } else {
+                words[5]
+            },
+        })
     }
 }
 
