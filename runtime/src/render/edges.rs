@@ -480,12 +480,7 @@ impl EdgeRenderer {
         match self.caps {
             CapMethod::NextIndex => {
                 pass.set_pipeline(&self.joins_next);
-                if std::env::var("DIRECT").is_ok() {
-                    let [x, y] = workgroups(2 * self.edge_count);
-                    pass.dispatch_workgroups(x, y, 1);
-                } else {
-                    pass.dispatch_workgroups_indirect(&self.dispatch, 0);
-                }
+                pass.dispatch_workgroups_indirect(&self.dispatch, 0);
             }
             CapMethod::CapBuffer => {
                 pass.set_pipeline(&self.joins_heads);
