@@ -13,12 +13,15 @@ fn reset() {
     out.caps.first_instance = 0u;
 }
 
-fn faces_camera(normal: vec3<f32>, p: vec3<f32>) -> bool {
-    return dot(normal, frame.eye.xyz - p * frame.eye.w) > 0.0;
+fn plane(normal: vec3<f32>, p: vec3<f32>) -> vec4<f32> {
+    return vec4<f32>(normal, -dot(normal, p));
 }
 
+// Once per asset: the face planes of every edge. The per-frame test then reads two contiguous
+// vectors per edge instead of gathering four vertices (on software rasterizers every gather is a
+// loop over lanes).
 @compute @workgroup_size(256)
-fn classify(
+fn face_planes(
     @builtin(workgroup_id) group: vec3<u32>,
     @builtin(num_workgroups) groups: vec3<u32>,
     @builtin(local_invocation_index) local: u32,
@@ -32,18 +35,32 @@ fn classify(
     let p1 = position(edge_vertex(4u * e + 1u));
     let p2 = position(edge_vertex(4u * e + 2u));
     let p3 = position(edge_vertex(4u * e + 3u));
-
-    let front_a = faces_camera(cross(p1 - p0, p2 - p0), p0);
-    var front_b = front_a;
-    var contour = false;
+    let a = plane(cross(p1 - p0, p2 - p0), p0);
+    var b = a;
     if (flags & (BOUNDARY | NON_MANIFOLD)) == 0u {
-        var normal_b = cross(p0 - p1, p3 - p1);
+        b = plane(cross(p0 - p1, p3 - p1), p1);
         if (flags & FLIPPED) != 0u {
-            normal_b = -normal_b;
+            b = -b;
         }
-        front_b = faces_camera(normal_b, p1);
-        contour = front_a != front_b;
     }
+    planes[2u * e] = a;
+    planes[2u * e + 1u] = b;
+}
+
+@compute @workgroup_size(256)
+fn classify(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+    @builtin(local_invocation_index) local: u32,
+) {
+    let e = thread_index(group, groups, local);
+    if e >= frame.edge_count {
+        return;
+    }
+    let flags = attributes[e] & 0xffffu;
+    let front_a = dot(planes[2u * e], frame.eye) > 0.0;
+    let front_b = dot(planes[2u * e + 1u], frame.eye) > 0.0;
+    let contour = front_a != front_b && (flags & (BOUNDARY | NON_MANIFOLD)) == 0u;
 
     var word = 0xffffffffu;
     if contour && (frame.classes & CONTOUR) != 0u {

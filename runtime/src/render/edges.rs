@@ -1,5 +1,7 @@
 //! The edge renderer: per-frame GPU classification, compaction, joins and caps, then quads.
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use glam::Vec3;
 
 use super::{Camera, GpuAsset, RenderError, Target, shaders};
@@ -167,9 +169,14 @@ pub struct EdgeRenderer {
     frame: wgpu::Buffer,
     out: wgpu::Buffer,
     dispatch: wgpu::Buffer,
-    compute_group: wgpu::BindGroup,
+    planes_group: wgpu::BindGroup,
+    classify_group: wgpu::BindGroup,
+    joins_group: wgpu::BindGroup,
     args_group: wgpu::BindGroup,
     draw_group: wgpu::BindGroup,
+    /// The face planes are computed by the first [`EdgeRenderer::compute`].
+    planes_ready: AtomicBool,
+    face_planes: wgpu::ComputePipeline,
     reset: wgpu::ComputePipeline,
     classify: wgpu::ComputePipeline,
     args: wgpu::ComputePipeline,
@@ -227,37 +234,11 @@ impl EdgeRenderer {
             mapped_at_creation: false,
         });
 
-        let compute_layout = layout(
-            device,
-            "edge compute",
-            wgpu::ShaderStages::COMPUTE,
-            &[
-                (1, true),
-                (2, true),
-                (3, true),
-                (4, true),
-                (5, false),
-                (6, false),
-                (7, false),
-                (8, false),
-            ],
-        );
-        let draw_stages = wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT;
-        let draw_layout = layout(
-            device,
-            "edge draw",
-            draw_stages,
-            &[(1, true), (2, true), (6, true), (7, true), (8, true)],
-        );
-        let args_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("edge args"),
-            entries: &[
-                storage_entry(0, true, wgpu::ShaderStages::COMPUTE),
-                storage_entry(1, false, wgpu::ShaderStages::COMPUTE),
-            ],
-        });
+        let planes = storage("face planes", 32 * edges, none)?;
 
-        let buffers: [(u32, &wgpu::Buffer); 9] = [
+        // Binding numbers are the shaders' (common.wgsl, compute.wgsl, draw.wgsl); each pass binds
+        // only what it uses, which keeps every stage within the default limit of 8 storage buffers.
+        let buffers: [(u32, &wgpu::Buffer); 10] = [
             (0, &frame),
             (1, &asset.topology_positions),
             (2, &asset.edge_vertices),
@@ -267,28 +248,55 @@ impl EdgeRenderer {
             (6, &drawn),
             (7, &joins),
             (8, &out),
+            (9, &planes),
         ];
-        let group = |label, layout: &wgpu::BindGroupLayout, bindings: &[u32]| {
-            let entries: Vec<wgpu::BindGroupEntry> = buffers
-                .iter()
-                .filter(|(binding, _)| bindings.contains(binding))
-                .map(|(binding, buffer)| wgpu::BindGroupEntry {
-                    binding: *binding,
-                    resource: buffer.as_entire_binding(),
-                })
-                .collect();
-            device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some(label),
-                layout,
-                entries: &entries,
-            })
+        let bindings = |label, stages, storage: &[(u32, bool)]| {
+            binding_set(device, label, stages, &buffers, storage)
         };
-        let compute_group = group(
-            "edge compute",
-            &compute_layout,
-            &[0, 1, 2, 3, 4, 5, 6, 7, 8],
+        let compute = wgpu::ShaderStages::COMPUTE;
+        let (read, write) = (true, false);
+        let planes_set = bindings(
+            "face planes",
+            compute,
+            &[(1, read), (2, read), (3, read), (9, write)],
         );
-        let draw_group = group("edge draw", &draw_layout, &[0, 1, 2, 6, 7, 8]);
+        let classify_set = bindings(
+            "classify",
+            compute,
+            &[
+                (3, read),
+                (5, write),
+                (6, write),
+                (7, write),
+                (8, write),
+                (9, write),
+            ],
+        );
+        let joins_set = bindings(
+            "joins",
+            compute,
+            &[
+                (1, read),
+                (2, read),
+                (4, read),
+                (5, write),
+                (6, write),
+                (7, write),
+                (8, write),
+            ],
+        );
+        let draw_set = bindings(
+            "edge draw",
+            wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT,
+            &[(1, read), (2, read), (6, read), (7, read), (8, read)],
+        );
+        let args_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("edge args"),
+            entries: &[
+                storage_entry(0, true, compute),
+                storage_entry(1, false, compute),
+            ],
+        });
         let args_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("edge args"),
             layout: &args_layout,
@@ -333,7 +341,7 @@ impl EdgeRenderer {
 
         let draw_pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("edge draw"),
-            bind_group_layouts: &[Some(&draw_layout)],
+            bind_group_layouts: &[Some(&draw_set.0)],
             immediate_size: 0,
         });
         let draw_pipeline = |label, module: &wgpu::ShaderModule, vertex: &str, fragment: &str| {
@@ -374,12 +382,13 @@ impl EdgeRenderer {
         };
 
         Ok(Self {
-            reset: compute_pipeline(&compute_layout, &classify_module, "reset"),
-            classify: compute_pipeline(&compute_layout, &classify_module, "classify"),
-            finish: compute_pipeline(&compute_layout, &classify_module, "finish"),
+            face_planes: compute_pipeline(&planes_set.0, &classify_module, "face_planes"),
+            reset: compute_pipeline(&classify_set.0, &classify_module, "reset"),
+            classify: compute_pipeline(&classify_set.0, &classify_module, "classify"),
+            finish: compute_pipeline(&classify_set.0, &classify_module, "finish"),
             args: compute_pipeline(&args_layout, &args_module, "args"),
-            joins_next: compute_pipeline(&compute_layout, &joins_module, "joins_next"),
-            joins_heads: compute_pipeline(&compute_layout, &joins_module, "joins_heads"),
+            joins_next: compute_pipeline(&joins_set.0, &joins_module, "joins_next"),
+            joins_heads: compute_pipeline(&joins_set.0, &joins_module, "joins_heads"),
             edge_pipeline: draw_pipeline(
                 "edges",
                 &module("edges.wgsl", &shaders::edges()),
@@ -395,9 +404,12 @@ impl EdgeRenderer {
             frame,
             out,
             dispatch,
-            compute_group,
+            planes_group: planes_set.1,
+            classify_group: classify_set.1,
+            joins_group: joins_set.1,
             args_group,
-            draw_group,
+            draw_group: draw_set.1,
+            planes_ready: AtomicBool::new(false),
             edge_count: asset.edge_count,
             head_count: asset.head_count,
             has_rings: asset.has_rings,
@@ -456,11 +468,16 @@ impl EdgeRenderer {
                 label: Some("chamfer classify"),
                 timestamp_writes: None,
             });
-            pass.set_bind_group(0, &self.compute_group, &[]);
+            let [x, y] = workgroups(self.edge_count);
+            if !self.planes_ready.swap(true, Ordering::Relaxed) {
+                pass.set_bind_group(0, &self.planes_group, &[]);
+                pass.set_pipeline(&self.face_planes);
+                pass.dispatch_workgroups(x, y, 1);
+            }
+            pass.set_bind_group(0, &self.classify_group, &[]);
             pass.set_pipeline(&self.reset);
             pass.dispatch_workgroups(1, 1, 1);
             pass.set_pipeline(&self.classify);
-            let [x, y] = workgroups(self.edge_count);
             pass.dispatch_workgroups(x, y, 1);
             if self.caps == CapMethod::NextIndex {
                 pass.set_bind_group(0, &self.args_group, &[]);
@@ -476,7 +493,7 @@ impl EdgeRenderer {
             label: Some("chamfer joins"),
             timestamp_writes: None,
         });
-        pass.set_bind_group(0, &self.compute_group, &[]);
+        pass.set_bind_group(0, &self.joins_group, &[]);
         match self.caps {
             CapMethod::NextIndex => {
                 pass.set_pipeline(&self.joins_next);
@@ -489,6 +506,7 @@ impl EdgeRenderer {
             }
             CapMethod::None => {}
         }
+        pass.set_bind_group(0, &self.classify_group, &[]);
         pass.set_pipeline(&self.finish);
         pass.dispatch_workgroups(1, 1, 1);
     }
@@ -584,13 +602,15 @@ fn storage_entry(
     }
 }
 
-/// The frame uniform at binding 0 plus storage buffers `(binding, read_only)`.
-fn layout(
+/// A layout and its bind group: the frame uniform at binding 0 plus the storage buffers
+/// `(binding, read_only)`, taken from `buffers` by binding number.
+fn binding_set(
     device: &wgpu::Device,
     label: &str,
     visibility: wgpu::ShaderStages,
+    buffers: &[(u32, &wgpu::Buffer)],
     storage: &[(u32, bool)],
-) -> wgpu::BindGroupLayout {
+) -> (wgpu::BindGroupLayout, wgpu::BindGroup) {
     let mut entries = vec![wgpu::BindGroupLayoutEntry {
         binding: 0,
         visibility,
@@ -606,8 +626,24 @@ fn layout(
             .iter()
             .map(|&(binding, read_only)| storage_entry(binding, read_only, visibility)),
     );
-    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some(label),
         entries: &entries,
-    })
+    });
+    let resources: Vec<wgpu::BindGroupEntry> = entries
+        .iter()
+        .filter_map(|entry| {
+            let (_, buffer) = buffers.iter().find(|(b, _)| *b == entry.binding)?;
+            Some(wgpu::BindGroupEntry {
+                binding: entry.binding,
+                resource: buffer.as_entire_binding(),
+            })
+        })
+        .collect();
+    let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout: &layout,
+        entries: &resources,
+    });
+    (layout, group)
 }
