@@ -18,7 +18,7 @@ fn cap_vertex_main(
     let cap = out.cap_list[instance];
     let slot = cap.end >> 1u;
     let item = drawn[slot];
-    let s = edge_screen(item.x, item.y);
+    let s = from_record(screen[slot], item.y);
     if !s.visible {
         v.position = NOWHERE;
         return v;

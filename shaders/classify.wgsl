@@ -85,10 +85,11 @@ fn classify(
         state[e] = 0u;
         return;
     }
+    let s = edge_screen(e, word);
+    word |= select(0u, ON_SCREEN, s.visible) | (s.clipped << CLIPPED_SHIFT);
     let slot = atomicAdd(&out.edges.instance_count, 1u);
     drawn[slot] = vec2<u32>(e, word);
-    joins[2u * slot] = vec2<u32>(0u);
-    joins[2u * slot + 1u] = vec2<u32>(0u);
+    screen[slot] = to_record(s);
     state[e] = slot + 1u;
 }
 

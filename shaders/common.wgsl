@@ -52,6 +52,10 @@ const COLOR_VALLEY: u32 = 4u;
 const DRAWN_CONTOUR: u32 = 256u;
 // The front face's opposite vertex, which lies inside the silhouette, is v3 (else v2).
 const INSIDE_V3: u32 = 512u;
+// Set by classify after projecting the edge: it has a quad on screen, and which ends the near
+// plane moved (bits 11 and 12).
+const ON_SCREEN: u32 = 1024u;
+const CLIPPED_SHIFT: u32 = 11u;
 
 const PI: f32 = 3.14159265358979;
 const WORKGROUP: u32 = 256u;
@@ -170,6 +174,36 @@ fn edge_screen(e: u32, word: u32) -> EdgeScreen {
         }
     }
     return out;
+}
+
+// An edge's quad as classify stores it for the joins and the draws (the `screen` list, per slot),
+// so each edge is projected once per frame rather than once per vertex and per neighbour.
+struct ScreenRecord {
+    ends: vec4<f32>,
+    depth_w: vec4<f32>,
+    extents: vec4<f32>,
+}
+
+fn to_record(s: EdgeScreen) -> ScreenRecord {
+    return ScreenRecord(
+        vec4<f32>(s.s0, s.s1),
+        vec4<f32>(s.depth, s.w),
+        vec4<f32>(s.left, s.right),
+    );
+}
+
+fn from_record(r: ScreenRecord, word: u32) -> EdgeScreen {
+    var s: EdgeScreen;
+    s.visible = (word & ON_SCREEN) != 0u;
+    s.clipped = (word >> CLIPPED_SHIFT) & 3u;
+    s.s0 = r.ends.xy;
+    s.s1 = r.ends.zw;
+    s.d = normalize(s.s1 - s.s0);
+    s.depth = r.depth_w.xy;
+    s.w = r.depth_w.zw;
+    s.left = r.extents.xy;
+    s.right = r.extents.zw;
+    return s;
 }
 
 // One end of an edge seen from that end: its point, its direction away from it, and the quad's

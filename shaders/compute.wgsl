@@ -44,3 +44,5 @@ fn ring(i: u32) -> u32 {
     }
     return rings[i];
 }
+// Per slot: the drawn edge's quad on screen (see ScreenRecord).
+@group(0) @binding(10) var<storage, read_write> screen: array<ScreenRecord>;

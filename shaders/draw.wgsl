@@ -3,6 +3,7 @@
 @group(0) @binding(6) var<storage, read> drawn: array<vec2<u32>>;
 @group(0) @binding(7) var<storage, read> joins: array<vec2<u32>>;
 @group(0) @binding(8) var<storage, read> out: Out;
+@group(0) @binding(10) var<storage, read> screen: array<ScreenRecord>;
 
 struct Cap {
     end: u32,

@@ -17,7 +17,7 @@ fn edge_vertex_main(
 ) -> EdgeVarying {
     var v: EdgeVarying;
     let item = drawn[slot];
-    let s = edge_screen(item.x, item.y);
+    let s = from_record(screen[slot], item.y);
     if !s.visible {
         v.position = NOWHERE;
         return v;

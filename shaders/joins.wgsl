@@ -35,7 +35,7 @@ fn end_at(index: u32) -> End {
     end.slot = state_word - 1u;
     let word = drawn[end.slot].y;
     end.color = word & 0xffu;
-    let s = edge_screen(e, word);
+    let s = from_record(screen[end.slot], word);
     if !s.visible || (s.clipped & (1u << k)) != 0u {
         return end;
     }
@@ -110,6 +110,7 @@ fn joins_next(
     let start = 2u * drawn[t >> 1u].x + (t & 1u);
     let me = end_at(start);
     if !me.ok {
+        joins[t] = vec2<u32>(0u);
         return;
     }
     var left: End;
@@ -136,6 +137,19 @@ fn joins_next(
         f = ring(f);
     }
     resolve(me, left, left_turn, right, right_turn);
+}
+
+// Before joins_heads: ends at vertices without a ring head (one kept edge) are never visited there.
+@compute @workgroup_size(256)
+fn clear_joins(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+    @builtin(local_invocation_index) local: u32,
+) {
+    let t = thread_index(group, groups, local);
+    if t < 2u * atomicLoad(&out.edges.instance_count) {
+        joins[t] = vec2<u32>(0u);
+    }
 }
 
 @compute @workgroup_size(256)

@@ -182,6 +182,7 @@ pub struct EdgeRenderer {
     args: wgpu::ComputePipeline,
     joins_next: wgpu::ComputePipeline,
     joins_heads: wgpu::ComputePipeline,
+    clear_joins: wgpu::ComputePipeline,
     finish: wgpu::ComputePipeline,
     edge_pipeline: wgpu::RenderPipeline,
     cap_pipeline: wgpu::RenderPipeline,
@@ -235,10 +236,11 @@ impl EdgeRenderer {
         });
 
         let planes = storage("face planes", 32 * edges, none)?;
+        let screen = storage("screen quads", 48 * edges, none)?;
 
         // Binding numbers are the shaders' (common.wgsl, compute.wgsl, draw.wgsl); each pass binds
         // only what it uses, which keeps every stage within the default limit of 8 storage buffers.
-        let buffers: [(u32, &wgpu::Buffer); 10] = [
+        let buffers: [(u32, &wgpu::Buffer); 11] = [
             (0, &frame),
             (1, &asset.topology_positions),
             (2, &asset.edge_vertices),
@@ -249,6 +251,7 @@ impl EdgeRenderer {
             (7, &joins),
             (8, &out),
             (9, &planes),
+            (10, &screen),
         ];
         let bindings = |label, stages, storage: &[(u32, bool)]| {
             binding_set(device, label, stages, &buffers, storage)
@@ -264,31 +267,32 @@ impl EdgeRenderer {
             "classify",
             compute,
             &[
+                (1, read),
+                (2, read),
                 (3, read),
                 (5, write),
                 (6, write),
-                (7, write),
                 (8, write),
                 (9, write),
+                (10, write),
             ],
         );
         let joins_set = bindings(
             "joins",
             compute,
             &[
-                (1, read),
-                (2, read),
                 (4, read),
                 (5, write),
                 (6, write),
                 (7, write),
                 (8, write),
+                (10, write),
             ],
         );
         let draw_set = bindings(
             "edge draw",
             wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT,
-            &[(1, read), (2, read), (6, read), (7, read), (8, read)],
+            &[(6, read), (7, read), (8, read), (10, read)],
         );
         let args_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("edge args"),
@@ -389,6 +393,7 @@ impl EdgeRenderer {
             args: compute_pipeline(&args_layout, &args_module, "args"),
             joins_next: compute_pipeline(&joins_set.0, &joins_module, "joins_next"),
             joins_heads: compute_pipeline(&joins_set.0, &joins_module, "joins_heads"),
+            clear_joins: compute_pipeline(&joins_set.0, &joins_module, "clear_joins"),
             edge_pipeline: draw_pipeline(
                 "edges",
                 &module("edges.wgsl", &shaders::edges()),
@@ -479,7 +484,7 @@ impl EdgeRenderer {
             pass.dispatch_workgroups(1, 1, 1);
             pass.set_pipeline(&self.classify);
             pass.dispatch_workgroups(x, y, 1);
-            if self.caps == CapMethod::NextIndex {
+            if self.caps != CapMethod::None {
                 pass.set_bind_group(0, &self.args_group, &[]);
                 pass.set_pipeline(&self.args);
                 pass.dispatch_workgroups(1, 1, 1);
@@ -500,6 +505,8 @@ impl EdgeRenderer {
                 pass.dispatch_workgroups_indirect(&self.dispatch, 0);
             }
             CapMethod::CapBuffer => {
+                pass.set_pipeline(&self.clear_joins);
+                pass.dispatch_workgroups_indirect(&self.dispatch, 0);
                 pass.set_pipeline(&self.joins_heads);
                 let [x, y] = workgroups(self.head_count);
                 pass.dispatch_workgroups(x, y, 1);
