@@ -22,11 +22,9 @@ fn plane(normal: vec3<f32>, p: vec3<f32>) -> vec4<f32> {
 // loop over lanes).
 @compute @workgroup_size(256)
 fn face_planes(
-    @builtin(workgroup_id) group: vec3<u32>,
-    @builtin(num_workgroups) groups: vec3<u32>,
-    @builtin(local_invocation_index) local: u32,
+    @builtin(global_invocation_id) id: vec3<u32>,
 ) {
-    let e = thread_index(group, groups, local);
+    let e = thread_index(id);
     if e >= frame.edge_count {
         return;
     }
@@ -49,11 +47,9 @@ fn face_planes(
 
 @compute @workgroup_size(256)
 fn classify(
-    @builtin(workgroup_id) group: vec3<u32>,
-    @builtin(num_workgroups) groups: vec3<u32>,
-    @builtin(local_invocation_index) local: u32,
+    @builtin(global_invocation_id) id: vec3<u32>,
 ) {
-    let e = thread_index(group, groups, local);
+    let e = thread_index(id);
     if e >= frame.edge_count {
         return;
     }

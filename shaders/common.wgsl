@@ -60,9 +60,11 @@ const CLIPPED_SHIFT: u32 = 11u;
 const PI: f32 = 3.14159265358979;
 const WORKGROUP: u32 = 256u;
 
-// Flat thread index of a 2D dispatch (one dimension holds at most 65535 workgroups).
-fn thread_index(group: vec3<u32>, groups: vec3<u32>, local: u32) -> u32 {
-    return (group.y * groups.x + group.x) * WORKGROUP + local;
+// Flat thread index of a 2D dispatch: a second row of workgroups is only used once the first is full
+// (65535 workgroups, see `workgroups` in edges.rs and args.wgsl), so rows have a fixed length.
+// (num_workgroups would do, but D3D12 leaves it 0 for indirect dispatches without wgpu's validation.)
+fn thread_index(id: vec3<u32>) -> u32 {
+    return id.y * (65535u * WORKGROUP) + id.x;
 }
 
 fn edge_vertex(i: u32) -> u32 {

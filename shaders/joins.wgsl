@@ -99,11 +99,9 @@ fn resolve(me: End, left: End, left_turn: f32, right: End, right_turn: f32) {
 
 @compute @workgroup_size(256)
 fn joins_next(
-    @builtin(workgroup_id) group: vec3<u32>,
-    @builtin(num_workgroups) groups: vec3<u32>,
-    @builtin(local_invocation_index) local: u32,
+    @builtin(global_invocation_id) id: vec3<u32>,
 ) {
-    let t = thread_index(group, groups, local);
+    let t = thread_index(id);
     if t >= 2u * atomicLoad(&out.edges.instance_count) {
         return;
     }
@@ -142,11 +140,9 @@ fn joins_next(
 // Before joins_heads: ends at vertices without a ring head (one kept edge) are never visited there.
 @compute @workgroup_size(256)
 fn clear_joins(
-    @builtin(workgroup_id) group: vec3<u32>,
-    @builtin(num_workgroups) groups: vec3<u32>,
-    @builtin(local_invocation_index) local: u32,
+    @builtin(global_invocation_id) id: vec3<u32>,
 ) {
-    let t = thread_index(group, groups, local);
+    let t = thread_index(id);
     if t < 2u * atomicLoad(&out.edges.instance_count) {
         joins[t] = vec2<u32>(0u);
     }
@@ -154,11 +150,9 @@ fn clear_joins(
 
 @compute @workgroup_size(256)
 fn joins_heads(
-    @builtin(workgroup_id) group: vec3<u32>,
-    @builtin(num_workgroups) groups: vec3<u32>,
-    @builtin(local_invocation_index) local: u32,
+    @builtin(global_invocation_id) id: vec3<u32>,
 ) {
-    let t = thread_index(group, groups, local);
+    let t = thread_index(id);
     if t >= frame.head_count {
         return;
     }

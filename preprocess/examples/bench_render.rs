@@ -51,9 +51,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         gpu.info.name, gpu.info.backend, size[0], size[1]
     );
     println!(
-        "| mesh | triangles | edges | drawn edges | mesh only ms | + edges + caps ms | edges overhead | + naive edges ms | naive overhead | edge pass: naive / ours | classify + joins only ms |"
+        "| mesh | triangles | edges | drawn edges | mesh only ms | + edges + caps ms | edges overhead | + naive edges ms | naive overhead | edge pass: naive / ours | classify + joins only ms | edge + cap draws only ms |"
     );
-    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for mesh in &meshes {
         let asset =
             chamfer_preprocess::bake_file(mesh, &chamfer_preprocess::BakeOptions::DEFAULT)?.asset;
@@ -109,6 +109,12 @@ fn bench(
             },
         )
     };
+    let draw_only = || {
+        frame(gpu, &target, |_| {}, |pass| {
+            mesh.render(pass);
+            edges.render(pass);
+        })
+    };
     let compute_only = || -> Result<f64, Box<dyn std::error::Error>> {
         let start = Instant::now();
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
@@ -122,15 +128,17 @@ fn bench(
         with_edges()?;
         with_naive()?;
         compute_only()?;
+        draw_only()?;
     }
-    let mut times = [Vec::new(), Vec::new(), Vec::new(), Vec::new()];
+    let mut times = [Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new()];
     for _ in 0..frames {
         times[0].push(mesh_only()?);
         times[1].push(with_edges()?);
         times[2].push(with_naive()?);
         times[3].push(compute_only()?);
+        times[4].push(draw_only()?);
     }
-    let [m, e, n, c] = times.map(median);
+    let [m, e, n, c, d] = times.map(median);
     if std::env::var("EMPTY").is_ok() {
         let mut empty = Vec::new();
         for _ in 0..frames {
@@ -144,7 +152,7 @@ fn bench(
     }
     let drawn = drawn_edges(gpu, &edges)?;
     println!(
-        "| {} | {} | {} | {drawn} | {m:.1} | {e:.1} | {:+.0}% | {n:.1} | {:+.0}% | {:.1}× | {c:.1} |",
+        "| {} | {} | {} | {drawn} | {m:.1} | {e:.1} | {:+.0}% | {n:.1} | {:+.0}% | {:.1}× | {c:.1} | {:.1} |",
         path.file_name()
             .map(|n| n.to_string_lossy())
             .unwrap_or_default(),
@@ -153,6 +161,7 @@ fn bench(
         (e / m - 1.0) * 100.0,
         (n / m - 1.0) * 100.0,
         (n - m) / (e - m).max(1e-3),
+        d - m,
     );
     Ok(())
 }
