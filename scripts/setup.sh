@@ -3,6 +3,8 @@
 # the Vulkan loader and Mesa's software Vulkan driver (lavapipe, for headless wgpu), and Rust.
 # Sourced by demo.sh and test.sh; safe to run again (installs only what is missing).
 set -euo pipefail
+# Mesa's device-select layer prints harmless XDG_RUNTIME_DIR warnings without this.
+export NODEVICE_SELECT=1
 
 apt_packages=(build-essential pkg-config curl ca-certificates libvulkan1 mesa-vulkan-drivers)
 

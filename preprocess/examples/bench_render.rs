@@ -110,10 +110,15 @@ fn bench(
         )
     };
     let draw_only = || {
-        frame(gpu, &target, |_| {}, |pass| {
-            mesh.render(pass);
-            edges.render(pass);
-        })
+        frame(
+            gpu,
+            &target,
+            |_| {},
+            |pass| {
+                mesh.render(pass);
+                edges.render(pass);
+            },
+        )
     };
     let compute_only = || -> Result<f64, Box<dyn std::error::Error>> {
         let start = Instant::now();
