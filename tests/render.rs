@@ -465,3 +465,74 @@ fn wide_and_narrow_index_sections_draw_the_same_pixels() {
         "edges were drawn"
     );
 }
+
+/// The contour edges of `asset` seen from `eye`, counted on the CPU in f64 (an independent reference).
+fn cpu_contours(asset: &chamfer_runtime::asset::Asset, eye: glam::DVec4) -> u32 {
+    use chamfer_runtime::asset::EdgeFlags;
+    let p = |v: u32| glam::Vec3::from(asset.topology_positions[v as usize]).as_dvec3();
+    (0..asset.edge_count())
+        .filter(|&e| {
+            let flags = asset.edge_flags(e);
+            if flags.intersects(EdgeFlags::BOUNDARY | EdgeFlags::NON_MANIFOLD) {
+                return false;
+            }
+            let [v0, v1, v2, v3] = asset.edge(e).map(p);
+            let front = |n: glam::DVec3, at: glam::DVec3| n.dot(eye.truncate() - at * eye.w) > 0.0;
+            let mut nb = (v0 - v1).cross(v3 - v1);
+            if flags.contains(EdgeFlags::FLIPPED) {
+                nb = -nb;
+            }
+            front((v1 - v0).cross(v2 - v0), v0) != front(nb, v1)
+        })
+        .count() as u32
+}
+
+#[test]
+fn the_gpu_draws_the_edges_a_cpu_reference_counts() {
+    use chamfer_runtime::render::{EdgeRenderer, GpuAsset};
+    let gpu = chamfer_tests::gpu();
+    let mut cases = Vec::new();
+    for fixture in [
+        "shapes/sphere-16x32.obj",
+        "meshes/spot.obj",
+        "meshes/fandisk.obj",
+    ] {
+        let asset = bake_fixture(fixture);
+        for (azimuth_deg, orthographic) in [(20.0, false), (130.0, true)] {
+            let orbit = Orbit {
+                azimuth_deg,
+                orthographic,
+                ..Orbit::default()
+            };
+            let camera = Camera::orbit(
+                [asset.header.bounds_min, asset.header.bounds_max],
+                &orbit,
+                [64, 64],
+            );
+            cases.push((fixture, asset.clone(), camera));
+        }
+    }
+    for (fixture, asset, camera) in cases {
+        let uploaded = GpuAsset::new(&gpu.device, &asset).expect("upload");
+        let target = gpu.target(64, 64, 1);
+        let mut edges =
+            EdgeRenderer::new(&gpu.device, &target.formats(), &uploaded).expect("renderer");
+        let style = EdgeStyle {
+            classes: EdgeClasses::CONTOUR,
+            ..EdgeStyle::default()
+        };
+        edges.prepare(&gpu.queue, &camera, &style);
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        edges.compute(&mut encoder);
+        gpu.queue.submit([encoder.finish()]);
+        let counts = edges.read_counts(&gpu.device, &gpu.queue).expect("counts");
+        let expected = cpu_contours(&asset, camera.eye().as_dvec4());
+        // f32 on the GPU against f64 here: a face seen exactly edge-on may tip either way.
+        assert!(expected > 0, "{fixture}");
+        assert!(
+            counts.edges.abs_diff(expected) <= expected / 500 + 1,
+            "{fixture}: GPU {} contours, CPU {expected}",
+            counts.edges
+        );
+    }
+}
