@@ -78,7 +78,7 @@ fn classify(
         }
     }
     if word == 0xffffffffu {
-        state[e] = 0u;
+        // No store: `state` may keep a stale slot from an earlier frame; readers check it (joins.wgsl).
         return;
     }
     let s = edge_screen(e, word);

@@ -3,7 +3,7 @@
 @group(0) @binding(3) var<storage, read> attributes: array<u32>;
 // Next edge end per edge end (thesis §13), then the ring heads of the capped vertices (§10.5).
 @group(0) @binding(4) var<storage, read> rings: array<u32>;
-// Per edge: its slot in `drawn` plus one, or 0 when it is not drawn this frame.
+// Per edge: its slot in `drawn` plus one when drawn this frame; otherwise 0 or a stale slot.
 @group(0) @binding(5) var<storage, read_write> state: array<u32>;
 // Per slot: (edge, drawn word).
 @group(0) @binding(6) var<storage, read_write> drawn: array<vec2<u32>>;

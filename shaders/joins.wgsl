@@ -28,12 +28,18 @@ fn end_at(index: u32) -> End {
     end.index = index;
     let e = index >> 1u;
     let k = index & 1u;
+    // Classify writes `state` only for the edges it draws, so an entry may be left from an earlier
+    // frame: it counts only if its slot is in this frame's list and holds this edge.
     let state_word = state[e];
-    if state_word == 0u {
+    if state_word == 0u || state_word > atomicLoad(&out.edges.instance_count) {
         return end;
     }
     end.slot = state_word - 1u;
-    let word = drawn[end.slot].y;
+    let item = drawn[end.slot];
+    if item.x != e {
+        return end;
+    }
+    let word = item.y;
     end.color = word & 0xffu;
     let s = from_record(screen[end.slot], word);
     if !s.visible || (s.clipped & (1u << k)) != 0u {

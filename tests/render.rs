@@ -536,3 +536,47 @@ fn the_gpu_draws_the_edges_a_cpu_reference_counts() {
         );
     }
 }
+
+#[test]
+fn a_renderer_reused_across_frames_draws_what_a_fresh_one_does() {
+    // Per-edge state left by an earlier frame must not leak into the next one.
+    use chamfer_runtime::render::{EdgeRenderer, GpuAsset, MeshRenderer};
+    let gpu = chamfer_tests::gpu();
+    let asset = bake_fixture("meshes/fandisk.obj");
+    let bounds = [asset.header.bounds_min, asset.header.bounds_max];
+    let cameras = [20.0, 140.0, 260.0].map(|azimuth_deg| {
+        let orbit = Orbit {
+            azimuth_deg,
+            ..Orbit::default()
+        };
+        Camera::orbit(bounds, &orbit, [200, 160])
+    });
+    let target = gpu.target(200, 160, 1);
+    let uploaded = GpuAsset::new(&gpu.device, &asset).expect("upload");
+    let style = edges_in(RED, 6.0, CapMethod::NextIndex);
+    let mut mesh = MeshRenderer::new(&gpu.device, &target.formats(), &uploaded);
+    let mut reused =
+        EdgeRenderer::new(&gpu.device, &target.formats(), &uploaded).expect("renderer");
+    for camera in &cameras {
+        let mut draw = |edges: &mut EdgeRenderer| {
+            mesh.prepare(&gpu.queue, camera, &grey_mesh());
+            edges.prepare(&gpu.queue, camera, &style);
+            target
+                .draw(
+                    gpu,
+                    BLUE_BACKGROUND,
+                    |encoder| edges.compute(encoder),
+                    |pass| {
+                        mesh.render(pass);
+                        edges.render(pass);
+                    },
+                )
+                .expect("draw");
+            target.read(gpu).expect("read")
+        };
+        let again = draw(&mut reused);
+        let mut fresh =
+            EdgeRenderer::new(&gpu.device, &target.formats(), &uploaded).expect("renderer");
+        assert!(again == draw(&mut fresh), "camera {:?}", camera.eye());
+    }
+}
