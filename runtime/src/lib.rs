@@ -14,4 +14,6 @@
 
 pub mod asset;
 #[cfg(feature = "render")]
+pub mod highlight;
+#[cfg(feature = "render")]
 pub mod render;
