@@ -580,3 +580,55 @@ fn a_renderer_reused_across_frames_draws_what_a_fresh_one_does() {
         assert!(again == draw(&mut fresh), "camera {:?}", camera.eye());
     }
 }
+
+/// Red length, in pixels, along the line through `p` in direction `dir` (±20 px).
+fn red_across(image: &Image, p: Vec2, dir: Vec2) -> f32 {
+    (-80..=80)
+        .map(|k| p + dir * (k as f32 * 0.25))
+        .filter(|q| is_red(pixel_at(image, *q)))
+        .count() as f32
+        * 0.25
+}
+
+#[test]
+fn depth_scaled_edges_are_wider_in_front_than_behind() {
+    let asset = bake_fixture("shapes/cube.obj");
+    let orbit = Orbit {
+        distance: Some(2.2),
+        fov_y_deg: 60.0,
+        ..Orbit::default()
+    };
+    let camera = Camera::orbit([[0.0; 3], [1.0; 3]], &orbit, [320, 320]);
+    let view_depth = |p: Vec3| -(camera.model_view * p.extend(1.0)).z;
+    let mut visible: Vec<(f32, Vec2, Vec2)> = cube_edges()
+        .into_iter()
+        .filter(|(a, b, normals)| {
+            let middle = (corner(*a) + corner(*b)) * 0.5;
+            normals.iter().any(|&n| faces_eye(&camera, n, middle))
+        })
+        .map(|(a, b, _)| {
+            let (pa, pb) = (project(&camera, corner(a)), project(&camera, corner(b)));
+            let along = (pb - pa).normalize();
+            (view_depth((corner(a) + corner(b)) * 0.5), (pa + pb) * 0.5, Vec2::new(-along.y, along.x))
+        })
+        .collect();
+    visible.sort_by(|x, y| x.0.total_cmp(&y.0));
+    let (near, far) = (visible[0], visible[visible.len() - 1]);
+    let widths = |depth_scaled| {
+        let style = EdgeStyle {
+            depth_scaled,
+            min_width_px: 2.0,
+            ..edges_in(RED, 10.0, CapMethod::NextIndex)
+        };
+        let image = render(&asset, &camera, Some(&grey_mesh()), Some(&style), BLUE_BACKGROUND);
+        (red_across(&image, near.1, near.2), red_across(&image, far.1, far.2))
+    };
+    let (near_flat, far_flat) = widths(false);
+    assert!((near_flat - 10.0).abs() <= 1.5 && (far_flat - 10.0).abs() <= 1.5, "{near_flat} {far_flat}");
+    let (near_scaled, far_scaled) = widths(true);
+    // The width follows 1 / depth (thesis §9.1): the ratio of the widths is the ratio of the depths.
+    let expected = far.0 / near.0;
+    assert!(expected > 1.3, "the camera must see depth: {expected}");
+    let ratio = near_scaled / far_scaled;
+    assert!((ratio - expected).abs() < 0.25 * expected, "widths {near_scaled} / {far_scaled} = {ratio}, depths {expected}");
+}
