@@ -61,6 +61,8 @@ fn classify(
     var word = 0xffffffffu;
     if contour && (frame.classes & CONTOUR) != 0u {
         word = COLOR_CONTOUR | DRAWN_CONTOUR | select(0u, INSIDE_V3, !front_a);
+    } else if frame.highlight != 0u && (flags & CHAMFER) != 0u && front_a && front_b {
+        word = COLOR_RIDGE | DRAWN_HIGHLIGHT;
     } else {
         let shown = flags & frame.classes;
         // A crease whose faces both look away is behind the mesh: skip it before it costs a quad.

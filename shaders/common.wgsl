@@ -27,6 +27,12 @@ struct Frame {
     heads_offset: u32,
     half_quads: u32,
     cap_capacity: u32,
+    // Chamfer edges are drawn as lit rounded strips (highlight.wgsl) instead of lines.
+    highlight: u32,
+    // Radii in the attributes are multiples of this (the asset's radius_scale).
+    radius_scale: f32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;
@@ -56,6 +62,9 @@ const INSIDE_V3: u32 = 512u;
 // plane moved (bits 11 and 12).
 const ON_SCREEN: u32 = 1024u;
 const CLIPPED_SHIFT: u32 = 11u;
+// A chamfer edge drawn as its lit rounded strip (seed 000): no joins, no caps.
+const DRAWN_HIGHLIGHT: u32 = 8192u;
+const CHAMFER: u32 = 128u;
 
 const PI: f32 = 3.14159265358979;
 const WORKGROUP: u32 = 256u;
@@ -100,7 +109,11 @@ fn from_pixels(px: vec2<f32>, depth: f32, w: f32) -> vec4<f32> {
 // Depth of a clip position moved `bias_px` pixels' worth of world distance towards the camera: the
 // edge wins against the faces it lies on, while anything farther behind a surface stays hidden.
 fn biased_depth(c: vec4<f32>) -> f32 {
-    let b = c + frame.bias_px * frame.pixel_scale * c.w * frame.proj_z;
+    return biased_depth_by(c, frame.bias_px);
+}
+
+fn biased_depth_by(c: vec4<f32>, bias_px: f32) -> f32 {
+    let b = c + bias_px * frame.pixel_scale * c.w * frame.proj_z;
     // A bias that reaches past the near plane puts the edge on it.
     if b.w <= 0.0 || b.z <= 0.0 {
         return 0.0;

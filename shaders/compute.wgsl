@@ -46,3 +46,6 @@ fn ring(i: u32) -> u32 {
 }
 // Per slot: the drawn edge's quad on screen (see ScreenRecord).
 @group(0) @binding(10) var<storage, read_write> screen: array<ScreenRecord>;
+@group(0) @binding(11) var<storage, read_write> chamfers: array<ChamferRecord>;
+@group(0) @binding(12) var<storage, read> cos_power: array<f32>;
+@group(0) @binding(13) var<uniform> lighting: Lighting;

@@ -4,6 +4,9 @@
 @group(0) @binding(7) var<storage, read> joins: array<vec2<u32>>;
 @group(0) @binding(8) var<storage, read> out: Out;
 @group(0) @binding(10) var<storage, read> screen: array<ScreenRecord>;
+@group(0) @binding(11) var<storage, read> chamfers: array<ChamferRecord>;
+@group(0) @binding(12) var<storage, read> cos_power: array<f32>;
+@group(0) @binding(13) var<uniform> lighting: Lighting;
 
 struct Cap {
     end: u32,

@@ -8,6 +8,8 @@ struct EdgeVarying {
     @location(1) @interpolate(flat) ends: vec4<f32>,
     // Split directions: end 0 left, end 0 right, end 1 left, end 1 right.
     @location(2) @interpolate(flat) splits: vec4<u32>,
+    // Slot and drawn word.
+    @location(3) @interpolate(flat) item: vec2<u32>,
 }
 
 @vertex
@@ -42,6 +44,7 @@ fn edge_vertex_main(
     let j0 = joins[2u * slot];
     let j1 = joins[2u * slot + 1u];
     v.splits = vec4<u32>(j0.x, j0.y, j1.x, j1.y);
+    v.item = vec2<u32>(slot, item.y);
     return v;
 }
 
@@ -57,9 +60,38 @@ fn on_own_side(q: vec2<f32>, a: vec2<f32>, split_left: u32, split_right: u32) ->
 fn edge_fragment(v: EdgeVarying) -> @location(0) vec4<f32> {
     let d = normalize(v.ends.zw - v.ends.xy);
     let pixel = v.position.xy;
+    if (v.item.y & DRAWN_HIGHLIGHT) != 0u {
+        return highlight_pixel(chamfers[v.item.x], dot(pixel - v.ends.xy, perp(d)));
+    }
     if !on_own_side(pixel - v.ends.xy, d, v.splits.x, v.splits.y)
         || !on_own_side(pixel - v.ends.zw, -d, v.splits.z, v.splits.w) {
         discard;
     }
     return v.color;
+}
+
+// The pixel `across_px` pixels across the sharp edge integrates the slice of the strip it covers.
+fn highlight_pixel(record: ChamferRecord, across_px: f32) -> vec4<f32> {
+    let arc = arc_of(record.n1.xyz, record.n2.xyz);
+    let middle = record.middle.xyz;
+    let to_viewer = to_viewer_at(middle);
+    let visible = visible_range(arc, to_viewer);
+    if visible.x >= visible.y {
+        discard;
+    }
+    let a = strip_offset(record, arc, visible.x);
+    let b = strip_offset(record, arc, visible.y);
+    let lo = max(min(a, b), across_px - 0.5);
+    let hi = min(max(a, b), across_px + 0.5);
+    if hi <= lo {
+        discard;
+    }
+    let ta = strip_angle(record, arc, visible, lo);
+    let tb = strip_angle(record, arc, visible, hi);
+    let range = vec2<f32>(min(ta, tb), max(ta, tb));
+    let intensity = arc_intensity(arc, record.across.xyz, to_light_at(middle), to_viewer, range);
+    // W = K r_e / (d r_max) (§3.2): r_e / r_max is the share of the pixel the strip covers.
+    let k_over_d = select(1.0, lighting.color.a / record.across.w, record.across.w > 0.0);
+    let weight = clamp(k_over_d * (hi - lo), 0.0, 1.0);
+    return vec4<f32>(lighting.color.rgb * intensity, weight);
 }

@@ -40,6 +40,9 @@ fn end_at(index: u32) -> End {
         return end;
     }
     let word = item.y;
+    if (word & DRAWN_HIGHLIGHT) != 0u {
+        return end;
+    }
     end.color = word & 0xffu;
     let s = from_record(screen[end.slot], word);
     if !s.visible || (s.clipped & (1u << k)) != 0u {

@@ -609,7 +609,11 @@ fn depth_scaled_edges_are_wider_in_front_than_behind() {
         .map(|(a, b, _)| {
             let (pa, pb) = (project(&camera, corner(a)), project(&camera, corner(b)));
             let along = (pb - pa).normalize();
-            (view_depth((corner(a) + corner(b)) * 0.5), (pa + pb) * 0.5, Vec2::new(-along.y, along.x))
+            (
+                view_depth((corner(a) + corner(b)) * 0.5),
+                (pa + pb) * 0.5,
+                Vec2::new(-along.y, along.x),
+            )
         })
         .collect();
     visible.sort_by(|x, y| x.0.total_cmp(&y.0));
@@ -620,15 +624,30 @@ fn depth_scaled_edges_are_wider_in_front_than_behind() {
             min_width_px: 2.0,
             ..edges_in(RED, 10.0, CapMethod::NextIndex)
         };
-        let image = render(&asset, &camera, Some(&grey_mesh()), Some(&style), BLUE_BACKGROUND);
-        (red_across(&image, near.1, near.2), red_across(&image, far.1, far.2))
+        let image = render(
+            &asset,
+            &camera,
+            Some(&grey_mesh()),
+            Some(&style),
+            BLUE_BACKGROUND,
+        );
+        (
+            red_across(&image, near.1, near.2),
+            red_across(&image, far.1, far.2),
+        )
     };
     let (near_flat, far_flat) = widths(false);
-    assert!((near_flat - 10.0).abs() <= 1.5 && (far_flat - 10.0).abs() <= 1.5, "{near_flat} {far_flat}");
+    assert!(
+        (near_flat - 10.0).abs() <= 1.5 && (far_flat - 10.0).abs() <= 1.5,
+        "{near_flat} {far_flat}"
+    );
     let (near_scaled, far_scaled) = widths(true);
     // The width follows 1 / depth (thesis §9.1): the ratio of the widths is the ratio of the depths.
     let expected = far.0 / near.0;
     assert!(expected > 1.3, "the camera must see depth: {expected}");
     let ratio = near_scaled / far_scaled;
-    assert!((ratio - expected).abs() < 0.25 * expected, "widths {near_scaled} / {far_scaled} = {ratio}, depths {expected}");
+    assert!(
+        (ratio - expected).abs() < 0.25 * expected,
+        "widths {near_scaled} / {far_scaled} = {ratio}, depths {expected}"
+    );
 }

@@ -110,6 +110,55 @@ pub struct EdgeStyle {
     pub half_quad_contours: bool,
     /// Skip creases and marked edges whose two faces both look away (closed meshes hide them anyway).
     pub cull_back_facing: bool,
+    /// Draw chamfer edges (those with a radius) as lit rounded strips (seed 000) instead of lines.
+    pub highlight: Option<Highlight>,
+}
+
+/// A light, in model space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Light {
+    /// Parallel light arriving from this direction (towards the light).
+    Directional([f32; 3]),
+    /// A point light at this position.
+    Point([f32; 3]),
+}
+
+/// The chamfer highlight's light and material (seed 000: Blinn's model, eq. 1).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Highlight {
+    /// The light.
+    pub light: Light,
+    /// The light's colour (linear RGB, intensity 1 = white).
+    pub color: [f32; 3],
+    /// Diffuse `R_d`, specular `R_s` and shininess `n` (1 to 128, any real value).
+    pub material: crate::highlight::strip::Material,
+    /// `K` of the blend weight `W = K r_e / (d r_max)` (§3.2); `None`: the camera's distance to the
+    /// model's centre, so a strip at that distance blends by exactly the share of the pixel it covers.
+    pub k: Option<f32>,
+}
+
+impl Default for Highlight {
+    fn default() -> Self {
+        Self {
+            light: Light::Directional([0.4, 0.8, 0.45]),
+            color: [1.0; 3],
+            material: crate::highlight::strip::Material {
+                diffuse: 0.7,
+                specular: 0.5,
+                shininess: 32.0,
+            },
+            k: None,
+        }
+    }
+}
+
+/// `Lighting` in `shaders/highlight.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+struct LightingUniform {
+    light: [f32; 4],
+    color: [f32; 4],
+    material: [f32; 4],
 }
 
 impl Default for EdgeStyle {
@@ -124,6 +173,7 @@ impl Default for EdgeStyle {
             caps: CapMethod::NextIndex,
             half_quad_contours: true,
             cull_back_facing: true,
+            highlight: None,
         }
     }
 }
@@ -151,6 +201,9 @@ struct FrameUniform {
     heads_offset: u32,
     half_quads: u32,
     cap_capacity: u32,
+    highlight: u32,
+    radius_scale: f32,
+    _pad: [u32; 2],
 }
 
 /// Bytes of `Out` in the shaders before the cap list: two indirect draws and padding.
@@ -177,6 +230,13 @@ pub struct EdgeRenderer {
     /// The face planes are computed by the first [`EdgeRenderer::compute`].
     planes_ready: AtomicBool,
     face_planes: wgpu::ComputePipeline,
+    chamfer_records: wgpu::ComputePipeline,
+    records_group: wgpu::BindGroup,
+    cos_power: wgpu::Buffer,
+    lighting: wgpu::Buffer,
+    /// The exponent the cos-power row holds now.
+    row_exponent: Option<f32>,
+    highlight: bool,
     reset: wgpu::ComputePipeline,
     classify: wgpu::ComputePipeline,
     args: wgpu::ComputePipeline,
@@ -212,7 +272,7 @@ impl EdgeRenderer {
             }
             Ok(device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(what),
-                size: bytes.max(16),
+                size: bytes.max(64),
                 usage: wgpu::BufferUsages::STORAGE | usage,
                 mapped_at_creation: false,
             }))
@@ -237,10 +297,24 @@ impl EdgeRenderer {
 
         let planes = storage("face planes", 32 * edges, none)?;
         let screen = storage("screen quads", 48 * edges, none)?;
+        // Highlight records, only where the asset has chamfer edges to highlight.
+        let chamfer_slots = if asset.has_chamfers { edges } else { 0 };
+        let chamfers = storage("chamfer records", 64 * chamfer_slots, none)?;
+        let cos_power = storage(
+            "cos power row",
+            4 * (crate::highlight::table::SAMPLES as u64 + 1),
+            wgpu::BufferUsages::COPY_DST,
+        )?;
+        let lighting = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("highlight lighting"),
+            size: std::mem::size_of::<LightingUniform>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
 
         // Binding numbers are the shaders' (common.wgsl, compute.wgsl, draw.wgsl); each pass binds
         // only what it uses, which keeps every stage within the default limit of 8 storage buffers.
-        let buffers: [(u32, &wgpu::Buffer); 11] = [
+        let buffers: [(u32, &wgpu::Buffer); 14] = [
             (0, &frame),
             (1, &asset.topology_positions),
             (2, &asset.edge_vertices),
@@ -252,12 +326,15 @@ impl EdgeRenderer {
             (8, &out),
             (9, &planes),
             (10, &screen),
+            (11, &chamfers),
+            (12, &cos_power),
+            (13, &lighting),
         ];
-        let bindings = |label, stages, storage: &[(u32, bool)]| {
+        let bindings = |label, stages, storage: &[(u32, Access)]| {
             binding_set(device, label, stages, &buffers, storage)
         };
         let compute = wgpu::ShaderStages::COMPUTE;
-        let (read, write) = (true, false);
+        let (read, write, uniform) = (Access::Read, Access::Write, Access::Uniform);
         let planes_set = bindings(
             "face planes",
             compute,
@@ -289,10 +366,32 @@ impl EdgeRenderer {
                 (10, write),
             ],
         );
+        let records_set = bindings(
+            "chamfer records",
+            compute,
+            &[
+                (1, read),
+                (2, read),
+                (3, read),
+                (6, write),
+                (8, write),
+                (9, write),
+                (10, write),
+                (11, write),
+            ],
+        );
         let draw_set = bindings(
             "edge draw",
             wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT,
-            &[(6, read), (7, read), (8, read), (10, read)],
+            &[
+                (6, read),
+                (7, read),
+                (8, read),
+                (10, read),
+                (11, read),
+                (12, read),
+                (13, uniform),
+            ],
         );
         let args_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("edge args"),
@@ -387,6 +486,16 @@ impl EdgeRenderer {
 
         Ok(Self {
             face_planes: compute_pipeline(&planes_set.0, &classify_module, "face_planes"),
+            chamfer_records: compute_pipeline(
+                &records_set.0,
+                &module("chamfers.wgsl", &shaders::chamfers()),
+                "chamfer_records",
+            ),
+            records_group: records_set.1,
+            cos_power,
+            lighting,
+            row_exponent: None,
+            highlight: false,
             reset: compute_pipeline(&classify_set.0, &classify_module, "reset"),
             classify: compute_pipeline(&classify_set.0, &classify_module, "classify"),
             finish: compute_pipeline(&classify_set.0, &classify_module, "finish"),
@@ -426,6 +535,7 @@ impl EdgeRenderer {
                 head_count: asset.head_count,
                 heads_offset: asset.heads_offset,
                 cap_capacity: cap_capacity as u32,
+                radius_scale: asset.radius_scale,
                 ..bytemuck::Zeroable::zeroed()
             },
             caps: CapMethod::NextIndex,
@@ -458,6 +568,35 @@ impl EdgeRenderer {
             half_quads: u32::from(style.half_quad_contours),
             ..self.uniform
         };
+        self.highlight = false;
+        if let Some(highlight) = &style.highlight {
+            self.highlight = true;
+            let material = highlight.material;
+            let exponent = material.shininess.clamp(1.0, 128.0) + 1.0;
+            if self.row_exponent != Some(exponent) {
+                let row = crate::highlight::table::CosPowerRow::new(exponent);
+                queue.write_buffer(&self.cos_power, 0, bytemuck::cast_slice(row.values()));
+                self.row_exponent = Some(exponent);
+            }
+            let light = match highlight.light {
+                Light::Directional(d) => {
+                    let d = Vec3::from(d).normalize_or(Vec3::Z);
+                    [d.x, d.y, d.z, 0.0]
+                }
+                Light::Point([x, y, z]) => [x, y, z, 1.0],
+            };
+            let k = highlight
+                .k
+                .unwrap_or_else(|| camera.eye().truncate().distance(self.center));
+            let [r, g, b] = highlight.color;
+            let uniform = LightingUniform {
+                light,
+                color: [r, g, b, k],
+                material: [material.diffuse, material.specular, exponent - 1.0, 0.0],
+            };
+            queue.write_buffer(&self.lighting, 0, bytemuck::bytes_of(&uniform));
+        }
+        self.uniform.highlight = u32::from(self.highlight);
         self.caps = if self.has_rings {
             style.caps
         } else {
@@ -484,13 +623,13 @@ impl EdgeRenderer {
             pass.dispatch_workgroups(1, 1, 1);
             pass.set_pipeline(&self.classify);
             pass.dispatch_workgroups(x, y, 1);
-            if self.caps != CapMethod::None {
+            if self.caps != CapMethod::None || self.highlight {
                 pass.set_bind_group(0, &self.args_group, &[]);
                 pass.set_pipeline(&self.args);
                 pass.dispatch_workgroups(1, 1, 1);
             }
         }
-        if self.caps == CapMethod::None {
+        if self.caps == CapMethod::None && !self.highlight {
             return;
         }
         // A new pass: the dispatch arguments written above are read as an indirect buffer here.
@@ -498,6 +637,12 @@ impl EdgeRenderer {
             label: Some("chamfer joins"),
             timestamp_writes: None,
         });
+        if self.highlight {
+            // One thread per drawn edge end: twice as many as records need; the rest return.
+            pass.set_bind_group(0, &self.records_group, &[]);
+            pass.set_pipeline(&self.chamfer_records);
+            pass.dispatch_workgroups_indirect(&self.dispatch, 0);
+        }
         pass.set_bind_group(0, &self.joins_group, &[]);
         match self.caps {
             CapMethod::NextIndex => {
@@ -609,17 +754,25 @@ fn storage_entry(
     }
 }
 
-/// A layout and its bind group: the frame uniform at binding 0 plus the storage buffers
-/// `(binding, read_only)`, taken from `buffers` by binding number.
+/// How a pass uses a binding.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Access {
+    Read,
+    Write,
+    Uniform,
+}
+
+/// A layout and its bind group: the frame uniform at binding 0 plus `bindings`, whose buffers are
+/// taken from `buffers` by binding number.
 fn binding_set(
     device: &wgpu::Device,
     label: &str,
     visibility: wgpu::ShaderStages,
     buffers: &[(u32, &wgpu::Buffer)],
-    storage: &[(u32, bool)],
+    bindings: &[(u32, Access)],
 ) -> (wgpu::BindGroupLayout, wgpu::BindGroup) {
-    let mut entries = vec![wgpu::BindGroupLayoutEntry {
-        binding: 0,
+    let uniform = |binding| wgpu::BindGroupLayoutEntry {
+        binding,
         visibility,
         ty: wgpu::BindingType::Buffer {
             ty: wgpu::BufferBindingType::Uniform,
@@ -627,12 +780,13 @@ fn binding_set(
             min_binding_size: None,
         },
         count: None,
-    }];
-    entries.extend(
-        storage
-            .iter()
-            .map(|&(binding, read_only)| storage_entry(binding, read_only, visibility)),
-    );
+    };
+    let mut entries = vec![uniform(0)];
+    entries.extend(bindings.iter().map(|&(binding, access)| match access {
+        Access::Read => storage_entry(binding, true, visibility),
+        Access::Write => storage_entry(binding, false, visibility),
+        Access::Uniform => uniform(binding),
+    }));
     let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some(label),
         entries: &entries,

@@ -29,6 +29,7 @@ pub struct GpuAsset {
     pub(crate) edges_u16: bool,
     pub(crate) rings_u16: bool,
     pub(crate) has_rings: bool,
+    pub(crate) has_chamfers: bool,
     pub(crate) bounds: [[f32; 3]; 2],
     pub(crate) radius_scale: f32,
 }
@@ -100,6 +101,9 @@ impl GpuAsset {
             edges_u16: asset.edge_vertices.width() == IndexWidth::U16,
             rings_u16,
             has_rings: !asset.next_ends.is_empty(),
+            has_chamfers: asset.edge_attributes.iter().any(|&w| {
+                crate::asset::attribute_flags(w).contains(crate::asset::EdgeFlags::CHAMFER)
+            }),
             bounds: [asset.header.bounds_min, asset.header.bounds_max],
             radius_scale: asset.header.radius_scale,
         })

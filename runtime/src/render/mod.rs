@@ -47,7 +47,9 @@ mod offscreen;
 mod shaders;
 
 pub use camera::{Camera, Orbit};
-pub use edges::{CapMethod, DrawCounts, EdgeClasses, EdgeColors, EdgeRenderer, EdgeStyle};
+pub use edges::{
+    CapMethod, DrawCounts, EdgeClasses, EdgeColors, EdgeRenderer, EdgeStyle, Highlight, Light,
+};
 pub use error::RenderError;
 pub use gpu_asset::GpuAsset;
 pub use mesh::{MeshRenderer, MeshStyle};

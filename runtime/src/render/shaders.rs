@@ -4,11 +4,13 @@
 const COMMON: &str = include_str!("../../../shaders/common.wgsl");
 const COMPUTE: &str = include_str!("../../../shaders/compute.wgsl");
 const DRAW: &str = include_str!("../../../shaders/draw.wgsl");
+const HIGHLIGHT: &str = include_str!("../../../shaders/highlight.wgsl");
 
 /// Edge classification, plus the per-frame reset and the final clamp.
 pub fn classify() -> String {
     [
         COMMON,
+        HIGHLIGHT,
         COMPUTE,
         include_str!("../../../shaders/classify.wgsl"),
     ]
@@ -20,17 +22,46 @@ pub const ARGS: &str = include_str!("../../../shaders/args.wgsl");
 
 /// Joins and caps, by next-index walk or cap buffer.
 pub fn joins() -> String {
-    [COMMON, COMPUTE, include_str!("../../../shaders/joins.wgsl")].concat()
+    [
+        COMMON,
+        HIGHLIGHT,
+        COMPUTE,
+        include_str!("../../../shaders/joins.wgsl"),
+    ]
+    .concat()
+}
+
+/// Chamfer records of highlighted edges.
+pub fn chamfers() -> String {
+    [
+        COMMON,
+        HIGHLIGHT,
+        COMPUTE,
+        include_str!("../../../shaders/chamfers.wgsl"),
+    ]
+    .concat()
 }
 
 /// Edge quads.
 pub fn edges() -> String {
-    [COMMON, DRAW, include_str!("../../../shaders/edges.wgsl")].concat()
+    [
+        COMMON,
+        HIGHLIGHT,
+        DRAW,
+        include_str!("../../../shaders/edges.wgsl"),
+    ]
+    .concat()
 }
 
 /// Cap sectors.
 pub fn caps() -> String {
-    [COMMON, DRAW, include_str!("../../../shaders/caps.wgsl")].concat()
+    [
+        COMMON,
+        HIGHLIGHT,
+        DRAW,
+        include_str!("../../../shaders/caps.wgsl"),
+    ]
+    .concat()
 }
 
 /// The lit mesh.

@@ -1,0 +1,64 @@
+// Per frame, after classify, one thread per drawn slot: for each highlighted chamfer edge, what its
+// pixels need (a ChamferRecord, see highlight.wgsl), and its quad widened to the strip's projection.
+
+@compute @workgroup_size(256)
+fn chamfer_records(@builtin(global_invocation_id) id: vec3<u32>) {
+    let slot = thread_index(id);
+    if slot >= atomicLoad(&out.edges.instance_count) {
+        return;
+    }
+    let item = drawn[slot];
+    if (item.y & DRAWN_HIGHLIGHT) == 0u {
+        return;
+    }
+    let e = item.x;
+    let n1 = normalize(planes[2u * e].xyz);
+    let n2 = normalize(planes[2u * e + 1u].xyz);
+    let p0 = position(edge_vertex(4u * e));
+    let p1 = position(edge_vertex(4u * e + 1u));
+    let middle = 0.5 * (p0 + p1);
+    let to_viewer = to_viewer_at(middle);
+    var across = normalize(cross(to_viewer, normalize(p1 - p0)));
+    let s = from_record(screen[slot], item.y);
+    let c = frame.mvp * vec4<f32>(middle, 1.0);
+    let pixel = frame.pixel_scale * c.w;
+    // P must point along the quad's left normal on screen.
+    let nudged = frame.mvp * vec4<f32>(middle + across * pixel, 1.0);
+    if dot(to_pixels(nudged) - to_pixels(c), perp(s.d)) < 0.0 {
+        across = -across;
+    }
+    let radius = unpack2x16float(attributes[e] >> 16u).x * frame.radius_scale;
+    let distance = select(0.0, length(frame.eye.xyz - middle), frame.eye.w > 0.0);
+    let record = ChamferRecord(
+        vec4<f32>(n1, radius / pixel),
+        vec4<f32>(n2, dot(across, n1 + n2) / (1.0 + dot(n1, n2))),
+        vec4<f32>(across, distance),
+        vec4<f32>(middle, radius),
+    );
+    chamfers[slot] = record;
+
+    // The quad covers the visible strip plus a pixel, on whichever side of the sharp edge it lies,
+    // and sits that much further forward in depth so the faces it overlaps do not hide it.
+    let arc = arc_of(n1, n2);
+    let visible = visible_range(arc, to_viewer);
+    var left = 0.0;
+    var right = 0.0;
+    if visible.x < visible.y {
+        let a = strip_offset(record, arc, visible.x);
+        let b = strip_offset(record, arc, visible.y);
+        left = max(max(a, b), 0.0) + 1.0;
+        right = max(-min(a, b), 0.0) + 1.0;
+    }
+    var r = screen[slot];
+    r.extents = vec4<f32>(left, left, right, right);
+    let c0 = frame.mvp * vec4<f32>(p0, 1.0);
+    let c1 = frame.mvp * vec4<f32>(p1, 1.0);
+    let bias = frame.bias_px + max(left, right);
+    if (s.clipped & 1u) == 0u {
+        r.depth_w.x = biased_depth_by(c0, bias);
+    }
+    if (s.clipped & 2u) == 0u {
+        r.depth_w.y = biased_depth_by(c1, bias);
+    }
+    screen[slot] = r;
+}

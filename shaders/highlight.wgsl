@@ -1,0 +1,152 @@
+// The chamfer highlight of seed 000: a chamfer edge drawn as the rounded strip (a partial cylinder of
+// the edge's radius, normals sweeping from one face's normal to the other's) it stands for, each
+// pixel lit by Blinn's model integrated in closed form over the part of the arc the pixel sees
+// (§3.1, eq. 3-5), then blended over the mesh with W = K r_e / (d r_max) (§3.2). Where the strip is
+// wider than a pixel (beyond the paper's limit, §4) every pixel integrates its own slice of the arc,
+// so near edges stay right. The CPU twin of this code, tested against sampling the arc, is
+// runtime/src/highlight/strip.rs; the table is runtime/src/highlight/table.rs.
+//
+// Shared by the compute side (chamfer_records, after classify) and the edge fragment shader; each
+// module that includes it declares `chamfers`, `cos_power` and `lighting` (compute.wgsl or draw.wgsl).
+
+// Per drawn slot of a highlighted edge, in model space.
+struct ChamferRecord {
+    // Face normals (unit); `n1.w` is the radius in pixels at the edge's middle.
+    n1: vec4<f32>,
+    // `n2.w`: the sharp edge's offset from the strip, P·(N1 + N2) / (1 + N1·N2).
+    n2: vec4<f32>,
+    // The screen's across direction P (unit, perpendicular to the edge and the view); `w`: the
+    // distance from the eye to the edge's middle.
+    across: vec4<f32>,
+    // The edge's middle; `w`: the radius in mesh units.
+    middle: vec4<f32>,
+}
+
+struct Lighting {
+    // xyz: towards the light (w = 0) or the light's position (w = 1), model space.
+    light: vec4<f32>,
+    // rgb: the light's colour; a: K of the blend weight.
+    color: vec4<f32>,
+    // R_d, R_s, shininess n, unused.
+    material: vec4<f32>,
+}
+
+const SAMPLES: f32 = 128.0;
+
+// F(φ, n + 1) from the row, Hermite with exact slopes cos^(n+1) (table.rs), odd in φ.
+fn cos_power_integral(phi: f32) -> f32 {
+    let m = lighting.material.z + 1.0;
+    let h = 0.5 * PI / SAMPLES;
+    let x = min(abs(phi), 0.5 * PI) / h;
+    let i = min(u32(x), u32(SAMPLES) - 1u);
+    let t = x - f32(i);
+    let s0 = pow(max(cos(f32(i) * h), 0.0), m) * h;
+    let s1 = pow(max(cos(f32(i + 1u) * h), 0.0), m) * h;
+    let t2 = t * t;
+    let t3 = t2 * t;
+    let value = (2.0 * t3 - 3.0 * t2 + 1.0) * cos_power[i] + (t3 - 2.0 * t2 + t) * s0
+        + (-2.0 * t3 + 3.0 * t2) * cos_power[i + 1u] + (t3 - t2) * s1;
+    return sign(phi) * value;
+}
+
+// The arc's frame: angles from n1, towards n2.
+struct Arc {
+    ex: vec3<f32>,
+    ey: vec3<f32>,
+    ez: vec3<f32>,
+    span: f32,
+}
+
+fn arc_of(n1: vec3<f32>, n2: vec3<f32>) -> Arc {
+    let ez = normalize(cross(n1, n2));
+    return Arc(n1, cross(ez, n1), ez, acos(clamp(dot(n1, n2), -1.0, 1.0)));
+}
+
+fn angle_in(arc: Arc, v: vec3<f32>) -> vec2<f32> {
+    let x = dot(v, arc.ex);
+    let y = dot(v, arc.ey);
+    return vec2<f32>(atan2(y, x), length(vec2<f32>(x, y)));
+}
+
+// [a, b] clipped to the half-turn lobe centred on c; empty when x >= y.
+fn clip_lobe(range: vec2<f32>, c: f32) -> vec2<f32> {
+    let centre = select(c, c + 2.0 * PI, c < -0.5 * PI);
+    return vec2<f32>(max(range.x, centre - 0.5 * PI), min(range.y, centre + 0.5 * PI));
+}
+
+// ∫ (N·v)₊^m (P·T) dθ over `range`; `closed_f` picks F(·, 2) in closed form (diffuse, m = 1).
+fn lobe(arc: Arc, across: vec3<f32>, v: vec3<f32>, range: vec2<f32>, m: f32, closed_f: bool) -> f32 {
+    let polar = angle_in(arc, v);
+    if polar.y < 1e-6 {
+        return 0.0;
+    }
+    let clipped = clip_lobe(range, polar.x);
+    if clipped.x >= clipped.y {
+        return 0.0;
+    }
+    let centre = select(polar.x, polar.x + 2.0 * PI, polar.x < -0.5 * PI);
+    let u = clipped - vec2<f32>(centre);
+    let ex = arc.ex * cos(centre) + arc.ey * sin(centre);
+    let ey = cross(arc.ez, ex);
+    let px = dot(across, ex);
+    let py = dot(across, ey);
+    var f = vec2<f32>(0.0);
+    if closed_f {
+        f = 0.5 * u + 0.25 * sin(2.0 * u);
+    } else {
+        f = vec2<f32>(cos_power_integral(u.x), cos_power_integral(u.y));
+    }
+    let power = pow(max(cos(u), vec2<f32>(0.0)), vec2<f32>(m + 1.0));
+    return pow(polar.y, m) * (py * (f.y - f.x) + px / (m + 1.0) * (power.y - power.x));
+}
+
+// Mean Blinn intensity over the arc range (angles from n1) under one light.
+fn arc_intensity(arc: Arc, across: vec3<f32>, to_light: vec3<f32>, to_viewer: vec3<f32>, range: vec2<f32>) -> f32 {
+    let projected = dot(arc.ex * (cos(range.y) - cos(range.x)) + arc.ey * (sin(range.y) - sin(range.x)), across);
+    if abs(projected) < 1e-9 {
+        return 0.0;
+    }
+    let half = normalize(to_light + to_viewer);
+    let diffuse = lobe(arc, across, to_light, range, 1.0, true);
+    let specular = lobe(arc, across, half, range, lighting.material.z, false);
+    return max((lighting.material.x * diffuse + lighting.material.y * specular) / projected, 0.0);
+}
+
+// The visible arc: where the strip's normal faces the viewer.
+fn visible_range(arc: Arc, to_viewer: vec3<f32>) -> vec2<f32> {
+    return clip_lobe(vec2<f32>(0.0, arc.span), angle_in(arc, to_viewer).x);
+}
+
+fn to_viewer_at(p: vec3<f32>) -> vec3<f32> {
+    return normalize(frame.eye.xyz - p * frame.eye.w);
+}
+
+fn to_light_at(p: vec3<f32>) -> vec3<f32> {
+    return normalize(lighting.light.xyz - p * lighting.light.w);
+}
+
+// Screen offset (pixels, along the quad's left normal) of the strip's point with normal angle θ.
+fn strip_offset(record: ChamferRecord, arc: Arc, theta: f32) -> f32 {
+    let normal = arc.ex * cos(theta) + arc.ey * sin(theta);
+    return record.n1.w * (dot(record.across.xyz, normal) - record.n2.w);
+}
+
+// The angle on the visible arc whose point lies `offset` pixels across (inverse of strip_offset).
+fn strip_angle(record: ChamferRecord, arc: Arc, visible: vec2<f32>, offset: f32) -> f32 {
+    let p = angle_in(arc, record.across.xyz);
+    let c = clamp((offset / record.n1.w + record.n2.w) / max(p.y, 1e-6), -1.0, 1.0);
+    let a = p.x + acos(c);
+    let b = p.x - acos(c);
+    // One of the two solutions (mod 2π) lies on the visible arc.
+    let candidates = array<f32, 4>(a, b, a - 2.0 * PI, b + 2.0 * PI);
+    var best = candidates[0];
+    var best_miss = 1e9;
+    for (var k = 0u; k < 4u; k += 1u) {
+        let miss = max(visible.x - candidates[k], 0.0) + max(candidates[k] - visible.y, 0.0);
+        if miss < best_miss {
+            best_miss = miss;
+            best = candidates[k];
+        }
+    }
+    return clamp(best, visible.x, visible.y);
+}
