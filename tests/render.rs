@@ -651,3 +651,74 @@ fn depth_scaled_edges_are_wider_in_front_than_behind() {
         "widths {near_scaled} / {far_scaled} = {ratio}, depths {expected}"
     );
 }
+
+#[test]
+fn a_highlighted_chamfer_sums_to_the_integral_of_its_rounded_strip() {
+    use chamfer_preprocess::{BakeOptions, Radius};
+    use chamfer_runtime::highlight::strip::{self, ArcView, Material};
+    use chamfer_runtime::highlight::table::CosPowerRow;
+    use chamfer_runtime::render::{Highlight, Light};
+    let radius = 0.06;
+    let path = chamfer_tests::fixture("shapes/cube.obj");
+    let options = BakeOptions::DEFAULT.with_radius(Radius::Absolute(radius));
+    let asset = chamfer_preprocess::bake_file(&path, &options).expect("bake").asset;
+    assert_eq!(asset.header.stats.chamfer.edges, 12);
+    let camera = cube_camera(320, false);
+    let black_mesh = MeshStyle {
+        color: [0.0, 0.0, 0.0, 1.0],
+        ambient: 1.0,
+        ..MeshStyle::default()
+    };
+    let material = Material {
+        diffuse: 0.6,
+        specular: 0.5,
+        shininess: 12.5,
+    };
+    let to_light = Vec3::new(0.3, 0.9, 0.6).normalize();
+    // The edge between the two faces nearest the camera: x = 1 and z = 1, along y.
+    let (a, b) = (corner(5), corner(7));
+    let middle = (a + b) * 0.5;
+    let eye = camera.eye().truncate();
+    let highlight = Highlight {
+        light: Light::Directional(to_light.to_array()),
+        color: [0.5; 3],
+        material,
+        k: Some(eye.distance(middle)),
+    };
+    let style = EdgeStyle {
+        highlight: Some(highlight),
+        classes: EdgeClasses::RIDGE,
+        ..EdgeStyle::default()
+    };
+    let image = render(&asset, &camera, Some(&black_mesh), Some(&style), [0.0, 0.0, 0.0, 1.0]);
+
+    // On screen: light summed across the strip, in units of full white.
+    let (pa, pb) = (project(&camera, a), project(&camera, b));
+    let along = (pb - pa).normalize();
+    let normal = Vec2::new(-along.y, along.x);
+    let summed = |t: f32| -> f32 {
+        let p = pa.lerp(pb, t);
+        (-40..=40).map(|k| f32::from(pixel_at(&image, p + normal * k as f32)[0]) / 255.0).sum()
+    };
+
+    // The same from the CPU twin: mean intensity over the visible arc × its projected width.
+    let to_viewer = (eye - middle).normalize();
+    let view = ArcView {
+        n1: Vec3::X,
+        n2: Vec3::Z,
+        to_light,
+        to_viewer,
+        across: to_viewer.cross(Vec3::Y).normalize(),
+    };
+    let visible = strip::visible_arc(&view).expect("the edge faces the camera");
+    let row = CosPowerRow::new(material.shininess + 1.0);
+    let (mean, projected) = strip::arc_intensity(&view, visible, &material, &row);
+    let clip_w = (camera.view_projection() * middle.extend(1.0)).w;
+    let radius_px = radius / (camera.pixel_scale() * clip_w);
+    let expected = 0.5 * mean * projected * radius_px;
+    assert!(radius_px > 4.0, "the strip must be several pixels wide: {radius_px}");
+    for t in [0.35, 0.5, 0.65] {
+        let got = summed(t);
+        assert!((got - expected).abs() < 0.08 * expected, "at {t}: {got} on screen, {expected} expected");
+    }
+}
