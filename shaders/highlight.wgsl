@@ -27,7 +27,7 @@ struct Lighting {
     light: vec4<f32>,
     // rgb: the light's colour; a: K of the blend weight.
     color: vec4<f32>,
-    // R_d, R_s, shininess n, unused.
+    // R_d, R_s, shininess n, ambient share of R_d.
     material: vec4<f32>,
 }
 
@@ -109,7 +109,9 @@ fn arc_intensity(arc: Arc, across: vec3<f32>, to_light: vec3<f32>, to_viewer: ve
     let half = normalize(to_light + to_viewer);
     let diffuse = lobe(arc, across, to_light, range, 1.0, true);
     let specular = lobe(arc, across, half, range, lighting.material.z, false);
-    return max((lighting.material.x * diffuse + lighting.material.y * specular) / projected, 0.0);
+    let ambient = lighting.material.w;
+    let lit = (lighting.material.x * (1.0 - ambient) * diffuse + lighting.material.y * specular) / projected;
+    return max(lit + lighting.material.x * ambient, 0.0);
 }
 
 // The visible arc: where the strip's normal faces the viewer.

@@ -1,13 +1,15 @@
-// The runtime's simple lit mesh pass: crease-split normals, one directional light plus ambient,
+// The runtime's simple lit mesh pass: crease-split normals, one light, Blinn's model plus ambient,
 // lit on both sides so open meshes read correctly from behind.
 
 struct MeshFrame {
     mvp: mat4x4<f32>,
-    // Direction towards the light, in model space, unit length.
+    // Towards the light (w = 0, unit) or the light's position (w = 1), model space.
     light: vec4<f32>,
     color: vec4<f32>,
-    // x: ambient share of the colour.
+    // x: ambient share of the colour, y: specular reflectance, z: shininess.
     params: vec4<f32>,
+    // The camera in model space: a point (w = 1) or a direction towards the viewer (w = 0).
+    eye: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> mesh: MeshFrame;
@@ -15,17 +17,21 @@ struct MeshFrame {
 struct MeshVarying {
     @builtin(position) position: vec4<f32>,
     @location(0) normal: vec3<f32>,
+    @location(1) model_position: vec3<f32>,
 }
 
 @vertex
 fn mesh_vertex(@location(0) position: vec3<f32>, @location(1) normal: vec3<f32>) -> MeshVarying {
-    return MeshVarying(mesh.mvp * vec4<f32>(position, 1.0), normal);
+    return MeshVarying(mesh.mvp * vec4<f32>(position, 1.0), normal, position);
 }
 
 @fragment
 fn mesh_fragment(v: MeshVarying, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
     let n = normalize(select(-v.normal, v.normal, front));
-    let diffuse = max(dot(n, mesh.light.xyz), 0.0);
+    let to_light = normalize(mesh.light.xyz - v.model_position * mesh.light.w);
+    let to_viewer = normalize(mesh.eye.xyz - v.model_position * mesh.eye.w);
+    let diffuse = max(dot(n, to_light), 0.0);
+    let specular = mesh.params.y * pow(max(dot(n, normalize(to_light + to_viewer)), 0.0), mesh.params.z);
     let ambient = mesh.params.x;
-    return vec4<f32>(mesh.color.rgb * (ambient + (1.0 - ambient) * diffuse), mesh.color.a);
+    return vec4<f32>(mesh.color.rgb * (ambient + (1.0 - ambient) * diffuse) + specular, mesh.color.a);
 }

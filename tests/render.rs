@@ -661,7 +661,9 @@ fn a_highlighted_chamfer_sums_to_the_integral_of_its_rounded_strip() {
     let radius = 0.06;
     let path = chamfer_tests::fixture("shapes/cube.obj");
     let options = BakeOptions::DEFAULT.with_radius(Radius::Absolute(radius));
-    let asset = chamfer_preprocess::bake_file(&path, &options).expect("bake").asset;
+    let asset = chamfer_preprocess::bake_file(&path, &options)
+        .expect("bake")
+        .asset;
     assert_eq!(asset.header.stats.chamfer.edges, 12);
     let camera = cube_camera(320, false);
     let black_mesh = MeshStyle {
@@ -683,6 +685,7 @@ fn a_highlighted_chamfer_sums_to_the_integral_of_its_rounded_strip() {
         light: Light::Directional(to_light.to_array()),
         color: [0.5; 3],
         material,
+        ambient: 0.0,
         k: Some(eye.distance(middle)),
     };
     let style = EdgeStyle {
@@ -690,7 +693,13 @@ fn a_highlighted_chamfer_sums_to_the_integral_of_its_rounded_strip() {
         classes: EdgeClasses::RIDGE,
         ..EdgeStyle::default()
     };
-    let image = render(&asset, &camera, Some(&black_mesh), Some(&style), [0.0, 0.0, 0.0, 1.0]);
+    let image = render(
+        &asset,
+        &camera,
+        Some(&black_mesh),
+        Some(&style),
+        [0.0, 0.0, 0.0, 1.0],
+    );
 
     // On screen: light summed across the strip, in units of full white.
     let (pa, pb) = (project(&camera, a), project(&camera, b));
@@ -698,7 +707,9 @@ fn a_highlighted_chamfer_sums_to_the_integral_of_its_rounded_strip() {
     let normal = Vec2::new(-along.y, along.x);
     let summed = |t: f32| -> f32 {
         let p = pa.lerp(pb, t);
-        (-40..=40).map(|k| f32::from(pixel_at(&image, p + normal * k as f32)[0]) / 255.0).sum()
+        (-40..=40)
+            .map(|k| f32::from(pixel_at(&image, p + normal * k as f32)[0]) / 255.0)
+            .sum()
     };
 
     // The same from the CPU twin: mean intensity over the visible arc × its projected width.
@@ -716,9 +727,15 @@ fn a_highlighted_chamfer_sums_to_the_integral_of_its_rounded_strip() {
     let clip_w = (camera.view_projection() * middle.extend(1.0)).w;
     let radius_px = radius / (camera.pixel_scale() * clip_w);
     let expected = 0.5 * mean * projected * radius_px;
-    assert!(radius_px > 4.0, "the strip must be several pixels wide: {radius_px}");
+    assert!(
+        radius_px > 4.0,
+        "the strip must be several pixels wide: {radius_px}"
+    );
     for t in [0.35, 0.5, 0.65] {
         let got = summed(t);
-        assert!((got - expected).abs() < 0.08 * expected, "at {t}: {got} on screen, {expected} expected");
+        assert!(
+            (got - expected).abs() < 0.08 * expected,
+            "at {t}: {got} on screen, {expected} expected"
+        );
     }
 }

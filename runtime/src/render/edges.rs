@@ -132,6 +132,8 @@ pub struct Highlight {
     pub color: [f32; 3],
     /// Diffuse `R_d`, specular `R_s` and shininess `n` (1 to 128, any real value).
     pub material: crate::highlight::strip::Material,
+    /// Share of `R_d` lit regardless of the light (0 in the paper), as [`super::MeshStyle::ambient`].
+    pub ambient: f32,
     /// `K` of the blend weight `W = K r_e / (d r_max)` (§3.2); `None`: the camera's distance to the
     /// model's centre, so a strip at that distance blends by exactly the share of the pixel it covers.
     pub k: Option<f32>,
@@ -147,6 +149,7 @@ impl Default for Highlight {
                 specular: 0.5,
                 shininess: 32.0,
             },
+            ambient: 0.0,
             k: None,
         }
     }
@@ -592,7 +595,12 @@ impl EdgeRenderer {
             let uniform = LightingUniform {
                 light,
                 color: [r, g, b, k],
-                material: [material.diffuse, material.specular, exponent - 1.0, 0.0],
+                material: [
+                    material.diffuse,
+                    material.specular,
+                    exponent - 1.0,
+                    highlight.ambient.clamp(0.0, 1.0),
+                ],
             };
             queue.write_buffer(&self.lighting, 0, bytemuck::bytes_of(&uniform));
         }

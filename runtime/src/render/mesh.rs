@@ -2,25 +2,41 @@
 
 use glam::Vec3;
 
-use super::{Camera, GpuAsset, Target, shaders};
+use super::{Camera, GpuAsset, Light, Target, shaders};
 
-/// How the mesh looks.
+/// Where the mesh's light comes from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum MeshLight {
+    /// A headlight: towards the light in view space (x right, y up, z towards the viewer).
+    View([f32; 3]),
+    /// A light fixed to the model (the chamfer highlight's light, for matching shading).
+    Model(Light),
+}
+
+/// How the mesh looks: `color × (ambient + (1 − ambient) (N·L)₊) + specular (N·H)₊^shininess`
+/// (Blinn; with `ambient` 0, `color` = R_d and `specular` = R_s it is the highlight's model exactly).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MeshStyle {
     /// Straight-alpha RGBA base colour.
     pub color: [f32; 4],
-    /// Direction towards the light in view space (x right, y up, z towards the viewer).
-    pub light_dir: [f32; 3],
+    /// The light.
+    pub light: MeshLight,
     /// Share of the colour lit regardless of the light, 0..1.
     pub ambient: f32,
+    /// Specular reflectance `R_s` (white), 0 for none.
+    pub specular: f32,
+    /// Specular exponent.
+    pub shininess: f32,
 }
 
 impl Default for MeshStyle {
     fn default() -> Self {
         Self {
             color: [0.86, 0.86, 0.84, 1.0],
-            light_dir: [-0.4, 0.6, 0.7],
+            light: MeshLight::View([-0.4, 0.6, 0.7]),
             ambient: 0.35,
+            specular: 0.0,
+            shininess: 32.0,
         }
     }
 }
@@ -32,6 +48,7 @@ struct MeshUniform {
     light: [f32; 4],
     color: [f32; 4],
     params: [f32; 4],
+    eye: [f32; 4],
 }
 
 /// Draws a [`GpuAsset`]'s triangles with its crease-split normals, writing depth for the edges.
@@ -143,17 +160,29 @@ impl MeshRenderer {
 
     /// Sets this frame's camera and style.
     pub fn prepare(&mut self, queue: &wgpu::Queue, camera: &Camera, style: &MeshStyle) {
-        let light_view = Vec3::from(style.light_dir).normalize_or(Vec3::Z);
-        let light = camera
-            .model_view
-            .inverse()
-            .transform_vector3(light_view)
-            .normalize_or(Vec3::Z);
+        let light = match style.light {
+            MeshLight::View(towards) => camera
+                .model_view
+                .inverse()
+                .transform_vector3(Vec3::from(towards))
+                .normalize_or(Vec3::Z)
+                .extend(0.0),
+            MeshLight::Model(Light::Directional(towards)) => {
+                Vec3::from(towards).normalize_or(Vec3::Z).extend(0.0)
+            }
+            MeshLight::Model(Light::Point(position)) => Vec3::from(position).extend(1.0),
+        };
         let uniform = MeshUniform {
             mvp: camera.view_projection().to_cols_array_2d(),
-            light: light.extend(0.0).to_array(),
+            light: light.to_array(),
             color: style.color,
-            params: [style.ambient.clamp(0.0, 1.0), 0.0, 0.0, 0.0],
+            params: [
+                style.ambient.clamp(0.0, 1.0),
+                style.specular.max(0.0),
+                style.shininess.max(0.0),
+                0.0,
+            ],
+            eye: camera.eye().to_array(),
         };
         queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
     }

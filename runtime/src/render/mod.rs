@@ -52,7 +52,7 @@ pub use edges::{
 };
 pub use error::RenderError;
 pub use gpu_asset::GpuAsset;
-pub use mesh::{MeshRenderer, MeshStyle};
+pub use mesh::{MeshLight, MeshRenderer, MeshStyle};
 pub use offscreen::{Image, Offscreen, OffscreenTarget};
 
 /// The formats of the render pass the renderers draw into.

@@ -5,9 +5,10 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, bail};
 use chamfer_preprocess::write::{ensure_not_an_input, write_atomically};
 use chamfer_runtime::asset::Asset;
+use chamfer_runtime::highlight::strip::Material;
 use chamfer_runtime::render::{
-    Camera, CapMethod, EdgeClasses, EdgeRenderer, EdgeStyle, GpuAsset, Image, MeshRenderer,
-    MeshStyle, Offscreen, Orbit,
+    Camera, CapMethod, EdgeClasses, EdgeRenderer, EdgeStyle, GpuAsset, Highlight, Image, Light,
+    MeshLight, MeshRenderer, MeshStyle, Offscreen, Orbit,
 };
 use clap::{Args, ValueEnum};
 
@@ -71,6 +72,34 @@ pub struct ViewArgs {
     /// Samples per pixel (1 or 4).
     #[arg(long, default_value_t = 4)]
     samples: u32,
+    /// `--style chamfer`: direction towards a parallel light, model space.
+    #[arg(long, value_name = "X,Y,Z", value_delimiter = ',', allow_hyphen_values = true,
+          default_values_t = [0.4, 0.8, 0.45], conflicts_with = "light_pos")]
+    light_dir: Vec<f32>,
+    /// `--style chamfer`: position of a point light, model space (instead of --light-dir).
+    #[arg(
+        long,
+        value_name = "X,Y,Z",
+        value_delimiter = ',',
+        allow_hyphen_values = true
+    )]
+    light_pos: Option<Vec<f32>>,
+    /// `--style chamfer`: diffuse reflectance R_d.
+    #[arg(long, default_value_t = 0.75)]
+    diffuse: f32,
+    /// `--style chamfer`: specular reflectance R_s.
+    #[arg(long, default_value_t = 0.5)]
+    specular: f32,
+    /// `--style chamfer`: share of the diffuse colour lit regardless of the light (0 in the paper).
+    #[arg(long, default_value_t = 0.2)]
+    ambient: f32,
+    /// `--style chamfer`: specular exponent n, 1 to 128.
+    #[arg(long, default_value_t = 32.0)]
+    shininess: f32,
+    /// `--style chamfer`: K of the blend weight W = K r_e / (d r_max) (default: the camera's distance
+    /// to the model's centre).
+    #[arg(long)]
+    k: Option<f32>,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -79,6 +108,9 @@ enum Style {
     Mesh,
     /// The lit mesh and its edges.
     Edges,
+    /// Blinn-lit mesh, chamfer edges (those with a radius: see --radius) as lit rounded strips
+    /// (seed 000), contours as lines.
+    Chamfer,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -124,6 +156,27 @@ impl ViewArgs {
         if self.samples != 1 && self.samples != 4 {
             bail!("--samples must be 1 or 4, not {}", self.samples);
         }
+        if !(self.shininess.is_finite() && (1.0..=128.0).contains(&self.shininess)) {
+            bail!("--shininess must be 1 to 128, not {}", self.shininess);
+        }
+        if !(self.ambient.is_finite() && (0.0..=1.0).contains(&self.ambient)) {
+            bail!("--ambient must be 0 to 1, not {}", self.ambient);
+        }
+        for (name, value) in [("--diffuse", self.diffuse), ("--specular", self.specular)] {
+            if !(value.is_finite() && (0.0..=10.0).contains(&value)) {
+                bail!("{name} must be 0 to 10, not {value}");
+            }
+        }
+        let light = self.light_pos.as_deref().unwrap_or(&self.light_dir);
+        if light.len() != 3
+            || !light.iter().all(|c| c.is_finite())
+            || (self.light_pos.is_none() && light.iter().all(|&c| c == 0.0))
+        {
+            bail!("--light-dir / --light-pos need three finite numbers (a direction not 0,0,0)");
+        }
+        if self.k.is_some_and(|k| !(k.is_finite() && k >= 0.0)) {
+            bail!("--k must be a number of at least 0");
+        }
         Ok(())
     }
 
@@ -137,8 +190,20 @@ impl ViewArgs {
                 Class::Valley => EdgeClasses::VALLEY,
             }
         });
+        let highlight = (self.style == Style::Chamfer).then(|| Highlight {
+            light: self.light(),
+            color: [1.0; 3],
+            material: Material {
+                diffuse: self.diffuse,
+                specular: self.specular,
+                shininess: self.shininess,
+            },
+            ambient: self.ambient,
+            k: self.k,
+        });
         EdgeStyle {
             classes,
+            highlight,
             width_px: self.edge_width,
             depth_scaled: self.depth_scaled,
             caps: match self.caps {
@@ -147,6 +212,29 @@ impl ViewArgs {
                 Caps::None => CapMethod::None,
             },
             ..EdgeStyle::default()
+        }
+    }
+}
+
+impl ViewArgs {
+    fn light(&self) -> Light {
+        match &self.light_pos {
+            Some(p) => Light::Point([p[0], p[1], p[2]]),
+            None => Light::Directional([self.light_dir[0], self.light_dir[1], self.light_dir[2]]),
+        }
+    }
+
+    fn mesh_style(&self) -> MeshStyle {
+        if self.style != Style::Chamfer {
+            return MeshStyle::default();
+        }
+        // The highlight's own model, so a strip and the faces around it are lit alike.
+        MeshStyle {
+            color: [self.diffuse, self.diffuse, self.diffuse, 1.0],
+            light: MeshLight::Model(self.light()),
+            ambient: self.ambient,
+            specular: self.specular,
+            shininess: self.shininess,
         }
     }
 }
@@ -194,10 +282,10 @@ pub fn render(asset: &Asset, view: &ViewArgs) -> anyhow::Result<(Image, String)>
     };
     let camera = Camera::orbit(uploaded.bounds(), &orbit, target.size());
     let mut mesh = MeshRenderer::new(&gpu.device, &target.formats(), &uploaded);
-    mesh.prepare(&gpu.queue, &camera, &MeshStyle::default());
+    mesh.prepare(&gpu.queue, &camera, &view.mesh_style());
     let mut edges = EdgeRenderer::new(&gpu.device, &target.formats(), &uploaded)?;
     edges.prepare(&gpu.queue, &camera, &view.edge_style());
-    let draw_edges = view.style == Style::Edges;
+    let draw_edges = view.style != Style::Mesh;
     target.draw(
         &gpu,
         [1.0, 1.0, 1.0, 1.0],
