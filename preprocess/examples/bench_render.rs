@@ -51,9 +51,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         gpu.info.name, gpu.info.backend, size[0], size[1]
     );
     println!(
-        "| mesh | triangles | edges | drawn edges | mesh only ms | + edges + caps ms | edges overhead | + naive edges ms | naive overhead | edge pass: naive / ours | classify + joins only ms | edge + cap draws only ms |"
+        "| mesh | triangles | edges | drawn edges | mesh only ms | + edges + caps ms | edges overhead | + naive edges ms | naive overhead | edge pass: naive / ours | classify + joins only ms | edge + cap draws only ms | + edges + highlight ms | highlight overhead |"
     );
-    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for mesh in &meshes {
         let asset =
             chamfer_preprocess::bake_file(mesh, &chamfer_preprocess::BakeOptions::DEFAULT)?.asset;
@@ -85,6 +85,15 @@ fn bench(
     let mut edges = EdgeRenderer::new(&gpu.device, &target.formats(), &uploaded)?;
     edges.prepare(&gpu.queue, &camera, &style);
     let naive = NaiveEdges::new(gpu, &target, &uploaded, &camera, &style);
+    let mut lit = EdgeRenderer::new(&gpu.device, &target.formats(), &uploaded)?;
+    lit.prepare(
+        &gpu.queue,
+        &camera,
+        &EdgeStyle {
+            highlight: Some(chamfer_runtime::render::Highlight::default()),
+            ..style
+        },
+    );
 
     let mesh_only = || frame(gpu, &target, |_| {}, |pass| mesh.render(pass));
     let with_edges = || {
@@ -108,6 +117,12 @@ fn bench(
                 naive.render(pass);
             },
         )
+    };
+    let with_highlight = || {
+        frame(gpu, &target, |encoder| lit.compute(encoder), |pass| {
+            mesh.render(pass);
+            lit.render(pass);
+        })
     };
     let draw_only = || {
         frame(
@@ -134,16 +149,18 @@ fn bench(
         with_naive()?;
         compute_only()?;
         draw_only()?;
+        with_highlight()?;
     }
-    let mut times = [Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new()];
+    let mut times = [Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new()];
     for _ in 0..frames {
         times[0].push(mesh_only()?);
         times[1].push(with_edges()?);
         times[2].push(with_naive()?);
         times[3].push(compute_only()?);
         times[4].push(draw_only()?);
+        times[5].push(with_highlight()?);
     }
-    let [m, e, n, c, d] = times.map(median);
+    let [m, e, n, c, d, h] = times.map(median);
     if std::env::var("EMPTY").is_ok() {
         let mut empty = Vec::new();
         for _ in 0..frames {
@@ -157,7 +174,7 @@ fn bench(
     }
     let drawn = drawn_edges(gpu, &edges)?;
     println!(
-        "| {} | {} | {} | {drawn} | {m:.1} | {e:.1} | {:+.0}% | {n:.1} | {:+.0}% | {:.1}× | {c:.1} | {:.1} |",
+        "| {} | {} | {} | {drawn} | {m:.1} | {e:.1} | {:+.0}% | {n:.1} | {:+.0}% | {:.1}× | {c:.1} | {:.1} | {h:.1} | {:+.0}% |",
         path.file_name()
             .map(|n| n.to_string_lossy())
             .unwrap_or_default(),
@@ -167,6 +184,7 @@ fn bench(
         (n / m - 1.0) * 100.0,
         (n - m) / (e - m).max(1e-3),
         d - m,
+        (h / m - 1.0) * 100.0,
     );
     Ok(())
 }
