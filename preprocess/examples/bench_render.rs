@@ -119,10 +119,15 @@ fn bench(
         )
     };
     let with_highlight = || {
-        frame(gpu, &target, |encoder| lit.compute(encoder), |pass| {
-            mesh.render(pass);
-            lit.render(pass);
-        })
+        frame(
+            gpu,
+            &target,
+            |encoder| lit.compute(encoder),
+            |pass| {
+                mesh.render(pass);
+                lit.render(pass);
+            },
+        )
     };
     let draw_only = || {
         frame(
@@ -151,7 +156,14 @@ fn bench(
         draw_only()?;
         with_highlight()?;
     }
-    let mut times = [Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new()];
+    let mut times = [
+        Vec::new(),
+        Vec::new(),
+        Vec::new(),
+        Vec::new(),
+        Vec::new(),
+        Vec::new(),
+    ];
     for _ in 0..frames {
         times[0].push(mesh_only()?);
         times[1].push(with_edges()?);

@@ -361,12 +361,26 @@ fn render_refuses_bad_input_and_options_and_keeps_the_old_picture() {
     std::fs::write(&not_an_asset, b"CHAMFER\0 but nothing else").expect("write");
     let cube = fixture("shapes/cube.obj");
     let truncated = fixture("broken/truncated.glb");
-    let cases: [(Vec<&str>, &str); 5] = [
+    let cases: [(Vec<&str>, &str); 7] = [
         (vec![path_str(&not_an_asset)], "fake.chamfer"),
         (vec![path_str(&truncated)], "truncated.glb"),
         (vec![path_str(&cube), "--width", "0"], "--width"),
         (vec![path_str(&cube), "--edge-width", "NaN"], "--edge-width"),
         (vec![path_str(&cube), "--samples", "3"], "--samples"),
+        (
+            vec![path_str(&cube), "--style", "chamfer", "--shininess", "200"],
+            "--shininess",
+        ),
+        (
+            vec![
+                path_str(&cube),
+                "--style",
+                "chamfer",
+                "--light-dir",
+                "0,0,0",
+            ],
+            "--light-dir",
+        ),
     ];
     for (args, named) in cases {
         let mut all = vec!["render", "-o", path_str(&png)];
