@@ -367,12 +367,17 @@ impl ApplicationHandler for Viewer {
                 if event.logical_key == Key::Named(NamedKey::Escape) {
                     event_loop.exit();
                 }
-                apply_key(
-                    &event.logical_key,
-                    &mut self.style,
-                    &mut self.orbit,
-                    &mut self.draw_edges,
-                )
+                if event.logical_key == Key::Character("h".into()) {
+                    self.highlight = !self.highlight;
+                    true
+                } else {
+                    apply_key(
+                        &event.logical_key,
+                        &mut self.style,
+                        &mut self.orbit,
+                        &mut self.draw_edges,
+                    )
+                }
             }
             _ => false,
         };

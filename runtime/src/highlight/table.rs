@@ -162,7 +162,10 @@ mod tests {
                 assert_eq!(row.eval(-phi), -row.eval(phi));
             }
         }
-        eprintln!("max error {:.3e} at m = {}, φ = {}", worst.0, worst.1, worst.2);
+        eprintln!(
+            "max error {:.3e} at m = {}, φ = {}",
+            worst.0, worst.1, worst.2
+        );
         assert!(
             worst.0 <= 2.0e-6,
             "max error {:.3e} at m = {}, φ = {}",
