@@ -72,9 +72,48 @@ fn split_direction(x: vec2<f32>) -> u32 {
     return pack2x16snorm(normalize(x));
 }
 
-// Writes the joins of `me`, whose nearest neighbours counter-clockwise (`left`, at angle
-// `left_turn`) and clockwise (`right`, at `right_turn` the other way) are given; emits its left cap.
-fn resolve(me: End, left: End, left_turn: f32, right: End, right_turn: f32) {
+// The nearest drawn neighbours of an end so far: counter-clockwise (`left`, `left_turn` away) and
+// clockwise (`right`, `right_turn` away the other way).
+struct Neighbours {
+    left: End,
+    right: End,
+    left_turn: f32,
+    right_turn: f32,
+}
+
+fn no_neighbours() -> Neighbours {
+    var n: Neighbours;
+    n.left.ok = false;
+    n.right.ok = false;
+    n.left_turn = 4.0 * PI;
+    n.right_turn = 4.0 * PI;
+    return n;
+}
+
+// `found` with `other` taken into account as a neighbour of the end pointing along `a`.
+fn nearer(found: Neighbours, a: vec2<f32>, other: End) -> Neighbours {
+    var n = found;
+    let ccw = turn(a, other.g.a);
+    if !other.ok || ccw <= 1e-6 {
+        return n;
+    }
+    if ccw < n.left_turn {
+        n.left_turn = ccw;
+        n.left = other;
+    }
+    if 2.0 * PI - ccw < n.right_turn {
+        n.right_turn = 2.0 * PI - ccw;
+        n.right = other;
+    }
+    return n;
+}
+
+// Writes the joins of `me` given its nearest neighbours; emits its left cap.
+fn resolve(me: End, n: Neighbours) {
+    let left = n.left;
+    let right = n.right;
+    let left_turn = n.left_turn;
+    let right_turn = n.right_turn;
     let a = me.g.a;
     var split_left = 0u;
     var split_right = 0u;
@@ -120,30 +159,13 @@ fn joins_next(
         joins[t] = vec2<u32>(0u);
         return;
     }
-    var left: End;
-    left.ok = false;
-    var right: End;
-    right.ok = false;
-    var left_turn = 4.0 * PI;
-    var right_turn = 4.0 * PI;
+    var found = no_neighbours();
     var f = ring(start);
     for (var steps = 0u; f != start && steps < MAX_RING; steps += 1u) {
-        let other = end_at(f);
-        if other.ok {
-            let ccw = turn(me.g.a, other.g.a);
-            if ccw > 1e-6 && ccw < left_turn {
-                left_turn = ccw;
-                left = other;
-            }
-            let cw = 2.0 * PI - ccw;
-            if ccw > 1e-6 && cw < right_turn {
-                right_turn = cw;
-                right = other;
-            }
-        }
+        found = nearer(found, me.g.a, end_at(f));
         f = ring(f);
     }
-    resolve(me, left, left_turn, right, right_turn);
+    resolve(me, found);
 }
 
 // Before joins_heads: ends at vertices without a ring head (one kept edge) are never visited there.
@@ -181,27 +203,12 @@ fn joins_heads(
         }
     }
     for (var i = 0u; i < count; i += 1u) {
-        var left: End;
-        left.ok = false;
-        var right: End;
-        right.ok = false;
-        var left_turn = 4.0 * PI;
-        var right_turn = 4.0 * PI;
+        var found = no_neighbours();
         for (var j = 0u; j < count; j += 1u) {
-            if j == i {
-                continue;
-            }
-            let ccw = turn(ends[i].g.a, ends[j].g.a);
-            if ccw > 1e-6 && ccw < left_turn {
-                left_turn = ccw;
-                left = ends[j];
-            }
-            let cw = 2.0 * PI - ccw;
-            if ccw > 1e-6 && cw < right_turn {
-                right_turn = cw;
-                right = ends[j];
+            if j != i {
+                found = nearer(found, ends[i].g.a, ends[j]);
             }
         }
-        resolve(ends[i], left, left_turn, right, right_turn);
+        resolve(ends[i], found);
     }
 }
