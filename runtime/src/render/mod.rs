@@ -42,16 +42,16 @@ mod camera;
 mod edges;
 mod error;
 mod gpu_asset;
+mod lighting;
 mod mesh;
 mod offscreen;
 mod shaders;
 
 pub use camera::{Camera, Orbit};
-pub use edges::{
-    CapMethod, DrawCounts, EdgeClasses, EdgeColors, EdgeRenderer, EdgeStyle, Highlight, Light,
-};
+pub use edges::{CapMethod, DrawCounts, EdgeClasses, EdgeColors, EdgeRenderer, EdgeStyle};
 pub use error::RenderError;
 pub use gpu_asset::GpuAsset;
+pub use lighting::{Highlight, Light};
 pub use mesh::{MeshLight, MeshRenderer, MeshStyle};
 pub use offscreen::{Image, Offscreen, OffscreenTarget};
 
