@@ -98,6 +98,12 @@ fn distance_to_segment(p: Vec2, (a, b): (Vec2, Vec2)) -> f32 {
     p.distance(a.lerp(b, t))
 }
 
+/// True if either face of a cube edge (from `cube_edges`) faces the camera.
+fn edge_seen(camera: &Camera, (a, b, normals): &(usize, usize, [Vec3; 2])) -> bool {
+    let middle = (corner(*a) + corner(*b)) * 0.5;
+    normals.iter().any(|&n| faces_eye(camera, n, middle))
+}
+
 fn faces_eye(camera: &Camera, normal: Vec3, on_face: Vec3) -> bool {
     let eye = camera.eye();
     normal.dot(eye.truncate() - on_face * eye.w) > 0.0
@@ -127,10 +133,7 @@ fn cube_shows_its_nine_visible_edges_and_no_hidden_one() {
         );
         let edges: Vec<(usize, usize, bool)> = cube_edges()
             .into_iter()
-            .map(|(a, b, normals)| {
-                let middle = (corner(a) + corner(b)) * 0.5;
-                (a, b, normals.iter().any(|&n| faces_eye(&camera, n, middle)))
-            })
+            .map(|edge| (edge.0, edge.1, edge_seen(&camera, &edge)))
             .collect();
         let on_screen =
             |a: usize, b: usize| (project(&camera, corner(a)), project(&camera, corner(b)));
@@ -201,10 +204,7 @@ fn hidden_edges_are_hidden_by_the_depth_test_not_by_luck() {
             cube_edges()
                 .iter()
                 .filter(|e| e.0 == c || e.1 == c)
-                .all(|(a, b, normals)| {
-                    let middle = (corner(*a) + corner(*b)) * 0.5;
-                    !normals.iter().any(|&n| faces_eye(&camera, n, middle))
-                })
+                .all(|e| !edge_seen(&camera, e))
         })
         .expect("a corner whose three edges are all hidden");
     let p = project(&camera, corner(hidden_corner));
@@ -296,12 +296,9 @@ fn a_spheres_silhouette_is_drawn_as_a_contour_from_any_camera() {
 fn visible_corners(camera: &Camera) -> Vec<usize> {
     (0..8)
         .filter(|&c| {
-            cube_edges().iter().any(|(a, b, normals)| {
-                (*a == c || *b == c)
-                    && normals
-                        .iter()
-                        .any(|&n| faces_eye(camera, n, (corner(*a) + corner(*b)) * 0.5))
-            })
+            cube_edges()
+                .iter()
+                .any(|e| (e.0 == c || e.1 == c) && edge_seen(camera, e))
         })
         .collect()
 }
@@ -602,10 +599,7 @@ fn depth_scaled_edges_are_wider_in_front_than_behind() {
     let view_depth = |p: Vec3| -(camera.model_view * p.extend(1.0)).z;
     let mut visible: Vec<(f32, Vec2, Vec2)> = cube_edges()
         .into_iter()
-        .filter(|(a, b, normals)| {
-            let middle = (corner(*a) + corner(*b)) * 0.5;
-            normals.iter().any(|&n| faces_eye(&camera, n, middle))
-        })
+        .filter(|e| edge_seen(&camera, e))
         .map(|(a, b, _)| {
             let (pa, pb) = (project(&camera, corner(a)), project(&camera, corner(b)));
             let along = (pb - pa).normalize();

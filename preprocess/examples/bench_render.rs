@@ -1,7 +1,8 @@
 //! Frame-time benchmark of the runtime, headless, beside a naive edge pass in the same run.
 //!
 //! ```text
-//! cargo run --release -p chamfer-preprocess --example bench_render -- [--frames 15] [--size 1920x1080] [MESH...]
+//! cargo run --release -p chamfer-preprocess --example bench_render -- [--frames 15] [--size 1920x1080]
+//!     [--caps next-index|cap-buffer|none] [MESH...]
 //! ```
 //! With no mesh it benches `fixtures/meshes/stanford-bunny.obj` and the largest shared mesh,
 //! `bunny-loop2.ply.gz`. Per mesh, the configurations run round-robin (one frame of each in turn, so
@@ -17,14 +18,15 @@ use std::time::Instant;
 
 use chamfer_runtime::asset::Asset;
 use chamfer_runtime::render::{
-    Camera, EdgeRenderer, EdgeStyle, GpuAsset, MeshRenderer, MeshStyle, Offscreen, OffscreenTarget,
-    Orbit,
+    Camera, CapMethod, EdgeRenderer, EdgeStyle, GpuAsset, MeshRenderer, MeshStyle, Offscreen,
+    OffscreenTarget, Orbit,
 };
 use wgpu::util::DeviceExt;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut frames = 15;
     let mut size = [1920, 1080];
+    let mut caps = CapMethod::NextIndex;
     let mut meshes = Vec::new();
     let mut args = std::env::args().skip(1);
     while let Some(arg) = args.next() {
@@ -34,6 +36,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 let text = args.next().ok_or("--size needs WxH")?;
                 let (w, h) = text.split_once('x').ok_or("--size needs WxH")?;
                 size = [w.parse()?, h.parse()?];
+            }
+            "--caps" => {
+                caps = match args.next().as_deref() {
+                    Some("next-index") => CapMethod::NextIndex,
+                    Some("cap-buffer") => CapMethod::CapBuffer,
+                    Some("none") => CapMethod::None,
+                    _ => return Err("--caps needs next-index, cap-buffer or none".into()),
+                }
             }
             _ => meshes.push(PathBuf::from(arg)),
         }
@@ -57,7 +67,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     for mesh in &meshes {
         let asset =
             chamfer_preprocess::bake_file(mesh, &chamfer_preprocess::BakeOptions::DEFAULT)?.asset;
-        bench(&gpu, &asset, mesh, size, frames)?;
+        bench(&gpu, &asset, mesh, size, frames, caps)?;
     }
     Ok(())
 }
@@ -68,16 +78,13 @@ fn bench(
     path: &Path,
     size: [u32; 2],
     frames: usize,
+    caps: CapMethod,
 ) -> Result<(), Box<dyn std::error::Error>> {
     let target = gpu.target(size[0], size[1], 1);
     let uploaded = GpuAsset::new(&gpu.device, asset)?;
     let camera = Camera::orbit(uploaded.bounds(), &Orbit::default(), size);
     let style = EdgeStyle {
-        caps: match std::env::var("CAPS").as_deref() {
-            Ok("none") => chamfer_runtime::render::CapMethod::None,
-            Ok("buffer") => chamfer_runtime::render::CapMethod::CapBuffer,
-            _ => chamfer_runtime::render::CapMethod::NextIndex,
-        },
+        caps,
         ..EdgeStyle::default()
     };
     let mut mesh = MeshRenderer::new(&gpu.device, &target.formats(), &uploaded);
@@ -173,17 +180,6 @@ fn bench(
         times[5].push(with_highlight()?);
     }
     let [m, e, n, c, d, h] = times.map(median);
-    if std::env::var("EMPTY").is_ok() {
-        let mut empty = Vec::new();
-        for _ in 0..frames {
-            let start = Instant::now();
-            let encoder = gpu.device.create_command_encoder(&Default::default());
-            gpu.queue.submit([encoder.finish()]);
-            gpu.wait()?;
-            empty.push(start.elapsed().as_secs_f64() * 1e3);
-        }
-        println!("empty submit: {:.2} ms", median(empty));
-    }
     let drawn = drawn_edges(gpu, &edges)?;
     println!(
         "| {} | {} | {} | {drawn} | {m:.1} | {e:.1} | {:+.0}% | {n:.1} | {:+.0}% | {:.1}× | {c:.1} | {:.1} | {h:.1} | {:+.0}% |",

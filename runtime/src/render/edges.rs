@@ -412,26 +412,13 @@ impl EdgeRenderer {
                     buffers: &[],
                 },
                 primitive: wgpu::PrimitiveState::default(),
-                depth_stencil: target.depth_format.map(|format| wgpu::DepthStencilState {
-                    format,
-                    depth_write_enabled: Some(false),
-                    depth_compare: Some(wgpu::CompareFunction::LessEqual),
-                    stencil: wgpu::StencilState::default(),
-                    bias: wgpu::DepthBiasState::default(),
-                }),
-                multisample: wgpu::MultisampleState {
-                    count: target.sample_count,
-                    ..Default::default()
-                },
+                depth_stencil: target.depth(false, wgpu::CompareFunction::LessEqual),
+                multisample: target.multisample(),
                 fragment: Some(wgpu::FragmentState {
                     module,
                     entry_point: Some(fragment),
                     compilation_options: Default::default(),
-                    targets: &[Some(wgpu::ColorTargetState {
-                        format: target.color_format,
-                        blend: Some(wgpu::BlendState::ALPHA_BLENDING),
-                        write_mask: wgpu::ColorWrites::ALL,
-                    })],
+                    targets: &[Some(target.blended_color())],
                 }),
                 multiview_mask: None,
                 cache: None,
@@ -662,21 +649,7 @@ impl EdgeRenderer {
         });
         encoder.copy_buffer_to_buffer(&self.out, 0, &staging, 0, 32);
         queue.submit([encoder.finish()]);
-        let (sender, receiver) = std::sync::mpsc::channel();
-        staging.map_async(wgpu::MapMode::Read, .., move |result| {
-            let _ = sender.send(result);
-        });
-        let failed = |e: String| RenderError::Readback(e);
-        device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| failed(e.to_string()))?;
-        receiver
-            .recv()
-            .map_err(|e| failed(e.to_string()))?
-            .map_err(|e| failed(e.to_string()))?;
-        let bytes = staging
-            .get_mapped_range(..)
-            .map_err(|e| failed(e.to_string()))?;
+        let bytes = super::offscreen::map_read(device, &staging)?;
         let words: &[u32] = bytemuck::cast_slice(&bytes);
         Ok(DrawCounts {
             edges: words[1],

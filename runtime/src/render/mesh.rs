@@ -122,26 +122,13 @@ impl MeshRenderer {
                 buffers: &[Some(vertex_buffer(0)), Some(vertex_buffer(1))],
             },
             primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: target.depth_format.map(|format| wgpu::DepthStencilState {
-                format,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Less),
-                stencil: wgpu::StencilState::default(),
-                bias: wgpu::DepthBiasState::default(),
-            }),
-            multisample: wgpu::MultisampleState {
-                count: target.sample_count,
-                ..Default::default()
-            },
+            depth_stencil: target.depth(true, wgpu::CompareFunction::Less),
+            multisample: target.multisample(),
             fragment: Some(wgpu::FragmentState {
                 module: &module,
                 entry_point: Some("mesh_fragment"),
                 compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format: target.color_format,
-                    blend: Some(wgpu::BlendState::ALPHA_BLENDING),
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
+                targets: &[Some(target.blended_color())],
             }),
             multiview_mask: None,
             cache: None,

@@ -65,3 +65,37 @@ pub struct Target {
     /// MSAA sample count of the attachments.
     pub sample_count: u32,
 }
+
+impl Target {
+    /// The depth state of a pass that tests with `compare` and writes depth if `write`.
+    pub(crate) fn depth(
+        &self,
+        write: bool,
+        compare: wgpu::CompareFunction,
+    ) -> Option<wgpu::DepthStencilState> {
+        self.depth_format.map(|format| wgpu::DepthStencilState {
+            format,
+            depth_write_enabled: Some(write),
+            depth_compare: Some(compare),
+            stencil: wgpu::StencilState::default(),
+            bias: wgpu::DepthBiasState::default(),
+        })
+    }
+
+    /// The attachments' sample count.
+    pub(crate) fn multisample(&self) -> wgpu::MultisampleState {
+        wgpu::MultisampleState {
+            count: self.sample_count,
+            ..Default::default()
+        }
+    }
+
+    /// The colour attachment, alpha-blended (straight alpha).
+    pub(crate) fn blended_color(&self) -> wgpu::ColorTargetState {
+        wgpu::ColorTargetState {
+            format: self.color_format,
+            blend: Some(wgpu::BlendState::ALPHA_BLENDING),
+            write_mask: wgpu::ColorWrites::ALL,
+        }
+    }
+}

@@ -221,18 +221,7 @@ impl OffscreenTarget {
             },
         );
         gpu.queue.submit([encoder.finish()]);
-        let (sender, receiver) = std::sync::mpsc::channel();
-        buffer.map_async(wgpu::MapMode::Read, .., move |result| {
-            let _ = sender.send(result);
-        });
-        gpu.wait()?;
-        receiver
-            .recv()
-            .map_err(|e| RenderError::Readback(e.to_string()))?
-            .map_err(|e| RenderError::Readback(e.to_string()))?;
-        let mapped = buffer
-            .get_mapped_range(..)
-            .map_err(|e| RenderError::Readback(e.to_string()))?;
+        let mapped = map_read(&gpu.device, &buffer)?;
         let mut rgba = Vec::with_capacity((row * self.height) as usize);
         for y in 0..self.height as usize {
             let start = y * padded_row as usize;
@@ -268,4 +257,26 @@ impl Image {
             self.rgba[i + 3],
         ]
     }
+}
+
+/// Maps `buffer` (MAP_READ, its copy already submitted) for reading, blocking until the GPU is done.
+pub(crate) fn map_read(
+    device: &wgpu::Device,
+    buffer: &wgpu::Buffer,
+) -> Result<wgpu::BufferView, RenderError> {
+    let failed = |e: String| RenderError::Readback(e);
+    let (sender, receiver) = std::sync::mpsc::channel();
+    buffer.map_async(wgpu::MapMode::Read, .., move |result| {
+        let _ = sender.send(result);
+    });
+    device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| failed(e.to_string()))?;
+    receiver
+        .recv()
+        .map_err(|e| failed(e.to_string()))?
+        .map_err(|e| failed(e.to_string()))?;
+    buffer
+        .get_mapped_range(..)
+        .map_err(|e| failed(e.to_string()))
 }

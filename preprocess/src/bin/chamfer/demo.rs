@@ -39,7 +39,8 @@ pub fn run(args: &DemoArgs) -> anyhow::Result<()> {
         args.output.display()
     );
     let picture = args.output.with_extension("png");
-    let (image, adapter) = crate::render::render(&baked.asset, &args.view)?;
+    let (image, adapter) = crate::render::render(&baked.asset, &args.view)
+        .with_context(|| "fandisk.obj: cannot render")?;
     crate::render::write_png(&image, &picture)?;
     println!("rendered it on {adapter} -> {}\n", picture.display());
     crate::inspect::run(&crate::inspect::InspectArgs::for_path(args.output.clone()))

@@ -253,7 +253,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     } else {
         chamfer_preprocess::bake_file(&args.input, &args.options.to_options()?)?.asset
     };
-    let (image, adapter) = render(&asset, &args.view)?;
+    let (image, adapter) = render(&asset, &args.view)
+        .with_context(|| format!("{}: cannot render", args.input.display()))?;
     write_png(&image, &args.output)?;
     println!(
         "{} ({} triangles, {} edges) -> {} ({}x{}, {adapter})",
