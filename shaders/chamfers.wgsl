@@ -1,7 +1,7 @@
 // Per frame, after classify, one thread per drawn slot: for each highlighted chamfer edge, what its
 // pixels need (a ChamferRecord, see highlight.wgsl), and its quad widened to the strip's projection.
 
-@compute @workgroup_size(256)
+@compute @workgroup_size(WORKGROUP)
 fn chamfer_records(@builtin(global_invocation_id) id: vec3<u32>) {
     let slot = thread_index(id);
     if slot >= atomicLoad(&out.edges.instance_count) {

@@ -13,39 +13,7 @@ fn reset() {
     out.caps.first_instance = 0u;
 }
 
-fn plane(normal: vec3<f32>, p: vec3<f32>) -> vec4<f32> {
-    return vec4<f32>(normal, -dot(normal, p));
-}
-
-// Once per asset: the face planes of every edge. The per-frame test then reads two contiguous
-// vectors per edge instead of gathering four vertices (on software rasterizers every gather is a
-// loop over lanes).
-@compute @workgroup_size(256)
-fn face_planes(
-    @builtin(global_invocation_id) id: vec3<u32>,
-) {
-    let e = thread_index(id);
-    if e >= frame.edge_count {
-        return;
-    }
-    let flags = attributes[e] & 0xffffu;
-    let p0 = position(edge_vertex(4u * e));
-    let p1 = position(edge_vertex(4u * e + 1u));
-    let p2 = position(edge_vertex(4u * e + 2u));
-    let p3 = position(edge_vertex(4u * e + 3u));
-    let a = plane(cross(p1 - p0, p2 - p0), p0);
-    var b = a;
-    if (flags & (BOUNDARY | NON_MANIFOLD)) == 0u {
-        b = plane(cross(p0 - p1, p3 - p1), p1);
-        if (flags & FLIPPED) != 0u {
-            b = -b;
-        }
-    }
-    planes[2u * e] = a;
-    planes[2u * e + 1u] = b;
-}
-
-@compute @workgroup_size(256)
+@compute @workgroup_size(WORKGROUP)
 fn classify(
     @builtin(global_invocation_id) id: vec3<u32>,
 ) {

@@ -31,49 +31,21 @@ struct Frame {
     highlight: u32,
     // Radii in the attributes are multiples of this (the asset's radius_scale).
     radius_scale: f32,
-    _pad1: u32,
-    _pad2: u32,
+    // Depth 1 is near and 0 far (reverse Z): the near plane is z = w in clip space, not z = 0.
+    reverse_z: u32,
+    // Technique-specific variant of the pass (see each technique's file).
+    technique: u32,
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<storage, read> topology: array<f32>;
 @group(0) @binding(2) var<storage, read> edge_vertices: array<u32>;
 
-// Edge flags, as in the asset (runtime/src/asset/mod.rs), plus the per-frame contour class.
-const BOUNDARY: u32 = 1u;
-const NON_MANIFOLD: u32 = 2u;
-const RIDGE: u32 = 4u;
-const VALLEY: u32 = 8u;
-const MARKED: u32 = 16u;
-const MATERIAL: u32 = 32u;
-const FLIPPED: u32 = 64u;
-const CONTOUR: u32 = 256u;
-
-// A drawn edge's word: its colour index in the low byte, then how to build its quad.
-const COLOR_CONTOUR: u32 = 0u;
-const COLOR_BOUNDARY: u32 = 1u;
-const COLOR_MARKED: u32 = 2u;
-const COLOR_RIDGE: u32 = 3u;
-const COLOR_VALLEY: u32 = 4u;
-const DRAWN_CONTOUR: u32 = 256u;
-// The front face's opposite vertex, which lies inside the silhouette, is v3 (else v2).
-const INSIDE_V3: u32 = 512u;
-// Set by classify after projecting the edge: it has a quad on screen, and which ends the near
-// plane moved (bits 11 and 12).
-const ON_SCREEN: u32 = 1024u;
-const CLIPPED_SHIFT: u32 = 11u;
-// A chamfer edge drawn as its lit rounded strip (seed 000): no joins, no caps.
-const DRAWN_HIGHLIGHT: u32 = 8192u;
-const CHAMFER: u32 = 128u;
-
-const PI: f32 = 3.14159265358979;
-const WORKGROUP: u32 = 256u;
-
 // Flat thread index of a 2D dispatch: a second row of workgroups is only used once the first is full
-// (65535 workgroups, see `workgroups` in edges.rs and args.wgsl), so rows have a fixed length.
+// (MAX_GROUPS workgroups, see `workgroups` in pipelines.rs and args.wgsl), so rows have a fixed length.
 // (num_workgroups would do, but D3D12 leaves it 0 for indirect dispatches without wgpu's validation.)
 fn thread_index(id: vec3<u32>) -> u32 {
-    return id.y * (65535u * WORKGROUP) + id.x;
+    return id.y * (MAX_GROUPS * WORKGROUP) + id.x;
 }
 
 fn edge_vertex(i: u32) -> u32 {
@@ -115,10 +87,21 @@ fn biased_depth(c: vec4<f32>) -> f32 {
 fn biased_depth_by(c: vec4<f32>, bias_px: f32) -> f32 {
     let b = c + bias_px * frame.pixel_scale * c.w * frame.proj_z;
     // A bias that reaches past the near plane puts the edge on it.
-    if b.w <= 0.0 || b.z <= 0.0 {
-        return 0.0;
+    if b.w <= 0.0 || in_front(b) <= 0.0 {
+        return near_depth();
     }
     return b.z / b.w;
+}
+
+// How far a clip position is inside the near plane (>= 0 inside): z for depth 0 near, w - z for
+// reverse Z, where depth 1 is near.
+fn in_front(c: vec4<f32>) -> f32 {
+    return select(c.z, c.w - c.z, frame.reverse_z != 0u);
+}
+
+// The depth of the near plane.
+fn near_depth() -> f32 {
+    return select(0.0, 1.0, frame.reverse_z != 0u);
 }
 
 fn half_width(w: f32) -> f32 {
@@ -149,14 +132,16 @@ fn edge_screen(e: u32, word: u32) -> EdgeScreen {
     out.visible = false;
     var c0 = frame.mvp * vec4<f32>(position(edge_vertex(4u * e)), 1.0);
     var c1 = frame.mvp * vec4<f32>(position(edge_vertex(4u * e + 1u)), 1.0);
-    if c0.z < 0.0 && c1.z < 0.0 {
+    let f0 = in_front(c0);
+    let f1 = in_front(c1);
+    if f0 < 0.0 && f1 < 0.0 {
         return out;
     }
-    if c0.z < 0.0 {
-        c0 = mix(c0, c1, c0.z / (c0.z - c1.z));
+    if f0 < 0.0 {
+        c0 = mix(c0, c1, f0 / (f0 - f1));
         out.clipped = 1u;
-    } else if c1.z < 0.0 {
-        c1 = mix(c1, c0, c1.z / (c1.z - c0.z));
+    } else if f1 < 0.0 {
+        c1 = mix(c1, c0, f1 / (f1 - f0));
         out.clipped = 2u;
     }
     out.s0 = to_pixels(c0);

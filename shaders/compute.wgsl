@@ -11,8 +11,8 @@
 @group(0) @binding(7) var<storage, read_write> joins: array<vec2<u32>>;
 @group(0) @binding(8) var<storage, read_write> out: Out;
 // Per edge, the planes of its two faces (normal, offset) oriented consistently, so one dot product
-// with the homogeneous eye says which way a face looks. Computed once, on the first frame.
-@group(0) @binding(9) var<storage, read_write> planes: array<vec4<f32>>;
+// with the homogeneous eye says which way a face looks. Computed when the asset is uploaded.
+@group(0) @binding(9) var<storage, read> planes: array<vec4<f32>>;
 
 struct DrawArgs {
     vertex_count: u32,

@@ -31,7 +31,7 @@ struct Lighting {
     material: vec4<f32>,
 }
 
-const SAMPLES: f32 = 128.0;
+const SAMPLES: f32 = f32(COS_POWER_SAMPLES);
 
 // F(φ, n + 1) from the row, Hermite with exact slopes cos^(n+1) (table.rs), odd in φ.
 fn cos_power_integral(phi: f32) -> f32 {

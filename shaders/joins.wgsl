@@ -7,11 +7,8 @@
 //   joins_next:  one thread per drawn edge end, walking the next-index ring around its vertex;
 //   joins_heads: one thread per capped vertex, walking its ring from the cap buffer's head.
 
-// Walks never need more steps than the largest ring; decode checked every ring is a closed cycle.
-const MAX_RING: u32 = 4096u;
-// Ends gathered per vertex by joins_heads; further drawn edges at the vertex get no join.
-const MAX_GATHER: u32 = 16u;
-const NO_SLOT: u32 = 0xffffffffu;
+// Walks never need more than MAX_RING steps: the decoder refuses longer rings and checked every ring
+// is a closed cycle. joins_heads gathers MAX_GATHER ends per vertex; further drawn edges get no join.
 
 // A drawn edge end as its vertex sees it.
 struct End {
@@ -145,7 +142,7 @@ fn resolve(me: End, n: Neighbours) {
     joins[2u * me.slot + (me.index & 1u)] = vec2<u32>(split_left, split_right);
 }
 
-@compute @workgroup_size(256)
+@compute @workgroup_size(WORKGROUP)
 fn joins_next(
     @builtin(global_invocation_id) id: vec3<u32>,
 ) {
@@ -169,7 +166,7 @@ fn joins_next(
 }
 
 // Before joins_heads: ends at vertices without a ring head (one kept edge) are never visited there.
-@compute @workgroup_size(256)
+@compute @workgroup_size(WORKGROUP)
 fn clear_joins(
     @builtin(global_invocation_id) id: vec3<u32>,
 ) {
@@ -179,7 +176,7 @@ fn clear_joins(
     }
 }
 
-@compute @workgroup_size(256)
+@compute @workgroup_size(WORKGROUP)
 fn joins_heads(
     @builtin(global_invocation_id) id: vec3<u32>,
 ) {

@@ -157,6 +157,20 @@ pub fn bake_fixture(relative: &str) -> chamfer_runtime::asset::Asset {
         .asset
 }
 
+/// The pipeline cache of the shared GPU for `formats`, made once per test binary so every test
+/// shares the compiled pipelines (as an application would).
+pub fn pipelines(formats: chamfer_runtime::render::Target) -> chamfer_runtime::render::Pipelines {
+    use chamfer_runtime::render::{Pipelines, Target};
+    static CACHE: std::sync::Mutex<Vec<(Target, Pipelines)>> = std::sync::Mutex::new(Vec::new());
+    let mut cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some((_, p)) = cache.iter().find(|(t, _)| *t == formats) {
+        return p.clone();
+    }
+    let p = Pipelines::new(&gpu().device, &formats).expect("pipelines");
+    cache.push((formats, p.clone()));
+    p
+}
+
 /// One headless frame: the runtime's mesh pass (if `mesh` is given), then the edges.
 pub fn render(
     asset: &chamfer_runtime::asset::Asset,
@@ -165,39 +179,76 @@ pub fn render(
     edges: Option<&chamfer_runtime::render::EdgeStyle>,
     background: [f64; 4],
 ) -> chamfer_runtime::render::Image {
+    let [width, height] = camera.viewport;
+    let target = gpu().target(width, height, 1).expect("target");
+    render_on(&target, asset, camera, mesh, edges, background)
+}
+
+/// [`render`] into `target`.
+pub fn render_on(
+    target: &chamfer_runtime::render::OffscreenTarget,
+    asset: &chamfer_runtime::asset::Asset,
+    camera: &chamfer_runtime::render::Camera,
+    mesh: Option<&chamfer_runtime::render::MeshStyle>,
+    edges: Option<&chamfer_runtime::render::EdgeStyle>,
+    background: [f64; 4],
+) -> chamfer_runtime::render::Image {
     use chamfer_runtime::render::{EdgeRenderer, GpuAsset, MeshRenderer};
     let gpu = gpu();
-    let [width, height] = camera.viewport;
-    let target = gpu.target(width, height, 1);
+    let pipelines = pipelines(target.formats());
     let uploaded = GpuAsset::new(&gpu.device, asset).expect("upload");
-    let mut mesh_renderer = MeshRenderer::new(&gpu.device, &target.formats(), &uploaded);
-    let mut edge_renderer =
-        EdgeRenderer::new(&gpu.device, &target.formats(), &uploaded).expect("edge renderer");
-    if let Some(style) = mesh {
-        mesh_renderer.prepare(&gpu.queue, camera, style);
+    let mut mesh_renderer = MeshRenderer::new(&pipelines, &uploaded).expect("mesh renderer");
+    let mut edge_renderer = EdgeRenderer::new(&pipelines, &uploaded);
+    draw_frame(
+        target,
+        camera,
+        background,
+        mesh.map(|style| (&mut mesh_renderer, style)),
+        edges.map(|style| (&mut edge_renderer, style)),
+    )
+}
+
+/// One frame of the given renderers into `target`, read back (and saved where
+/// `CHAMFER_TEST_IMAGES` names a folder).
+pub fn draw_frame(
+    target: &chamfer_runtime::render::OffscreenTarget,
+    camera: &chamfer_runtime::render::Camera,
+    background: [f64; 4],
+    mesh: Option<(
+        &mut chamfer_runtime::render::MeshRenderer,
+        &chamfer_runtime::render::MeshStyle,
+    )>,
+    edges: Option<(
+        &mut chamfer_runtime::render::EdgeRenderer,
+        &chamfer_runtime::render::EdgeStyle,
+    )>,
+) -> chamfer_runtime::render::Image {
+    let gpu = gpu();
+    let mut encoder = gpu.encoder();
+    let mesh = mesh.map(|(renderer, style)| {
+        renderer.prepare(&gpu.queue, camera, style);
+        &*renderer
+    });
+    let prepared = edges.map(|(renderer, style)| {
+        renderer
+            .prepare(&gpu.queue, &mut encoder, camera, style)
+            .expect("prepare")
+    });
+    {
+        let mut pass = target.begin_pass(&mut encoder, background);
+        if let Some(mesh) = mesh {
+            mesh.render(&mut pass);
+        }
+        if let Some(prepared) = &prepared {
+            prepared.render(&mut pass);
+        }
     }
-    if let Some(style) = edges {
-        edge_renderer.prepare(&gpu.queue, camera, style);
+    if let Some(prepared) = &prepared {
+        prepared
+            .finish(&mut encoder, &target.views())
+            .expect("finish");
     }
-    target
-        .draw(
-            gpu,
-            background,
-            |encoder| {
-                if edges.is_some() {
-                    edge_renderer.compute(encoder);
-                }
-            },
-            |pass| {
-                if mesh.is_some() {
-                    mesh_renderer.render(pass);
-                }
-                if edges.is_some() {
-                    edge_renderer.render(pass);
-                }
-            },
-        )
-        .expect("draw");
+    gpu.submit(encoder).expect("submit");
     let image = target.read(gpu).expect("read back");
     if let Ok(dir) = std::env::var("CHAMFER_TEST_IMAGES") {
         save_png(

@@ -5,7 +5,7 @@
 use chamfer_runtime::render::{
     Camera, CapMethod, EdgeClasses, EdgeColors, EdgeStyle, Image, MeshStyle, Orbit,
 };
-use chamfer_tests::{bake_fixture, render};
+use chamfer_tests::{bake_fixture, draw_frame, render};
 use glam::{Vec2, Vec3};
 
 const RED: [f32; 4] = [1.0, 0.0, 0.0, 1.0];
@@ -511,17 +511,17 @@ fn the_gpu_draws_the_edges_a_cpu_reference_counts() {
     }
     for (fixture, asset, camera) in cases {
         let uploaded = GpuAsset::new(&gpu.device, &asset).expect("upload");
-        let target = gpu.target(64, 64, 1);
-        let mut edges =
-            EdgeRenderer::new(&gpu.device, &target.formats(), &uploaded).expect("renderer");
+        let target = gpu.target(64, 64, 1).expect("target");
+        let mut edges = EdgeRenderer::new(&chamfer_tests::pipelines(target.formats()), &uploaded);
         let style = EdgeStyle {
             classes: EdgeClasses::CONTOUR,
             ..EdgeStyle::default()
         };
-        edges.prepare(&gpu.queue, &camera, &style);
-        let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        edges.compute(&mut encoder);
-        gpu.queue.submit([encoder.finish()]);
+        let mut encoder = gpu.encoder();
+        edges
+            .prepare(&gpu.queue, &mut encoder, &camera, &style)
+            .expect("prepare");
+        gpu.submit(encoder).expect("submit");
         let counts = edges.read_counts(&gpu.device, &gpu.queue).expect("counts");
         let expected = cpu_contours(&asset, camera.eye().as_dvec4());
         // f32 on the GPU against f64 here: a face seen exactly edge-on may tip either way.
@@ -548,32 +548,24 @@ fn a_renderer_reused_across_frames_draws_what_a_fresh_one_does() {
         };
         Camera::orbit(bounds, &orbit, [200, 160])
     });
-    let target = gpu.target(200, 160, 1);
+    let target = gpu.target(200, 160, 1).expect("target");
+    let pipelines = chamfer_tests::pipelines(target.formats());
     let uploaded = GpuAsset::new(&gpu.device, &asset).expect("upload");
     let style = edges_in(RED, 6.0, CapMethod::NextIndex);
-    let mut mesh = MeshRenderer::new(&gpu.device, &target.formats(), &uploaded);
-    let mut reused =
-        EdgeRenderer::new(&gpu.device, &target.formats(), &uploaded).expect("renderer");
+    let mut mesh = MeshRenderer::new(&pipelines, &uploaded).expect("mesh");
+    let mut reused = EdgeRenderer::new(&pipelines, &uploaded);
     for camera in &cameras {
         let mut draw = |edges: &mut EdgeRenderer| {
-            mesh.prepare(&gpu.queue, camera, &grey_mesh());
-            edges.prepare(&gpu.queue, camera, &style);
-            target
-                .draw(
-                    gpu,
-                    BLUE_BACKGROUND,
-                    |encoder| edges.compute(encoder),
-                    |pass| {
-                        mesh.render(pass);
-                        edges.render(pass);
-                    },
-                )
-                .expect("draw");
-            target.read(gpu).expect("read")
+            draw_frame(
+                &target,
+                camera,
+                BLUE_BACKGROUND,
+                Some((&mut mesh, &grey_mesh())),
+                Some((edges, &style)),
+            )
         };
         let again = draw(&mut reused);
-        let mut fresh =
-            EdgeRenderer::new(&gpu.device, &target.formats(), &uploaded).expect("renderer");
+        let mut fresh = EdgeRenderer::new(&pipelines, &uploaded);
         assert!(again == draw(&mut fresh), "camera {:?}", camera.eye());
     }
 }

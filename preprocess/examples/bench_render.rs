@@ -19,7 +19,7 @@ use std::time::Instant;
 use chamfer_runtime::asset::Asset;
 use chamfer_runtime::render::{
     Camera, CapMethod, EdgeRenderer, EdgeStyle, GpuAsset, MeshRenderer, MeshStyle, Offscreen,
-    OffscreenTarget, Orbit,
+    OffscreenTarget, Orbit, Pipelines,
 };
 use wgpu::util::DeviceExt;
 
@@ -80,104 +80,68 @@ fn bench(
     frames: usize,
     caps: CapMethod,
 ) -> Result<(), Box<dyn std::error::Error>> {
-    let target = gpu.target(size[0], size[1], 1);
+    let target = gpu.target(size[0], size[1], 1)?;
+    let pipelines = Pipelines::new(&gpu.device, &target.formats())?;
     let uploaded = GpuAsset::new(&gpu.device, asset)?;
     let camera = Camera::orbit(uploaded.bounds(), &Orbit::default(), size);
     let style = EdgeStyle {
         caps,
         ..EdgeStyle::default()
     };
-    let mut mesh = MeshRenderer::new(&gpu.device, &target.formats(), &uploaded);
+    let lit_style = EdgeStyle {
+        highlight: Some(chamfer_runtime::render::Highlight::default()),
+        ..style
+    };
+    let mut mesh = MeshRenderer::new(&pipelines, &uploaded)?;
     mesh.prepare(&gpu.queue, &camera, &MeshStyle::default());
-    let mut edges = EdgeRenderer::new(&gpu.device, &target.formats(), &uploaded)?;
-    edges.prepare(&gpu.queue, &camera, &style);
+    let mut edges = EdgeRenderer::new(&pipelines, &uploaded);
     let naive = NaiveEdges::new(gpu, &target, &uploaded, &camera, &style);
-    let mut lit = EdgeRenderer::new(&gpu.device, &target.formats(), &uploaded)?;
-    lit.prepare(
-        &gpu.queue,
-        &camera,
-        &EdgeStyle {
-            highlight: Some(chamfer_runtime::render::Highlight::default()),
-            ..style
-        },
-    );
+    let mut lit = EdgeRenderer::new(&pipelines, &uploaded);
 
-    let mesh_only = || frame(gpu, &target, |_| {}, |pass| mesh.render(pass));
-    let with_edges = || {
-        frame(
-            gpu,
-            &target,
-            |encoder| edges.compute(encoder),
-            |pass| {
-                mesh.render(pass);
-                edges.render(pass);
-            },
-        )
+    let mesh_only = || frame(gpu, &target, |_| Ok(()), |pass| mesh.render(pass));
+    let with_edges = |edges: &mut EdgeRenderer, style: &EdgeStyle, compute: bool, draw: bool| {
+        let start = Instant::now();
+        let mut encoder = gpu.encoder();
+        let prepared = edges.prepare(&gpu.queue, &mut encoder, &camera, style)?;
+        if !compute {
+            // The draws alone: drop this frame's compute work, draw what the last frame left.
+            encoder = gpu.encoder();
+        }
+        if draw {
+            let mut pass = target.begin_pass(&mut encoder, [1.0; 4]);
+            mesh.render(&mut pass);
+            prepared.render(&mut pass);
+        }
+        gpu.submit(encoder)?;
+        Ok::<f64, Box<dyn std::error::Error>>(start.elapsed().as_secs_f64() * 1e3)
     };
     let with_naive = || {
         frame(
             gpu,
             &target,
-            |_| {},
+            |_| Ok(()),
             |pass| {
                 mesh.render(pass);
                 naive.render(pass);
             },
         )
     };
-    let with_highlight = || {
-        frame(
-            gpu,
-            &target,
-            |encoder| lit.compute(encoder),
-            |pass| {
-                mesh.render(pass);
-                lit.render(pass);
-            },
-        )
-    };
-    let draw_only = || {
-        frame(
-            gpu,
-            &target,
-            |_| {},
-            |pass| {
-                mesh.render(pass);
-                edges.render(pass);
-            },
-        )
-    };
-    let compute_only = || -> Result<f64, Box<dyn std::error::Error>> {
-        let start = Instant::now();
-        let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        edges.compute(&mut encoder);
-        gpu.queue.submit([encoder.finish()]);
-        gpu.wait()?;
-        Ok(start.elapsed().as_secs_f64() * 1e3)
-    };
-    for _ in 0..2 {
-        mesh_only()?;
-        with_edges()?;
-        with_naive()?;
-        compute_only()?;
-        draw_only()?;
-        with_highlight()?;
-    }
-    let mut times = [
-        Vec::new(),
-        Vec::new(),
-        Vec::new(),
-        Vec::new(),
-        Vec::new(),
-        Vec::new(),
-    ];
-    for _ in 0..frames {
-        times[0].push(mesh_only()?);
-        times[1].push(with_edges()?);
-        times[2].push(with_naive()?);
-        times[3].push(compute_only()?);
-        times[4].push(draw_only()?);
-        times[5].push(with_highlight()?);
+    let mut times = [(); 6].map(|_| Vec::new());
+    for round in 0..frames + 2 {
+        let row = [
+            mesh_only()?,
+            with_edges(&mut edges, &style, true, true)?,
+            with_naive()?,
+            with_edges(&mut edges, &style, true, false)?,
+            with_edges(&mut edges, &style, false, true)?,
+            with_edges(&mut lit, &lit_style, true, true)?,
+        ];
+        // The first two rounds warm up (pipelines compile on first use).
+        if round >= 2 {
+            for (list, t) in times.iter_mut().zip(row) {
+                list.push(t);
+            }
+        }
     }
     let [m, e, n, c, d, h] = times.map(median);
     let drawn = drawn_edges(gpu, &edges)?;
@@ -200,11 +164,14 @@ fn bench(
 fn frame(
     gpu: &Offscreen,
     target: &OffscreenTarget,
-    before: impl FnOnce(&mut wgpu::CommandEncoder),
+    before: impl FnOnce(&mut wgpu::CommandEncoder) -> Result<(), Box<dyn std::error::Error>>,
     inside: impl FnOnce(&mut wgpu::RenderPass<'_>),
 ) -> Result<f64, Box<dyn std::error::Error>> {
     let start = Instant::now();
-    target.draw(gpu, [1.0; 4], before, inside)?;
+    let mut encoder = gpu.encoder();
+    before(&mut encoder)?;
+    inside(&mut target.begin_pass(&mut encoder, [1.0; 4]));
+    gpu.submit(encoder)?;
     Ok(start.elapsed().as_secs_f64() * 1e3)
 }
 

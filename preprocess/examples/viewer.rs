@@ -3,8 +3,8 @@
 //!
 //! Drag to orbit, scroll to zoom. Keys: 1 contours, 2 ridges, 3 valleys, 4 boundaries, 5 marked
 //! (toggle each class); + / - edge width; C cycles the cap method; D depth-scaled width; E edges on
-//! or off; O orthographic; H the chamfer highlight (seed 000) under a light circling the model; Esc
-//! quits. Meshes are baked with a chamfer radius of 0.4 % of their diagonal on ridges. It is also the smallest example of hosting the renderers in an
+//! or off; O orthographic; T cycles the edge technique (its name is in the title); H the chamfer
+//! highlight (seed 000) under a light circling the model; Esc quits. Meshes are baked with a chamfer radius of 0.4 % of their diagonal on ridges. It is also the smallest example of hosting the renderers in an
 //! application's own wgpu setup: the window, device and frame belong to this file.
 
 use std::path::PathBuf;
@@ -13,8 +13,8 @@ use std::sync::Arc;
 use anyhow::Context;
 use chamfer_runtime::asset::Asset;
 use chamfer_runtime::render::{
-    Camera, CapMethod, EdgeClasses, EdgeRenderer, EdgeStyle, GpuAsset, Highlight, Light, MeshLight,
-    MeshRenderer, MeshStyle, Orbit, Target,
+    Camera, CapMethod, EdgeClasses, EdgeRenderer, EdgeStyle, FrameViews, GpuAsset, Highlight,
+    Light, MeshLight, MeshRenderer, MeshStyle, Orbit, Pipelines, Target, Technique,
 };
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
@@ -22,7 +22,8 @@ use winit::event_loop::{ActiveEventLoop, EventLoop};
 use winit::keyboard::{Key, NamedKey};
 use winit::window::{Window, WindowId};
 
-const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+// With stencil, for the stencil techniques; every format with depth can be sampled after the pass.
+const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth24PlusStencil8;
 
 fn main() -> anyhow::Result<()> {
     let input: PathBuf = std::env::args_os()
@@ -81,6 +82,7 @@ struct Gpu {
     queue: wgpu::Queue,
     config: wgpu::SurfaceConfiguration,
     depth: wgpu::TextureView,
+    depth_sampled: wgpu::TextureView,
     asset: GpuAsset,
     mesh: MeshRenderer,
     edges: EdgeRenderer,
@@ -118,15 +120,12 @@ impl Gpu {
             .get_default_config(&adapter, size.width.max(1), size.height.max(1))
             .context("the surface does not work with this adapter")?;
         surface.configure(&device, &config);
-        let target = Target {
-            color_format: config.format,
-            depth_format: Some(DEPTH),
-            sample_count: 1,
-        };
-        let uploaded = GpuAsset::new(&device, asset)?;
-        let mesh = MeshRenderer::new(&device, &target, &uploaded);
-        let edges = EdgeRenderer::new(&device, &target, &uploaded)?;
-        let depth = depth_view(&device, &config);
+        let target = Target::new(config.format, Some(DEPTH), 1);
+        let pipelines = Pipelines::new(&device, &target)?;
+        let uploaded = GpuAsset::for_techniques(&device, asset, &Technique::all())?;
+        let mesh = MeshRenderer::new(&pipelines, &uploaded)?;
+        let edges = EdgeRenderer::new(&pipelines, &uploaded);
+        let (depth, depth_sampled) = depth_views(&device, &config);
         Ok(Self {
             window,
             surface,
@@ -134,6 +133,7 @@ impl Gpu {
             queue,
             config,
             depth,
+            depth_sampled,
             asset: uploaded,
             mesh,
             edges,
@@ -144,18 +144,24 @@ impl Gpu {
         self.config.width = width.max(1);
         self.config.height = height.max(1);
         self.surface.configure(&self.device, &self.config);
-        self.depth = depth_view(&self.device, &self.config);
+        (self.depth, self.depth_sampled) = depth_views(&self.device, &self.config);
     }
 
-    fn draw(&mut self, orbit: &Orbit, style: &EdgeStyle, mesh_style: &MeshStyle, draw_edges: bool) {
+    fn draw(
+        &mut self,
+        orbit: &Orbit,
+        style: &EdgeStyle,
+        mesh_style: &MeshStyle,
+        draw_edges: bool,
+    ) -> anyhow::Result<()> {
         let frame = match self.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(frame)
             | wgpu::CurrentSurfaceTexture::Suboptimal(frame) => frame,
             wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
                 self.surface.configure(&self.device, &self.config);
-                return;
+                return Ok(());
             }
-            _ => return,
+            _ => return Ok(()),
         };
         let view = frame.texture.create_view(&Default::default());
         let camera = Camera::orbit(
@@ -164,11 +170,15 @@ impl Gpu {
             [self.config.width, self.config.height],
         );
         self.mesh.prepare(&self.queue, &camera, mesh_style);
-        self.edges.prepare(&self.queue, &camera, style);
         let mut encoder = self.device.create_command_encoder(&Default::default());
-        if draw_edges {
-            self.edges.compute(&mut encoder);
-        }
+        let prepared = if draw_edges {
+            Some(
+                self.edges
+                    .prepare(&self.queue, &mut encoder, &camera, style)?,
+            )
+        } else {
+            None
+        };
         {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("viewer"),
@@ -185,42 +195,60 @@ impl Gpu {
                     view: &self.depth,
                     depth_ops: Some(wgpu::Operations {
                         load: wgpu::LoadOp::Clear(1.0),
-                        store: wgpu::StoreOp::Discard,
+                        store: wgpu::StoreOp::Store,
                     }),
-                    stencil_ops: None,
+                    stencil_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(0),
+                        store: wgpu::StoreOp::Store,
+                    }),
                 }),
                 timestamp_writes: None,
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
             self.mesh.render(&mut pass);
-            if draw_edges {
-                self.edges.render(&mut pass);
+            if let Some(prepared) = &prepared {
+                prepared.render(&mut pass);
             }
+        }
+        if let Some(prepared) = &prepared {
+            let views = FrameViews {
+                color: &view,
+                depth: &self.depth_sampled,
+            };
+            prepared.finish(&mut encoder, &views)?;
         }
         self.queue.submit([encoder.finish()]);
         self.window.pre_present_notify();
         self.queue.present(frame);
+        Ok(())
     }
 }
 
-fn depth_view(device: &wgpu::Device, config: &wgpu::SurfaceConfiguration) -> wgpu::TextureView {
-    device
-        .create_texture(&wgpu::TextureDescriptor {
-            label: Some("viewer depth"),
-            size: wgpu::Extent3d {
-                width: config.width,
-                height: config.height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: DEPTH,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-            view_formats: &[],
-        })
-        .create_view(&Default::default())
+/// The depth attachment, and a depth-only view of it for the techniques that read it after the pass.
+fn depth_views(
+    device: &wgpu::Device,
+    config: &wgpu::SurfaceConfiguration,
+) -> (wgpu::TextureView, wgpu::TextureView) {
+    let texture = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("viewer depth"),
+        size: wgpu::Extent3d {
+            width: config.width,
+            height: config.height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: DEPTH,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+        view_formats: &[],
+    });
+    let sampled = texture.create_view(&wgpu::TextureViewDescriptor {
+        aspect: wgpu::TextureAspect::DepthOnly,
+        ..Default::default()
+    });
+    (texture.create_view(&Default::default()), sampled)
 }
 
 /// Applies a key press; true if the picture changed.
@@ -252,6 +280,14 @@ fn apply_key(key: &Key, style: &mut EdgeStyle, orbit: &mut Orbit, draw_edges: &m
                 "d" => style.depth_scaled = !style.depth_scaled,
                 "e" => *draw_edges = !*draw_edges,
                 "o" => orbit.orthographic = !orbit.orthographic,
+                "t" => {
+                    let all = Technique::all();
+                    let now = all
+                        .iter()
+                        .position(|t| t.name() == style.technique.name())
+                        .unwrap_or(0);
+                    style.technique = all[(now + 1) % all.len()];
+                }
                 _ => return false,
             },
             _ => return false,
@@ -319,7 +355,15 @@ impl ApplicationHandler for Viewer {
                 } else {
                     (self.style, MeshStyle::default())
                 };
-                gpu.draw(&self.orbit, &style, &mesh_style, self.draw_edges);
+                if let Err(e) = gpu.draw(&self.orbit, &style, &mesh_style, self.draw_edges) {
+                    self.error = Some(e);
+                    event_loop.exit();
+                }
+                gpu.window.set_title(&format!(
+                    "chamfer viewer: {} ({})",
+                    self.title,
+                    style.technique.name()
+                ));
                 if self.highlight {
                     gpu.window.request_redraw();
                 }

@@ -42,4 +42,41 @@ pub enum RenderError {
     /// Reading the rendered image back failed.
     #[error("reading the image back from the GPU failed: {0}")]
     Readback(String),
+    /// The render target cannot be drawn into correctly.
+    #[error("the renderer cannot draw into a target with {0}")]
+    Target(String),
+    /// The device refused to create a resource or pipeline, or to run a command.
+    #[error("the GPU refused {what}: {message}")]
+    Gpu {
+        /// What was being created or run.
+        what: String,
+        /// The device's message.
+        message: String,
+    },
+    /// A technique needs something of the render target that it lacks.
+    #[error("{technique} needs {needs} in the render target")]
+    TargetLacks {
+        /// The technique's name.
+        technique: &'static str,
+        /// What it needs.
+        needs: &'static str,
+    },
+    /// A technique needs per-asset data that the asset was uploaded without.
+    #[error(
+        "{technique} needs the asset uploaded with {needs} (GpuAsset::with_extras or GpuAsset::for_techniques)"
+    )]
+    MissingAssetData {
+        /// The technique's name.
+        technique: &'static str,
+        /// What the upload left out.
+        needs: &'static str,
+    },
+    /// The asset cannot be drawn by this technique.
+    #[error("{technique} cannot draw this asset: {why}")]
+    Unsupported {
+        /// The technique's name.
+        technique: &'static str,
+        /// Why not.
+        why: String,
+    },
 }

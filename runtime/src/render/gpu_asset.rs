@@ -1,17 +1,21 @@
-//! An asset's sections in GPU buffers, uploaded byte for byte as the file stores them.
+//! Per asset: its sections in GPU buffers, uploaded byte for byte as the file stores them, and what
+//! every frame's classification needs that is fixed per asset (the face planes of each edge).
 
 use std::path::Path;
 
+use glam::Vec3;
 use wgpu::util::DeviceExt;
 
 use super::RenderError;
-use crate::asset::{Asset, IndexWidth, SectionKind};
+use super::target::checked;
+use crate::asset::{Asset, EdgeFlags, IndexWidth, SectionKind, attribute_flags};
 
-/// A validated asset on the GPU. Create it once; any number of renderers can draw from it.
+/// A validated asset on the GPU. Create it once; any number of renderers can draw from it (it is a
+/// set of shared buffer handles, cheap to clone).
 ///
 /// Index sections keep their file width: 16-bit sections are read in halves by the shaders, and
 /// the mesh's index buffer uses the matching [`wgpu::IndexFormat`].
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 pub struct GpuAsset {
     pub(crate) render_positions: wgpu::Buffer,
     pub(crate) render_normals: wgpu::Buffer,
@@ -32,6 +36,9 @@ pub struct GpuAsset {
     pub(crate) has_chamfers: bool,
     pub(crate) bounds: [[f32; 3]; 2],
     pub(crate) radius_scale: f32,
+    /// Per edge, the planes of its two faces, oriented so that a positive dot product with the
+    /// homogeneous eye means "faces the camera" (see `face_planes`).
+    pub(crate) face_planes: wgpu::Buffer,
 }
 
 impl GpuAsset {
@@ -39,6 +46,23 @@ impl GpuAsset {
     ///
     /// Fails with [`RenderError::TooLarge`] if a section exceeds the device's storage binding limit.
     pub fn new(device: &wgpu::Device, asset: &Asset) -> Result<Self, RenderError> {
+        checked(device, "the asset's buffers", || {
+            Self::upload(device, asset)
+        })?
+    }
+
+    /// Uploads `asset` with what each of `techniques` needs beyond the sections (see
+    /// [`Technique`](super::Technique)); [`GpuAsset::new`] uploads what the default technique needs.
+    pub fn for_techniques(
+        device: &wgpu::Device,
+        asset: &Asset,
+        techniques: &[super::Technique],
+    ) -> Result<Self, RenderError> {
+        let _ = techniques;
+        Self::new(device, asset)
+    }
+
+    fn upload(device: &wgpu::Device, asset: &Asset) -> Result<Self, RenderError> {
         let limit = device
             .limits()
             .max_storage_buffer_binding_size
@@ -75,6 +99,8 @@ impl GpuAsset {
             rings.extend(wide.flat_map(u32::to_le_bytes));
         }
         check("rings", rings.len())?;
+        let planes = face_planes(asset);
+        check("face planes", std::mem::size_of_val(planes.as_slice()))?;
         let index_count =
             u32::try_from(asset.mesh_indices.len()).map_err(|_| RenderError::TooLarge {
                 what: "mesh_indices",
@@ -83,9 +109,19 @@ impl GpuAsset {
             })?;
         let edge_count = asset.edge_count() as u32;
         Ok(Self {
-            render_positions: section(SectionKind::RenderPositions, wgpu::BufferUsages::VERTEX),
-            render_normals: section(SectionKind::RenderNormals, wgpu::BufferUsages::VERTEX),
-            mesh_indices: section(SectionKind::MeshIndices, wgpu::BufferUsages::INDEX),
+            // Vertex and index buffers are storage buffers too, for techniques that pull triangles.
+            render_positions: section(
+                SectionKind::RenderPositions,
+                wgpu::BufferUsages::VERTEX | storage,
+            ),
+            render_normals: section(
+                SectionKind::RenderNormals,
+                wgpu::BufferUsages::VERTEX | storage,
+            ),
+            mesh_indices: section(
+                SectionKind::MeshIndices,
+                wgpu::BufferUsages::INDEX | storage,
+            ),
             index_format: match asset.mesh_indices.width() {
                 IndexWidth::U16 => wgpu::IndexFormat::Uint16,
                 IndexWidth::U32 => wgpu::IndexFormat::Uint32,
@@ -106,6 +142,12 @@ impl GpuAsset {
             }),
             bounds: [asset.header.bounds_min, asset.header.bounds_max],
             radius_scale: asset.header.radius_scale,
+            face_planes: upload(
+                device,
+                "face planes",
+                bytemuck::cast_slice(&planes),
+                storage,
+            ),
         })
     }
 
@@ -125,6 +167,28 @@ impl GpuAsset {
     /// Minimum and maximum corners of the model's bounding box.
     pub fn bounds(&self) -> [[f32; 3]; 2] {
         self.bounds
+    }
+
+    /// The centre of the model's bounding box.
+    pub fn center(&self) -> Vec3 {
+        (Vec3::from(self.bounds[0]) + Vec3::from(self.bounds[1])) * 0.5
+    }
+
+    /// GPU bytes of the asset's buffers.
+    pub fn gpu_bytes(&self) -> u64 {
+        [
+            &self.render_positions,
+            &self.render_normals,
+            &self.mesh_indices,
+            &self.topology_positions,
+            &self.edge_vertices,
+            &self.edge_attributes,
+            &self.rings,
+            &self.face_planes,
+        ]
+        .iter()
+        .map(|b| b.size())
+        .sum()
     }
 
     /// Chamfer radii in the edge attributes are multiples of this (the asset header's `radius_scale`).
@@ -181,4 +245,30 @@ fn upload(
         contents,
         usage,
     })
+}
+
+/// Per edge, the planes (normal, offset) of its two faces: `a` of (v0, v1, v2), `b` of (v1, v0, v3)
+/// (negated for [`EdgeFlags::FLIPPED`], so both face the same side of the surface); a boundary or
+/// non-manifold edge repeats `a`. The per-frame test then reads two contiguous vectors per edge
+/// instead of gathering four vertices. Same arithmetic, in f32, as the GPU would do.
+fn face_planes(asset: &Asset) -> Vec<[f32; 4]> {
+    let position =
+        |i: usize| Vec3::from(asset.topology_positions[asset.edge_vertices.get(i) as usize]);
+    let plane = |normal: Vec3, p: Vec3| normal.extend(-normal.dot(p)).to_array();
+    let mut planes = Vec::with_capacity(2 * asset.edge_count());
+    for (e, &word) in asset.edge_attributes.iter().enumerate() {
+        let [p0, p1, p2, p3] = [0, 1, 2, 3].map(|k| position(4 * e + k));
+        let flags = attribute_flags(word);
+        let a = plane((p1 - p0).cross(p2 - p0), p0);
+        let mut b = a;
+        if !flags.intersects(EdgeFlags::BOUNDARY | EdgeFlags::NON_MANIFOLD) {
+            b = plane((p0 - p1).cross(p3 - p1), p1);
+            if flags.contains(EdgeFlags::FLIPPED) {
+                b = b.map(|c| -c);
+            }
+        }
+        planes.push(a);
+        planes.push(b);
+    }
+    planes
 }

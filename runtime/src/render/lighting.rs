@@ -40,12 +40,3 @@ impl Default for Highlight {
         }
     }
 }
-
-/// `Lighting` in `shaders/highlight.wgsl`.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
-pub(crate) struct LightingUniform {
-    pub(crate) light: [f32; 4],
-    pub(crate) color: [f32; 4],
-    pub(crate) material: [f32; 4],
-}

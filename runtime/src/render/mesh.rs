@@ -1,8 +1,12 @@
 //! The runtime's simple lit mesh pass, for applications without their own (and for `chamfer render`).
 
+use std::sync::Arc;
+
 use glam::Vec3;
 
-use super::{Camera, GpuAsset, Light, Target, shaders};
+use super::layout::MeshFrame;
+use super::pipelines::{Access, BindingSet, RenderPipeline};
+use super::{Camera, GpuAsset, Light, Pipelines, RenderError, modules};
 
 /// Where the mesh's light comes from.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -41,108 +45,79 @@ impl Default for MeshStyle {
     }
 }
 
-#[repr(C)]
-#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
-struct MeshUniform {
-    mvp: [[f32; 4]; 4],
-    light: [f32; 4],
-    color: [f32; 4],
-    params: [f32; 4],
-    eye: [f32; 4],
+const MESH: BindingSet = BindingSet {
+    label: "mesh",
+    stages: wgpu::ShaderStages::VERTEX_FRAGMENT,
+    entries: &[(0, Access::Uniform)],
+};
+
+/// The mesh pipeline, per device and target.
+#[derive(Debug)]
+pub(crate) struct Pipeline {
+    layout: wgpu::BindGroupLayout,
+    pipeline: wgpu::RenderPipeline,
+}
+
+impl Pipeline {
+    pub(crate) fn new(cache: &Pipelines) -> Result<Self, RenderError> {
+        let layout = cache.layout(&MESH);
+        let module = cache.module("mesh.wgsl", &modules::mesh())?;
+        let vertex_buffer = |attributes| {
+            Some(wgpu::VertexBufferLayout {
+                array_stride: 12,
+                step_mode: wgpu::VertexStepMode::Vertex,
+                attributes,
+            })
+        };
+        let target = cache.target();
+        let pipeline = cache.render_pipeline(
+            &[&layout],
+            RenderPipeline {
+                label: "mesh",
+                module: &module,
+                vertex: "mesh_vertex",
+                fragment: "mesh_fragment",
+                buffers: &[
+                    vertex_buffer(&wgpu::vertex_attr_array![0 => Float32x3]),
+                    vertex_buffer(&wgpu::vertex_attr_array![1 => Float32x3]),
+                ],
+                primitive: wgpu::PrimitiveState::default(),
+                depth_stencil: target.depth(true, wgpu::CompareFunction::Less),
+                multisample: target.multisample(),
+                color: target.blended_color(),
+            },
+        )?;
+        Ok(Self { layout, pipeline })
+    }
 }
 
 /// Draws a [`GpuAsset`]'s triangles with its crease-split normals, writing depth for the edges.
 #[derive(Debug)]
 pub struct MeshRenderer {
+    pipeline: Arc<Pipeline>,
     uniform: wgpu::Buffer,
     group: wgpu::BindGroup,
-    pipeline: wgpu::RenderPipeline,
-    positions: wgpu::Buffer,
-    normals: wgpu::Buffer,
-    indices: wgpu::Buffer,
-    index_format: wgpu::IndexFormat,
-    index_count: u32,
+    asset: GpuAsset,
 }
 
 impl MeshRenderer {
-    /// Builds the pipeline for `target`.
-    pub fn new(device: &wgpu::Device, target: &Target, asset: &GpuAsset) -> Self {
+    /// A mesh pass for `asset` with the pipeline of `pipelines` (compiled once per target).
+    pub fn new(pipelines: &Pipelines, asset: &GpuAsset) -> Result<Self, RenderError> {
+        let pipeline = pipelines.mesh()?;
+        let device = pipelines.device();
         let uniform = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("mesh frame"),
-            size: std::mem::size_of::<MeshUniform>() as u64,
+            size: std::mem::size_of::<MeshFrame>() as u64,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("mesh"),
-            entries: &[wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: false,
-                    min_binding_size: None,
-                },
-                count: None,
-            }],
-        });
-        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("mesh"),
-            layout: &layout,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: uniform.as_entire_binding(),
-            }],
-        });
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("mesh.wgsl"),
-            source: wgpu::ShaderSource::Wgsl(shaders::MESH.into()),
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("mesh"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let vertex_buffer = |location| wgpu::VertexBufferLayout {
-            array_stride: 12,
-            step_mode: wgpu::VertexStepMode::Vertex,
-            attributes: if location == 0 {
-                &wgpu::vertex_attr_array![0 => Float32x3]
-            } else {
-                &wgpu::vertex_attr_array![1 => Float32x3]
-            },
-        };
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("mesh"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("mesh_vertex"),
-                compilation_options: Default::default(),
-                buffers: &[Some(vertex_buffer(0)), Some(vertex_buffer(1))],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: target.depth(true, wgpu::CompareFunction::Less),
-            multisample: target.multisample(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("mesh_fragment"),
-                compilation_options: Default::default(),
-                targets: &[Some(target.blended_color())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
-        Self {
+        let group = MESH.group(device, &pipeline.layout, &[(0, &uniform)]);
+        Ok(Self {
+            pipeline,
             uniform,
             group,
-            pipeline,
-            positions: asset.render_positions.clone(),
-            normals: asset.render_normals.clone(),
-            indices: asset.mesh_indices.clone(),
-            index_format: asset.index_format,
-            index_count: asset.index_count,
-        }
+            asset: asset.clone(),
+        })
     }
 
     /// Sets this frame's camera and style.
@@ -159,7 +134,7 @@ impl MeshRenderer {
             }
             MeshLight::Model(Light::Point(position)) => Vec3::from(position).extend(1.0),
         };
-        let uniform = MeshUniform {
+        let uniform = MeshFrame {
             mvp: camera.view_projection().to_cols_array_2d(),
             light: light.to_array(),
             color: style.color,
@@ -176,11 +151,12 @@ impl MeshRenderer {
 
     /// Draws the mesh into `pass`.
     pub fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
-        pass.set_pipeline(&self.pipeline);
+        let asset = &self.asset;
+        pass.set_pipeline(&self.pipeline.pipeline);
         pass.set_bind_group(0, &self.group, &[]);
-        pass.set_vertex_buffer(0, self.positions.slice(..));
-        pass.set_vertex_buffer(1, self.normals.slice(..));
-        pass.set_index_buffer(self.indices.slice(..), self.index_format);
-        pass.draw_indexed(0..self.index_count, 0, 0..1);
+        pass.set_vertex_buffer(0, asset.render_positions.slice(..));
+        pass.set_vertex_buffer(1, asset.render_normals.slice(..));
+        pass.set_index_buffer(asset.mesh_indices.slice(..), asset.index_format);
+        pass.draw_indexed(0..asset.index_count, 0, 0..1);
     }
 }

@@ -1,7 +1,8 @@
 //! Rendering without a window: a device of its own and a texture to draw into and read back.
 //! For tests, thumbnails and the `chamfer render` command; applications use their own device.
 
-use super::{RenderError, Target};
+use super::target::checked;
+use super::{FrameViews, RenderError, Target};
 
 /// A headless GPU device (any adapter, hardware or software, picked like `WGPU_BACKEND`,
 /// `WGPU_ADAPTER_NAME` and `WGPU_POWER_PREF` say).
@@ -16,7 +17,8 @@ pub struct Offscreen {
 }
 
 impl Offscreen {
-    /// Opens a device with the adapter's own limits (software adapters bind up to 128 MiB).
+    /// Opens a device with the adapter's own limits (software adapters bind up to 128 MiB) and, where
+    /// the adapter has it, a 32-bit float depth format with stencil (for the stencil techniques).
     pub fn new() -> Result<Self, RenderError> {
         let instance =
             wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
@@ -33,7 +35,7 @@ impl Offscreen {
             .map_err(|e| RenderError::NoAdapter(e.to_string()))?;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("chamfer offscreen"),
-            required_features: wgpu::Features::empty(),
+            required_features: adapter.features() & wgpu::Features::DEPTH32FLOAT_STENCIL8,
             required_limits: adapter.limits(),
             experimental_features: wgpu::ExperimentalFeatures::disabled(),
             memory_hints: wgpu::MemoryHints::Performance,
@@ -47,9 +49,71 @@ impl Offscreen {
         })
     }
 
-    /// A `width` × `height` target with `sample_count` samples per pixel (1 or 4).
-    pub fn target(&self, width: u32, height: u32, sample_count: u32) -> OffscreenTarget {
-        OffscreenTarget::new(&self.device, width.max(1), height.max(1), sample_count)
+    /// The depth format of this device's offscreen targets: 32-bit float, with stencil where the
+    /// device has the feature, else 24-bit with stencil.
+    pub fn depth_format(&self) -> wgpu::TextureFormat {
+        if self
+            .device
+            .features()
+            .contains(wgpu::Features::DEPTH32FLOAT_STENCIL8)
+        {
+            wgpu::TextureFormat::Depth32FloatStencil8
+        } else {
+            wgpu::TextureFormat::Depth24PlusStencil8
+        }
+    }
+
+    /// The formats of a `sample_count`-sample offscreen target (1 or 4): RGBA8 and
+    /// [`Offscreen::depth_format`], standard depth.
+    pub fn formats(&self, sample_count: u32) -> Target {
+        Target::new(COLOR, Some(self.depth_format()), sample_count)
+    }
+
+    /// A `width` × `height` target of [`Offscreen::formats`].
+    pub fn target(
+        &self,
+        width: u32,
+        height: u32,
+        sample_count: u32,
+    ) -> Result<OffscreenTarget, RenderError> {
+        self.target_with(width, height, self.formats(sample_count))
+    }
+
+    /// A `width` × `height` target of `formats` (colour RGBA8, any depth format, either depth
+    /// convention). Fails with a typed error if the device refuses the textures (too large, say).
+    pub fn target_with(
+        &self,
+        width: u32,
+        height: u32,
+        formats: Target,
+    ) -> Result<OffscreenTarget, RenderError> {
+        formats.check()?;
+        let limit = self.device.limits().max_texture_dimension_2d;
+        if width > limit || height > limit {
+            return Err(RenderError::Target(format!(
+                "a size of {width}x{height}: this device's textures are at most {limit} pixels wide and high"
+            )));
+        }
+        checked(&self.device, "the offscreen target", || {
+            OffscreenTarget::new(&self.device, width.max(1), height.max(1), formats)
+        })
+    }
+
+    /// A command encoder for a frame.
+    pub fn encoder(&self) -> wgpu::CommandEncoder {
+        self.device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("offscreen frame"),
+            })
+    }
+
+    /// Submits `encoder` and waits until the GPU is done; a command the device refuses becomes a
+    /// typed error.
+    pub fn submit(&self, encoder: wgpu::CommandEncoder) -> Result<(), RenderError> {
+        checked(&self.device, "the frame's commands", || {
+            self.queue.submit([encoder.finish()]);
+        })?;
+        self.wait()
     }
 
     /// Blocks until the GPU has finished all submitted work.
@@ -61,25 +125,24 @@ impl Offscreen {
     }
 }
 
-/// Colour (RGBA8, linear values as written) and depth (32-bit float) attachments.
+/// Colour (RGBA8, linear values as written) and depth attachments.
 #[derive(Debug)]
 pub struct OffscreenTarget {
     width: u32,
     height: u32,
-    sample_count: u32,
+    formats: Target,
     color: wgpu::Texture,
     multisampled: Option<wgpu::TextureView>,
     color_view: wgpu::TextureView,
     depth_view: wgpu::TextureView,
+    depth_sampled: wgpu::TextureView,
 }
 
 /// The colour format of offscreen targets.
 const COLOR: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
-/// The depth format of offscreen targets.
-const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
 impl OffscreenTarget {
-    fn new(device: &wgpu::Device, width: u32, height: u32, sample_count: u32) -> Self {
+    fn new(device: &wgpu::Device, width: u32, height: u32, formats: Target) -> Self {
         let texture = |label, format, samples, usage| {
             device.create_texture(&wgpu::TextureDescriptor {
                 label: Some(label),
@@ -97,35 +160,44 @@ impl OffscreenTarget {
             })
         };
         let attachment = wgpu::TextureUsages::RENDER_ATTACHMENT;
+        let samples = formats.sample_count;
         let color = texture(
             "offscreen color",
             COLOR,
             1,
-            attachment | wgpu::TextureUsages::COPY_SRC,
+            attachment | wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::TEXTURE_BINDING,
         );
-        let multisampled = (sample_count > 1).then(|| {
-            texture("offscreen msaa", COLOR, sample_count, attachment)
-                .create_view(&Default::default())
+        let multisampled = (samples > 1).then(|| {
+            texture("offscreen msaa", COLOR, samples, attachment).create_view(&Default::default())
         });
-        let depth = texture("offscreen depth", DEPTH, sample_count, attachment);
+        let depth_format = formats
+            .depth_format
+            .unwrap_or(wgpu::TextureFormat::Depth32Float);
+        let depth = texture(
+            "offscreen depth",
+            depth_format,
+            samples,
+            attachment | wgpu::TextureUsages::TEXTURE_BINDING,
+        );
         Self {
             width,
             height,
-            sample_count,
+            formats,
             color_view: color.create_view(&Default::default()),
             color,
             multisampled,
             depth_view: depth.create_view(&Default::default()),
+            depth_sampled: depth.create_view(&wgpu::TextureViewDescriptor {
+                label: Some("offscreen depth, sampled"),
+                aspect: wgpu::TextureAspect::DepthOnly,
+                ..Default::default()
+            }),
         }
     }
 
     /// The formats renderers must be built for to draw here.
     pub fn formats(&self) -> Target {
-        Target {
-            color_format: COLOR,
-            depth_format: Some(DEPTH),
-            sample_count: self.sample_count,
-        }
+        self.formats
     }
 
     /// Width and height in pixels.
@@ -133,8 +205,57 @@ impl OffscreenTarget {
         [self.width, self.height]
     }
 
-    /// Records `before` (compute work) and then a render pass cleared to `background` in which
-    /// `inside` draws; submits and waits until the GPU is done.
+    /// Begins the frame's pass in `encoder`: colour cleared to `background`, depth to the far
+    /// plane, stencil to 0; depth is stored for the techniques that read it after the pass.
+    pub fn begin_pass<'e>(
+        &self,
+        encoder: &'e mut wgpu::CommandEncoder,
+        background: [f64; 4],
+    ) -> wgpu::RenderPass<'e> {
+        let (view, resolve_target) = match &self.multisampled {
+            Some(msaa) => (msaa, Some(&self.color_view)),
+            None => (&self.color_view, None),
+        };
+        let [r, g, b, a] = background;
+        let stencil = self.formats.has_stencil().then_some(wgpu::Operations {
+            load: wgpu::LoadOp::Clear(0),
+            store: wgpu::StoreOp::Store,
+        });
+        encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("offscreen pass"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view,
+                depth_slice: None,
+                resolve_target,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a }),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &self.depth_view,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(self.formats.far_depth()),
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: stencil,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        })
+    }
+
+    /// The finished colour and the depth, for [`Prepared::finish`](super::Prepared::finish).
+    pub fn views(&self) -> FrameViews<'_> {
+        FrameViews {
+            color: &self.color_view,
+            depth: &self.depth_sampled,
+        }
+    }
+
+    /// Records `before` (compute work), then a pass cleared to `background` in which `inside`
+    /// draws; submits and waits until the GPU is done. (For frames with no work after the pass.)
     pub fn draw(
         &self,
         gpu: &Offscreen,
@@ -142,45 +263,10 @@ impl OffscreenTarget {
         before: impl FnOnce(&mut wgpu::CommandEncoder),
         inside: impl FnOnce(&mut wgpu::RenderPass<'_>),
     ) -> Result<(), RenderError> {
-        let mut encoder = gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("offscreen frame"),
-            });
+        let mut encoder = gpu.encoder();
         before(&mut encoder);
-        {
-            let (view, resolve_target) = match &self.multisampled {
-                Some(msaa) => (msaa, Some(&self.color_view)),
-                None => (&self.color_view, None),
-            };
-            let [r, g, b, a] = background;
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("offscreen pass"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view,
-                    depth_slice: None,
-                    resolve_target,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a }),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &self.depth_view,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(1.0),
-                        store: wgpu::StoreOp::Discard,
-                    }),
-                    stencil_ops: None,
-                }),
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            inside(&mut pass);
-        }
-        gpu.queue.submit([encoder.finish()]);
-        gpu.wait()
+        inside(&mut self.begin_pass(&mut encoder, background));
+        gpu.submit(encoder)
     }
 
     /// Copies the colour attachment back to the CPU.
@@ -194,11 +280,7 @@ impl OffscreenTarget {
             usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
             mapped_at_creation: false,
         });
-        let mut encoder = gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("offscreen readback"),
-            });
+        let mut encoder = gpu.encoder();
         encoder.copy_texture_to_buffer(
             wgpu::TexelCopyTextureInfo {
                 texture: &self.color,
@@ -279,4 +361,26 @@ pub(crate) fn map_read(
     buffer
         .get_mapped_range(..)
         .map_err(|e| failed(e.to_string()))
+}
+
+/// The first `size` bytes of `buffer` (which must have `COPY_SRC` usage), read back to the CPU.
+/// Blocks until the GPU is done.
+pub(crate) fn read_buffer(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    buffer: &wgpu::Buffer,
+    size: u64,
+) -> Result<Vec<u8>, RenderError> {
+    let staging = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("readback"),
+        size,
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+        label: Some("readback"),
+    });
+    encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, size);
+    queue.submit([encoder.finish()]);
+    Ok(map_read(device, &staging)?.to_vec())
 }

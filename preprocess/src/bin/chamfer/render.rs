@@ -8,7 +8,7 @@ use chamfer_runtime::asset::Asset;
 use chamfer_runtime::highlight::strip::Material;
 use chamfer_runtime::render::{
     Camera, CapMethod, EdgeClasses, EdgeRenderer, EdgeStyle, GpuAsset, Highlight, Image, Light,
-    MeshLight, MeshRenderer, MeshStyle, Offscreen, Orbit,
+    MeshLight, MeshRenderer, MeshStyle, Offscreen, Orbit, Pipelines,
 };
 use clap::{Args, ValueEnum};
 
@@ -272,7 +272,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
 pub fn render(asset: &Asset, view: &ViewArgs) -> anyhow::Result<(Image, String)> {
     view.check()?;
     let gpu = Offscreen::new()?;
-    let target = gpu.target(view.width, view.height, view.samples);
+    let target = gpu.target(view.width, view.height, view.samples)?;
+    let pipelines = Pipelines::new(&gpu.device, &target.formats())?;
     let uploaded = GpuAsset::new(&gpu.device, asset)?;
     let orbit = Orbit {
         azimuth_deg: view.azimuth,
@@ -282,26 +283,25 @@ pub fn render(asset: &Asset, view: &ViewArgs) -> anyhow::Result<(Image, String)>
         ..Orbit::default()
     };
     let camera = Camera::orbit(uploaded.bounds(), &orbit, target.size());
-    let mut mesh = MeshRenderer::new(&gpu.device, &target.formats(), &uploaded);
+    let mut mesh = MeshRenderer::new(&pipelines, &uploaded)?;
     mesh.prepare(&gpu.queue, &camera, &view.mesh_style());
-    let mut edges = EdgeRenderer::new(&gpu.device, &target.formats(), &uploaded)?;
-    edges.prepare(&gpu.queue, &camera, &view.edge_style());
-    let draw_edges = view.style != Style::Mesh;
-    target.draw(
-        &gpu,
-        [1.0, 1.0, 1.0, 1.0],
-        |encoder| {
-            if draw_edges {
-                edges.compute(encoder);
-            }
-        },
-        |pass| {
-            mesh.render(pass);
-            if draw_edges {
-                edges.render(pass);
-            }
-        },
-    )?;
+    let mut edges = EdgeRenderer::new(&pipelines, &uploaded);
+    let mut encoder = gpu.encoder();
+    let prepared = match view.style {
+        Style::Mesh => None,
+        _ => Some(edges.prepare(&gpu.queue, &mut encoder, &camera, &view.edge_style())?),
+    };
+    {
+        let mut pass = target.begin_pass(&mut encoder, [1.0, 1.0, 1.0, 1.0]);
+        mesh.render(&mut pass);
+        if let Some(prepared) = &prepared {
+            prepared.render(&mut pass);
+        }
+    }
+    if let Some(prepared) = &prepared {
+        prepared.finish(&mut encoder, &target.views())?;
+    }
+    gpu.submit(encoder)?;
     let adapter = format!("{} ({:?})", gpu.info.name, gpu.info.backend);
     Ok((target.read(&gpu)?, adapter))
 }

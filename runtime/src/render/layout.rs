@@ -1,0 +1,252 @@
+//! What the Rust side and the WGSL side of the renderer must agree on, written once.
+//!
+//! - **Constants** (edge flags, drawn-word bits, workgroup sizes, walk bounds) live here only: every
+//!   shader module starts with [`wgsl_constants`], generated from these values, so the WGSL files never
+//!   spell a shared number.
+//! - **Structs** shared with WGSL (uniforms, list records) are `#[repr(C)]` Pod types here; the WGSL
+//!   declarations beside them are parsed with naga in a CPU-only test (`modules.rs`), which compares
+//!   every member's offset and each struct's size with these types.
+
+use crate::asset::EdgeFlags;
+
+/// Threads per workgroup of every edge compute pass.
+pub(crate) const WORKGROUP: u32 = 256;
+/// Workgroups per dispatch dimension (wgpu's default `max_compute_workgroups_per_dimension`).
+pub(crate) const MAX_GROUPS: u32 = 65_535;
+/// Steps a join walk takes at most: the decoder refuses assets with longer next-index rings.
+pub(crate) const MAX_RING: u32 = 4096;
+/// Drawn ends the cap-buffer join gathers per vertex; further drawn edges there get no join.
+pub(crate) const MAX_GATHER: u32 = 16;
+
+/// The per-frame contour class, beside the baked [`EdgeFlags`] bits (which use the low byte).
+pub(crate) const CONTOUR_CLASS: u32 = 1 << 8;
+
+/// Bits of a drawn edge's word (classify writes it, joins and draws read it): its colour index in the
+/// low byte, then how to build its quad.
+pub(crate) mod drawn {
+    /// Colour indices into `Frame::colors`.
+    pub(crate) const COLOR_CONTOUR: u32 = 0;
+    pub(crate) const COLOR_BOUNDARY: u32 = 1;
+    pub(crate) const COLOR_MARKED: u32 = 2;
+    pub(crate) const COLOR_RIDGE: u32 = 3;
+    pub(crate) const COLOR_VALLEY: u32 = 4;
+    /// Drawn as a contour (half quad outside the silhouette).
+    pub(crate) const CONTOUR: u32 = 1 << 8;
+    /// The front face's opposite vertex, inside the silhouette, is v3 (else v2).
+    pub(crate) const INSIDE_V3: u32 = 1 << 9;
+    /// The edge has a quad on screen this frame.
+    pub(crate) const ON_SCREEN: u32 = 1 << 10;
+    /// Bits 11 and 12: which ends the near plane moved.
+    pub(crate) const CLIPPED_SHIFT: u32 = 11;
+    /// A chamfer edge drawn as its lit rounded strip (seed 000): no joins, no caps.
+    pub(crate) const HIGHLIGHT: u32 = 1 << 13;
+}
+
+/// Every constant the shaders share with Rust, by its WGSL name.
+pub(crate) fn constants() -> Vec<(&'static str, u32)> {
+    vec![
+        ("BOUNDARY", EdgeFlags::BOUNDARY.0.into()),
+        ("NON_MANIFOLD", EdgeFlags::NON_MANIFOLD.0.into()),
+        ("RIDGE", EdgeFlags::RIDGE.0.into()),
+        ("VALLEY", EdgeFlags::VALLEY.0.into()),
+        ("MARKED", EdgeFlags::MARKED.0.into()),
+        ("MATERIAL", EdgeFlags::MATERIAL.0.into()),
+        ("FLIPPED", EdgeFlags::FLIPPED.0.into()),
+        ("CHAMFER", EdgeFlags::CHAMFER.0.into()),
+        ("CONTOUR", CONTOUR_CLASS),
+        ("COLOR_CONTOUR", drawn::COLOR_CONTOUR),
+        ("COLOR_BOUNDARY", drawn::COLOR_BOUNDARY),
+        ("COLOR_MARKED", drawn::COLOR_MARKED),
+        ("COLOR_RIDGE", drawn::COLOR_RIDGE),
+        ("COLOR_VALLEY", drawn::COLOR_VALLEY),
+        ("DRAWN_CONTOUR", drawn::CONTOUR),
+        ("INSIDE_V3", drawn::INSIDE_V3),
+        ("ON_SCREEN", drawn::ON_SCREEN),
+        ("CLIPPED_SHIFT", drawn::CLIPPED_SHIFT),
+        ("DRAWN_HIGHLIGHT", drawn::HIGHLIGHT),
+        ("WORKGROUP", WORKGROUP),
+        ("MAX_GROUPS", MAX_GROUPS),
+        ("MAX_RING", MAX_RING),
+        ("MAX_GATHER", MAX_GATHER),
+        ("COS_POWER_SAMPLES", crate::highlight::table::SAMPLES as u32),
+    ]
+}
+
+/// The WGSL declarations of [`constants`], put in front of every shader module.
+pub(crate) fn wgsl_constants() -> String {
+    let mut text = String::from("// Generated from runtime/src/render/layout.rs: do not edit.\n");
+    for (name, value) in constants() {
+        text.push_str(&format!("const {name}: u32 = {value}u;\n"));
+    }
+    text.push_str("const PI: f32 = 3.14159265358979;\n\n");
+    text
+}
+
+/// `Frame` in `shaders/common.wgsl`: the per-frame uniform of the object-space edge passes.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct Frame {
+    pub(crate) mvp: [[f32; 4]; 4],
+    pub(crate) eye: [f32; 4],
+    pub(crate) proj_z: [f32; 4],
+    pub(crate) colors: [[f32; 4]; 5],
+    pub(crate) viewport: [f32; 2],
+    pub(crate) pixel_scale: f32,
+    pub(crate) width: f32,
+    pub(crate) min_width: f32,
+    pub(crate) depth_ref: f32,
+    pub(crate) bias_px: f32,
+    pub(crate) classes: u32,
+    pub(crate) cull_back: u32,
+    pub(crate) edges_u16: u32,
+    pub(crate) rings_u16: u32,
+    pub(crate) edge_count: u32,
+    pub(crate) head_count: u32,
+    pub(crate) heads_offset: u32,
+    pub(crate) half_quads: u32,
+    pub(crate) cap_capacity: u32,
+    pub(crate) highlight: u32,
+    pub(crate) radius_scale: f32,
+    pub(crate) reverse_z: u32,
+    pub(crate) technique: u32,
+}
+
+/// `Lighting` in `shaders/highlight.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct Lighting {
+    pub(crate) light: [f32; 4],
+    pub(crate) color: [f32; 4],
+    pub(crate) material: [f32; 4],
+}
+
+/// `MeshFrame` in `shaders/mesh.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct MeshFrame {
+    pub(crate) mvp: [[f32; 4]; 4],
+    pub(crate) light: [f32; 4],
+    pub(crate) color: [f32; 4],
+    pub(crate) params: [f32; 4],
+    pub(crate) eye: [f32; 4],
+}
+
+/// `DrawArgs` in `shaders/compute.wgsl`: one indirect draw's arguments.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct DrawArgs {
+    pub(crate) vertex_count: u32,
+    pub(crate) instance_count: u32,
+    pub(crate) first_vertex: u32,
+    pub(crate) first_instance: u32,
+}
+
+/// The head of `Out` in `shaders/compute.wgsl`, before its `cap_list`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct Out {
+    pub(crate) edges: DrawArgs,
+    pub(crate) caps: DrawArgs,
+    pub(crate) _pad: [u32; 4],
+}
+
+/// `Cap` in `shaders/compute.wgsl`: a round join.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct Cap {
+    pub(crate) end: u32,
+    pub(crate) color: u32,
+    pub(crate) radius: f32,
+    pub(crate) from_dir: u32,
+    pub(crate) to_dir: u32,
+}
+
+/// `ScreenRecord` in `shaders/common.wgsl`: a drawn edge's quad on screen, per slot.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct ScreenRecord {
+    pub(crate) ends: [f32; 4],
+    pub(crate) depth_w: [f32; 4],
+    pub(crate) extents: [f32; 4],
+}
+
+/// `ChamferRecord` in `shaders/highlight.wgsl`: what a highlighted edge's pixels need, per slot.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct ChamferRecord {
+    pub(crate) n1: [f32; 4],
+    pub(crate) n2: [f32; 4],
+    pub(crate) across: [f32; 4],
+    pub(crate) middle: [f32; 4],
+}
+
+/// Bytes per slot of the drawn list: `vec2<u32>` (edge, word).
+pub(crate) const DRAWN_BYTES: u64 = 8;
+/// Bytes per drawn edge end of the joins list: `vec2<u32>` (packed split directions).
+pub(crate) const JOIN_BYTES_PER_END: u64 = 8;
+
+/// A Rust struct's layout as the WGSL side must see it: member names with byte offsets, and size.
+#[cfg(test)]
+pub(crate) struct Layout {
+    pub(crate) wgsl: &'static str,
+    pub(crate) size: usize,
+    pub(crate) members: Vec<(&'static str, usize)>,
+}
+
+#[cfg(test)]
+macro_rules! layout {
+    ($wgsl:literal, $ty:ty, [$($field:ident),* $(,)?]) => {
+        Layout {
+            wgsl: $wgsl,
+            size: std::mem::size_of::<$ty>(),
+            members: vec![$((stringify!($field), std::mem::offset_of!($ty, $field))),*],
+        }
+    };
+}
+
+/// Every struct shared with WGSL.
+#[cfg(test)]
+pub(crate) fn layouts() -> Vec<Layout> {
+    vec![
+        layout!(
+            "Frame",
+            Frame,
+            [
+                mvp,
+                eye,
+                proj_z,
+                colors,
+                viewport,
+                pixel_scale,
+                width,
+                min_width,
+                depth_ref,
+                bias_px,
+                classes,
+                cull_back,
+                edges_u16,
+                rings_u16,
+                edge_count,
+                head_count,
+                heads_offset,
+                half_quads,
+                cap_capacity,
+                highlight,
+                radius_scale,
+                reverse_z,
+                technique,
+            ]
+        ),
+        layout!("Lighting", Lighting, [light, color, material]),
+        layout!("MeshFrame", MeshFrame, [mvp, light, color, params, eye]),
+        layout!(
+            "DrawArgs",
+            DrawArgs,
+            [vertex_count, instance_count, first_vertex, first_instance]
+        ),
+        layout!("Cap", Cap, [end, color, radius, from_dir, to_dir]),
+        layout!("Out", Out, [edges, caps, _pad]),
+        layout!("ScreenRecord", ScreenRecord, [ends, depth_w, extents]),
+        layout!("ChamferRecord", ChamferRecord, [n1, n2, across, middle]),
+    ]
+}

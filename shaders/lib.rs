@@ -1,0 +1,38 @@
+//! The WGSL sources of Chamfer's renderer, one file per pass or technique, as string constants.
+//!
+//! This crate is the one place the shaders live; `chamfer-runtime` assembles each pipeline's module
+//! from these pieces (shared definitions first, then the pass) and prepends the constants it shares
+//! with the Rust side, so a constant is never written twice. See `README.md` for what each file holds.
+
+macro_rules! wgsl {
+    ($($(#[$doc:meta])* $name:ident = $file:literal;)*) => {
+        $($(#[$doc])* pub const $name: &str = include_str!($file);)*
+        /// Every file, by name (for tooling and tests).
+        pub const ALL: &[(&str, &str)] = &[$(($file, $name)),*];
+    };
+}
+
+wgsl! {
+    /// Frame uniform, asset reads, an edge's screen quad: shared by every object-space edge pass.
+    COMMON = "common.wgsl";
+    /// Read-write bindings of the compute passes.
+    COMPUTE = "compute.wgsl";
+    /// Read-only bindings of the draw passes.
+    DRAW = "draw.wgsl";
+    /// The chamfer highlight of seed 000.
+    HIGHLIGHT = "highlight.wgsl";
+    /// Per-frame edge classification and compaction.
+    CLASSIFY = "classify.wgsl";
+    /// Workgroup counts of the join pass.
+    ARGS = "args.wgsl";
+    /// Joins and caps (next-index walk or cap buffer).
+    JOINS = "joins.wgsl";
+    /// Records of highlighted chamfer edges.
+    CHAMFERS = "chamfers.wgsl";
+    /// Compacted edge quads.
+    EDGES = "edges.wgsl";
+    /// Round caps.
+    CAPS = "caps.wgsl";
+    /// The lit mesh pass.
+    MESH = "mesh.wgsl";
+}
