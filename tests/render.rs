@@ -119,6 +119,65 @@ fn cube_camera(size: u32, orthographic: bool) -> Camera {
     Camera::orbit([[0.0; 3], [1.0; 3]], &orbit, [size, size])
 }
 
+/// Checks a picture of the unit cube from `camera` drawn with red edges over a grey mesh on blue:
+/// along each of the 12 edges, red within 2 px exactly where the edge is visible (a silhouette edge
+/// lies outside its line as a half quad, a crease on it), and the visible faces' middles grey.
+/// Returns the first disagreement.
+fn check_cube_edges(image: &Image, camera: &Camera) -> Result<(), String> {
+    let edges: Vec<(usize, usize, bool)> = cube_edges()
+        .into_iter()
+        .map(|edge| (edge.0, edge.1, edge_seen(camera, &edge)))
+        .collect();
+    let on_screen = |a: usize, b: usize| (project(camera, corner(a)), project(camera, corner(b)));
+    let near_visible_edge = |p: Vec2| {
+        edges
+            .iter()
+            .filter(|e| e.2)
+            .any(|&(a, b, _)| distance_to_segment(p, on_screen(a, b)) < 5.0)
+    };
+    let visible = edges.iter().filter(|e| e.2).count();
+    if visible != 9 {
+        return Err(format!(
+            "the camera must see three faces, sees {visible} edges"
+        ));
+    }
+    let mut hidden_checked = 0;
+    for &(a, b, seen) in &edges {
+        for t in [0.3, 0.4, 0.5, 0.6, 0.7] {
+            let p = project(camera, corner(a).lerp(corner(b), t));
+            if !seen && near_visible_edge(p) {
+                continue; // a hidden edge crossing behind a visible one in the picture
+            }
+            hidden_checked += usize::from(!seen);
+            let red = disk(image, p, 2.0).into_iter().any(is_red);
+            if red != seen {
+                return Err(format!(
+                    "edge {a}-{b} at t = {t} ({p}): visible {seen}, red {red}"
+                ));
+            }
+        }
+    }
+    if hidden_checked < 8 {
+        return Err(format!("only {hidden_checked} hidden samples"));
+    }
+    // Inside the visible faces: the mesh, not edge colour.
+    for axis in 0..3 {
+        for side in [0.0, 1.0] {
+            let normal = Vec3::from_array(std::array::from_fn(|k| {
+                if k == axis { side * 2.0 - 1.0 } else { 0.0 }
+            }));
+            let center = Vec3::splat(0.5) + normal * 0.5;
+            if faces_eye(camera, normal, center) {
+                let pixel = pixel_at(image, project(camera, center));
+                if is_red(pixel) || is_background(pixel) {
+                    return Err(format!("face {normal}: {pixel:?}"));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
 #[test]
 fn cube_shows_its_nine_visible_edges_and_no_hidden_one() {
     let asset = bake_fixture("shapes/cube.obj");
@@ -131,53 +190,76 @@ fn cube_shows_its_nine_visible_edges_and_no_hidden_one() {
             Some(&edges_in(RED, 3.0, CapMethod::NextIndex)),
             BLUE_BACKGROUND,
         );
-        let edges: Vec<(usize, usize, bool)> = cube_edges()
-            .into_iter()
-            .map(|edge| (edge.0, edge.1, edge_seen(&camera, &edge)))
-            .collect();
-        let on_screen =
-            |a: usize, b: usize| (project(&camera, corner(a)), project(&camera, corner(b)));
-        let near_visible_edge = |p: Vec2| {
-            edges
-                .iter()
-                .filter(|e| e.2)
-                .any(|&(a, b, _)| distance_to_segment(p, on_screen(a, b)) < 5.0)
-        };
-        let visible = edges.iter().filter(|e| e.2).count();
-        let mut hidden_checked = 0;
-        for &(a, b, seen) in &edges {
-            for t in [0.3, 0.4, 0.5, 0.6, 0.7] {
-                // Within 2 px: a silhouette edge lies outside its line (a half quad), a crease on it.
-                let p = project(&camera, corner(a).lerp(corner(b), t));
-                if !seen && near_visible_edge(p) {
-                    continue; // a hidden edge crossing behind a visible one in the picture
-                }
-                hidden_checked += usize::from(!seen);
-                let red = disk(&image, p, 2.0).into_iter().any(is_red);
-                assert_eq!(
-                    red, seen,
-                    "edge {a}-{b} at t = {t} ({p}), visible: {seen}, ortho: {orthographic}"
-                );
-            }
-        }
-        assert_eq!(visible, 9, "the camera must see three faces");
-        assert!(hidden_checked >= 8, "only {hidden_checked} hidden samples");
-        // Inside the visible faces: the mesh, not edge colour.
-        for axis in 0..3 {
-            for side in [0.0, 1.0] {
-                let normal = Vec3::from_array(std::array::from_fn(|k| {
-                    if k == axis { side * 2.0 - 1.0 } else { 0.0 }
-                }));
-                let center = Vec3::splat(0.5) + normal * 0.5;
-                if faces_eye(&camera, normal, center) {
-                    let pixel = pixel_at(&image, project(&camera, center));
-                    assert!(
-                        !is_red(pixel) && !is_background(pixel),
-                        "face {normal}: {pixel:?}"
-                    );
-                }
-            }
-        }
+        check_cube_edges(&image, &camera).unwrap_or_else(|e| panic!("ortho {orthographic}: {e}"));
+    }
+}
+
+/// `camera` with a reverse-Z projection: depth `1 − d` of the standard one (near 1, far 0).
+fn reversed(camera: &Camera) -> Camera {
+    let flip = glam::Mat4::from_cols(
+        glam::Vec4::X,
+        glam::Vec4::Y,
+        glam::Vec4::new(0.0, 0.0, -1.0, 0.0),
+        glam::Vec4::new(0.0, 0.0, 1.0, 1.0),
+    );
+    Camera {
+        projection: flip * camera.projection,
+        ..*camera
+    }
+}
+
+#[test]
+fn a_reverse_z_target_draws_what_a_standard_one_does() {
+    let gpu = chamfer_tests::gpu();
+    let asset = bake_fixture("shapes/cube.obj");
+    let style = edges_in(RED, 3.0, CapMethod::NextIndex);
+    for orthographic in [false, true] {
+        let camera = cube_camera(256, orthographic);
+        let standard = render(
+            &asset,
+            &camera,
+            Some(&grey_mesh()),
+            Some(&style),
+            BLUE_BACKGROUND,
+        );
+        let formats = gpu.formats(1).with_reverse_z(true);
+        let target = gpu
+            .target_with(256, 256, formats)
+            .expect("reverse-Z target");
+        let reverse = reversed(&camera);
+        let image = chamfer_tests::render_on(
+            &target,
+            &asset,
+            &reverse,
+            Some(&grey_mesh()),
+            Some(&style),
+            BLUE_BACKGROUND,
+        );
+        check_cube_edges(&image, &camera).unwrap_or_else(|e| panic!("ortho {orthographic}: {e}"));
+        let differing = standard
+            .rgba
+            .chunks(4)
+            .zip(image.rgba.chunks(4))
+            .filter(|(a, b)| a != b)
+            .count();
+        // Depth is stored the other way round, so a pixel may tip where two depths nearly tie.
+        assert!(
+            differing < 40,
+            "{differing} pixels differ (ortho {orthographic})"
+        );
+
+        // The control: the same reverse projection in a target declared standard draws wrongly.
+        let wrong = render(
+            &asset,
+            &reverse,
+            Some(&grey_mesh()),
+            Some(&style),
+            BLUE_BACKGROUND,
+        );
+        assert!(
+            check_cube_edges(&wrong, &camera).is_err(),
+            "ortho {orthographic}"
+        );
     }
 }
 

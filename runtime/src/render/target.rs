@@ -154,11 +154,100 @@ pub(crate) fn checked<T>(
     let value = create();
     let invalid = pollster::block_on(validation.pop());
     let out_of_memory = pollster::block_on(memory.pop());
-    match invalid.or(out_of_memory) {
+    match out_of_memory.or(invalid) {
         None => Ok(value),
         Some(error) => Err(RenderError::Gpu {
             what: what.to_owned(),
-            message: error.to_string(),
+            message: describe(&error),
         }),
+    }
+}
+
+/// The most specific causes of a device error, on one line (wgpu's own text is "Validation Error";
+/// the reason is in its source chain).
+fn describe(error: &wgpu::Error) -> String {
+    let mut causes = Vec::new();
+    let mut source = std::error::Error::source(error);
+    while let Some(cause) = source {
+        let text = cause.to_string();
+        if !text.is_empty() && !causes.contains(&text) {
+            causes.push(text);
+        }
+        source = cause.source();
+    }
+    if causes.is_empty() {
+        causes.push(error.to_string());
+    }
+    causes.join(": ").replace('\n', " ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_resource_the_device_refuses_is_a_typed_error_not_a_panic() {
+        let gpu = crate::render::Offscreen::new().expect("a GPU adapter (scripts/setup.sh)");
+        let too_big = gpu.device.limits().max_buffer_size.saturating_add(1 << 20);
+        let result = checked(&gpu.device, "a huge buffer", || {
+            gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("huge"),
+                size: too_big,
+                usage: wgpu::BufferUsages::STORAGE,
+                mapped_at_creation: false,
+            })
+        });
+        match result {
+            Err(RenderError::Gpu { what, message }) => {
+                assert_eq!(what, "a huge buffer");
+                assert!(!message.is_empty());
+            }
+            other => panic!("expected a GPU error, got {other:?}"),
+        }
+        // And a buffer the device accepts passes through.
+        assert!(
+            checked(&gpu.device, "a small buffer", || {
+                gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("small"),
+                    size: 64,
+                    usage: wgpu::BufferUsages::STORAGE,
+                    mapped_at_creation: false,
+                })
+            })
+            .is_ok()
+        );
+    }
+
+    #[test]
+    fn targets_that_would_draw_wrongly_are_refused() {
+        let color = wgpu::TextureFormat::Rgba8Unorm;
+        assert!(
+            Target::new(color, Some(wgpu::TextureFormat::Depth32Float), 1)
+                .check()
+                .is_ok()
+        );
+        assert!(
+            Target::new(color, None, 1)
+                .with_reverse_z(true)
+                .check()
+                .is_err()
+        );
+        assert!(
+            Target::new(color, Some(wgpu::TextureFormat::Rgba8Unorm), 1)
+                .check()
+                .is_err()
+        );
+        assert!(
+            Target::new(color, Some(wgpu::TextureFormat::Depth32Float), 3)
+                .check()
+                .is_err()
+        );
+        let reverse =
+            Target::new(color, Some(wgpu::TextureFormat::Depth32Float), 1).with_reverse_z(true);
+        assert_eq!(
+            reverse.nearer(wgpu::CompareFunction::Less),
+            wgpu::CompareFunction::Greater
+        );
+        assert_eq!(reverse.far_depth(), 0.0);
     }
 }
