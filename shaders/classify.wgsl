@@ -24,30 +24,13 @@ fn classify(
     let flags = attributes[e] & 0xffffu;
     let front_a = dot(planes[2u * e], frame.eye) > 0.0;
     let front_b = dot(planes[2u * e + 1u], frame.eye) > 0.0;
-    let contour = front_a != front_b && (flags & (BOUNDARY | NON_MANIFOLD)) == 0u;
-
-    var word = 0xffffffffu;
-    if contour && (frame.classes & CONTOUR) != 0u {
-        word = COLOR_CONTOUR | DRAWN_CONTOUR | select(0u, INSIDE_V3, !front_a);
-    } else if frame.highlight != 0u && (flags & CHAMFER) != 0u && front_a && front_b {
+    var word = NOT_DRAWN;
+    if frame.highlight != 0u && (flags & CHAMFER) != 0u && front_a && front_b {
         word = COLOR_RIDGE | DRAWN_HIGHLIGHT;
     } else {
-        let shown = flags & frame.classes;
-        // A crease whose faces both look away is behind the mesh: skip it before it costs a quad.
-        let seen = front_a || front_b || (flags & BOUNDARY) != 0u || frame.cull_back == 0u;
-        if shown != 0u && seen {
-            if (shown & (BOUNDARY | NON_MANIFOLD)) != 0u {
-                word = COLOR_BOUNDARY;
-            } else if (shown & (MARKED | MATERIAL)) != 0u {
-                word = COLOR_MARKED;
-            } else if (shown & RIDGE) != 0u {
-                word = COLOR_RIDGE;
-            } else {
-                word = COLOR_VALLEY;
-            }
-        }
+        word = drawn_word(flags, front_a, front_b);
     }
-    if word == 0xffffffffu {
+    if word == NOT_DRAWN {
         // No store: `state` may keep a stale slot from an earlier frame; readers check it (joins.wgsl).
         return;
     }

@@ -35,6 +35,8 @@ struct Frame {
     reverse_z: u32,
     // Technique-specific variant of the pass (see each technique's file).
     technique: u32,
+    // Technique-specific parameters (see each technique's file).
+    params: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;
@@ -46,6 +48,42 @@ struct Frame {
 // (num_workgroups would do, but D3D12 leaves it 0 for indirect dispatches without wgpu's validation.)
 fn thread_index(id: vec3<u32>) -> u32 {
     return id.y * (MAX_GROUPS * WORKGROUP) + id.x;
+}
+
+// A position outside the clip volume: every triangle made of it is dropped (thesis §8.3).
+const NOWHERE: vec4<f32> = vec4<f32>(0.0, 0.0, -1.0, 1.0);
+
+// Not a drawn edge this frame.
+const NOT_DRAWN: u32 = 0xffffffffu;
+
+// An edge with two faces, one towards the camera and one away (thesis §6.1).
+fn is_contour(flags: u32, front_a: bool, front_b: bool) -> bool {
+    return front_a != front_b && (flags & (BOUNDARY | NON_MANIFOLD)) == 0u;
+}
+
+// Whether and how an edge is drawn this frame given which of its faces look at the camera: its
+// drawn word (colour index, contour bits), or NOT_DRAWN. Shared by every object-space technique, so
+// all of them draw the same edges.
+fn drawn_word(flags: u32, front_a: bool, front_b: bool) -> u32 {
+    if is_contour(flags, front_a, front_b) && (frame.classes & CONTOUR) != 0u {
+        return COLOR_CONTOUR | DRAWN_CONTOUR | select(0u, INSIDE_V3, !front_a);
+    }
+    let shown = flags & frame.classes;
+    // A crease whose faces both look away is behind the mesh: skip it before it costs a quad.
+    let seen = front_a || front_b || (flags & BOUNDARY) != 0u || frame.cull_back == 0u;
+    if shown == 0u || !seen {
+        return NOT_DRAWN;
+    }
+    if (shown & (BOUNDARY | NON_MANIFOLD)) != 0u {
+        return COLOR_BOUNDARY;
+    }
+    if (shown & (MARKED | MATERIAL)) != 0u {
+        return COLOR_MARKED;
+    }
+    if (shown & RIDGE) != 0u {
+        return COLOR_RIDGE;
+    }
+    return COLOR_VALLEY;
 }
 
 fn edge_vertex(i: u32) -> u32 {

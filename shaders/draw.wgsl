@@ -23,5 +23,3 @@ struct Out {
     cap_list: array<Cap>,
 }
 
-// A position outside the clip volume: every triangle made of it is dropped.
-const NOWHERE: vec4<f32> = vec4<f32>(0.0, 0.0, -1.0, 1.0);

@@ -35,4 +35,14 @@ wgsl! {
     CAPS = "caps.wgsl";
     /// The lit mesh pass.
     MESH = "mesh.wgsl";
+    /// Flat-coloured pulled geometry.
+    FLAT = "flat.wgsl";
+    /// Per-vertex edge classification and screen values (thesis §8.2–8.3).
+    VERTEX_EDGES = "vertex_edges.wgsl";
+    /// McGuire–Hughes edges and caps (thesis §8).
+    MCGUIRE_HUGHES = "mcguire_hughes.wgsl";
+    /// Half-hex, plug and house edges (thesis §9.3).
+    ALTERNATE = "alternate.wgsl";
+    /// Fins (seed 003).
+    FINS = "fins.wgsl";
 }

@@ -278,3 +278,199 @@ pub fn save_png(image: &chamfer_runtime::render::Image, path: &std::path::Path) 
         .and_then(|mut writer| writer.write_image_data(&image.rgba))
         .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
 }
+
+/// The unit cube of `fixtures/shapes/cube.obj` and what a picture of it must show: shared by the
+/// render and technique tests.
+pub mod cube {
+    use chamfer_runtime::render::{
+        Camera, CapMethod, EdgeColors, EdgeStyle, Image, MeshStyle, Orbit,
+    };
+    use glam::{Vec2, Vec3};
+
+    pub const RED: [f32; 4] = [1.0, 0.0, 0.0, 1.0];
+    pub const BLUE_BACKGROUND: [f64; 4] = [0.0, 0.0, 1.0, 1.0];
+
+    pub fn grey_mesh() -> MeshStyle {
+        MeshStyle {
+            color: [0.5, 0.5, 0.5, 1.0],
+            ambient: 1.0,
+            ..MeshStyle::default()
+        }
+    }
+
+    pub fn edges_in(color: [f32; 4], width_px: f32, caps: CapMethod) -> EdgeStyle {
+        EdgeStyle {
+            colors: EdgeColors {
+                contour: color,
+                boundary: color,
+                marked: color,
+                ridge: color,
+                valley: color,
+            },
+            width_px,
+            caps,
+            ..EdgeStyle::default()
+        }
+    }
+
+    pub fn is_red(p: [u8; 4]) -> bool {
+        p[0] > 200 && p[1] < 60 && p[2] < 60
+    }
+
+    pub fn is_background(p: [u8; 4]) -> bool {
+        p[2] > 200 && p[0] < 60
+    }
+
+    /// Where `p` lands, in pixels from the top left (the shaders' convention).
+    pub fn project(camera: &Camera, p: Vec3) -> Vec2 {
+        let c = camera.view_projection() * p.extend(1.0);
+        let [w, h] = camera.viewport.map(|v| v as f32);
+        Vec2::new((c.x / c.w + 1.0) * 0.5 * w, (1.0 - c.y / c.w) * 0.5 * h)
+    }
+
+    pub fn pixel_at(image: &Image, p: Vec2) -> [u8; 4] {
+        image.pixel(p.x as u32, p.y as u32)
+    }
+
+    /// Pixels within `radius` of `center`.
+    pub fn disk(image: &Image, center: Vec2, radius: f32) -> Vec<[u8; 4]> {
+        let mut pixels = Vec::new();
+        for y in (center.y - radius).floor() as i32..=(center.y + radius).ceil() as i32 {
+            for x in (center.x - radius).floor() as i32..=(center.x + radius).ceil() as i32 {
+                let inside = Vec2::new(x as f32 + 0.5, y as f32 + 0.5).distance(center) <= radius;
+                if inside
+                    && x >= 0
+                    && y >= 0
+                    && (x as u32) < image.width
+                    && (y as u32) < image.height
+                {
+                    pixels.push(image.pixel(x as u32, y as u32));
+                }
+            }
+        }
+        pixels
+    }
+
+    /// The unit cube of `fixtures/shapes/cube.obj`: corner `i` is at the bits of `i` (x, y, z).
+    pub fn corner(i: usize) -> Vec3 {
+        Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32)
+    }
+
+    /// The cube's 12 edges as corner pairs, each with the outward normals of its two faces.
+    pub fn cube_edges() -> Vec<(usize, usize, [Vec3; 2])> {
+        let mut edges = Vec::new();
+        for axis in 0..3 {
+            for c in 0..8usize {
+                if c & (1 << axis) != 0 {
+                    continue;
+                }
+                let normals: Vec<Vec3> = (0..3)
+                    .filter(|&b| b != axis)
+                    .map(|b| {
+                        let sign = if c & (1 << b) != 0 { 1.0 } else { -1.0 };
+                        Vec3::from_array(std::array::from_fn(|k| if k == b { sign } else { 0.0 }))
+                    })
+                    .collect();
+                edges.push((c, c | (1 << axis), [normals[0], normals[1]]));
+            }
+        }
+        edges
+    }
+
+    pub fn distance_to_segment(p: Vec2, (a, b): (Vec2, Vec2)) -> f32 {
+        let t = ((p - a).dot(b - a) / (b - a).length_squared()).clamp(0.0, 1.0);
+        p.distance(a.lerp(b, t))
+    }
+
+    /// True if either face of a cube edge (from `cube_edges`) faces the camera.
+    pub fn edge_seen(camera: &Camera, (a, b, normals): &(usize, usize, [Vec3; 2])) -> bool {
+        let middle = (corner(*a) + corner(*b)) * 0.5;
+        normals.iter().any(|&n| faces_eye(camera, n, middle))
+    }
+
+    pub fn faces_eye(camera: &Camera, normal: Vec3, on_face: Vec3) -> bool {
+        let eye = camera.eye();
+        normal.dot(eye.truncate() - on_face * eye.w) > 0.0
+    }
+
+    pub fn cube_camera(size: u32, orthographic: bool) -> Camera {
+        let orbit = Orbit {
+            azimuth_deg: 35.0,
+            elevation_deg: 28.0,
+            orthographic,
+            ..Orbit::default()
+        };
+        Camera::orbit([[0.0; 3], [1.0; 3]], &orbit, [size, size])
+    }
+
+    /// Checks a picture of the unit cube from `camera` drawn with red edges over a grey mesh on blue:
+    /// along each of the 12 edges, red within 2 px exactly where the edge is visible (a silhouette edge
+    /// lies outside its line as a half quad, a crease on it), and the visible faces' middles grey.
+    /// Returns the first disagreement.
+    pub fn check_cube_edges(image: &Image, camera: &Camera) -> Result<(), String> {
+        let edges: Vec<(usize, usize, bool)> = cube_edges()
+            .into_iter()
+            .map(|edge| (edge.0, edge.1, edge_seen(camera, &edge)))
+            .collect();
+        let on_screen =
+            |a: usize, b: usize| (project(camera, corner(a)), project(camera, corner(b)));
+        let near_visible_edge = |p: Vec2| {
+            edges
+                .iter()
+                .filter(|e| e.2)
+                .any(|&(a, b, _)| distance_to_segment(p, on_screen(a, b)) < 5.0)
+        };
+        let visible = edges.iter().filter(|e| e.2).count();
+        if visible != 9 {
+            return Err(format!(
+                "the camera must see three faces, sees {visible} edges"
+            ));
+        }
+        let mut hidden_checked = 0;
+        for &(a, b, seen) in &edges {
+            for t in [0.3, 0.4, 0.5, 0.6, 0.7] {
+                let p = project(camera, corner(a).lerp(corner(b), t));
+                if !seen && near_visible_edge(p) {
+                    continue; // a hidden edge crossing behind a visible one in the picture
+                }
+                hidden_checked += usize::from(!seen);
+                let red = disk(image, p, 2.0).into_iter().any(is_red);
+                if red != seen {
+                    return Err(format!(
+                        "edge {a}-{b} at t = {t} ({p}): visible {seen}, red {red}"
+                    ));
+                }
+            }
+        }
+        if hidden_checked < 8 {
+            return Err(format!("only {hidden_checked} hidden samples"));
+        }
+        // Inside the visible faces: the mesh, not edge colour.
+        for axis in 0..3 {
+            for side in [0.0, 1.0] {
+                let normal = Vec3::from_array(std::array::from_fn(|k| {
+                    if k == axis { side * 2.0 - 1.0 } else { 0.0 }
+                }));
+                let center = Vec3::splat(0.5) + normal * 0.5;
+                if faces_eye(camera, normal, center) {
+                    let pixel = pixel_at(image, project(camera, center));
+                    if is_red(pixel) || is_background(pixel) {
+                        return Err(format!("face {normal}: {pixel:?}"));
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Corners of the cube that the camera sees (on at least one visible face).
+    pub fn visible_corners(camera: &Camera) -> Vec<usize> {
+        (0..8)
+            .filter(|&c| {
+                cube_edges()
+                    .iter()
+                    .any(|e| (e.0 == c || e.1 == c) && edge_seen(camera, e))
+            })
+            .collect()
+    }
+}

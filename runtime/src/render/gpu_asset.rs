@@ -7,6 +7,7 @@ use glam::Vec3;
 use wgpu::util::DeviceExt;
 
 use super::RenderError;
+use super::derived::{self, AssetExtras};
 use super::target::checked;
 use crate::asset::{Asset, EdgeFlags, IndexWidth, SectionKind, attribute_flags};
 
@@ -39,6 +40,14 @@ pub struct GpuAsset {
     /// Per edge, the planes of its two faces, oriented so that a positive dot product with the
     /// homogeneous eye means "faces the camera" (see `face_planes`).
     pub(crate) face_planes: wgpu::Buffer,
+    /// What [`AssetExtras`] the upload derived.
+    pub(crate) extras: AssetExtras,
+    /// [`AssetExtras::VERTEX_NORMALS`]: `vec4<f32>` per topology vertex.
+    pub(crate) vertex_normals: Option<wgpu::Buffer>,
+    /// [`AssetExtras::FIN_CORNERS`]: `vec4<u32>` per edge.
+    pub(crate) fin_corners: Option<wgpu::Buffer>,
+    /// [`AssetExtras::TRIANGLE_EDGES`]: `u32` per triangle.
+    pub(crate) triangle_edges: Option<wgpu::Buffer>,
 }
 
 impl GpuAsset {
@@ -46,20 +55,65 @@ impl GpuAsset {
     ///
     /// Fails with [`RenderError::TooLarge`] if a section exceeds the device's storage binding limit.
     pub fn new(device: &wgpu::Device, asset: &Asset) -> Result<Self, RenderError> {
-        checked(device, "the asset's buffers", || {
-            Self::upload(device, asset)
-        })?
+        Self::with_extras(device, asset, AssetExtras::NONE)
     }
 
-    /// Uploads `asset` with what each of `techniques` needs beyond the sections (see
-    /// [`Technique`](super::Technique)); [`GpuAsset::new`] uploads what the default technique needs.
+    /// Uploads `asset` with what each of `techniques` needs beyond the sections (the union of
+    /// their [`Technique::needs`](super::Technique::needs)).
     pub fn for_techniques(
         device: &wgpu::Device,
         asset: &Asset,
         techniques: &[super::Technique],
     ) -> Result<Self, RenderError> {
-        let _ = techniques;
-        Self::new(device, asset)
+        let extras = techniques
+            .iter()
+            .fold(AssetExtras::NONE, |all, t| all | t.needs());
+        Self::with_extras(device, asset, extras)
+    }
+
+    /// Uploads `asset` and derives `extras` from it on the CPU (see [`AssetExtras`]).
+    ///
+    /// Fails with [`RenderError::Unsupported`] if an extra cannot be derived (an asset whose render
+    /// vertices do not sit on its topology vertices, which the bake never writes).
+    pub fn with_extras(
+        device: &wgpu::Device,
+        asset: &Asset,
+        extras: AssetExtras,
+    ) -> Result<Self, RenderError> {
+        let mut uploaded = checked(device, "the asset's buffers", || {
+            Self::upload(device, asset)
+        })??;
+        if extras == AssetExtras::NONE {
+            return Ok(uploaded);
+        }
+        let map = derived::render_to_topology(asset).ok_or_else(|| RenderError::Unsupported {
+            technique: "GpuAsset::with_extras",
+            why: "its render vertices do not sit on its topology vertices".into(),
+        })?;
+        let storage = wgpu::BufferUsages::STORAGE;
+        let extra = |label: &str, bytes: &[u8]| {
+            checked(device, label, || upload(device, label, bytes, storage))
+        };
+        if extras.contains(AssetExtras::VERTEX_NORMALS) {
+            let normals = derived::vertex_normals(asset, &map);
+            uploaded.vertex_normals =
+                Some(extra("vertex normals", bytemuck::cast_slice(&normals))?);
+        }
+        if extras.contains(AssetExtras::FIN_CORNERS) {
+            let corners = derived::fin_corners(asset, &map);
+            uploaded.fin_corners = Some(extra("fin corners", bytemuck::cast_slice(&corners))?);
+        }
+        if extras.contains(AssetExtras::TRIANGLE_EDGES) {
+            let masks = derived::triangle_edges(asset, &map);
+            uploaded.triangle_edges = Some(extra("triangle edges", bytemuck::cast_slice(&masks))?);
+        }
+        uploaded.extras = extras;
+        Ok(uploaded)
+    }
+
+    /// The extras this upload derived.
+    pub fn extras(&self) -> AssetExtras {
+        self.extras
     }
 
     fn upload(device: &wgpu::Device, asset: &Asset) -> Result<Self, RenderError> {
@@ -148,6 +202,10 @@ impl GpuAsset {
                 bytemuck::cast_slice(&planes),
                 storage,
             ),
+            extras: AssetExtras::NONE,
+            vertex_normals: None,
+            fin_corners: None,
+            triangle_edges: None,
         })
     }
 
@@ -188,6 +246,16 @@ impl GpuAsset {
         ]
         .iter()
         .map(|b| b.size())
+        .chain(
+            [
+                &self.vertex_normals,
+                &self.fin_corners,
+                &self.triangle_edges,
+            ]
+            .into_iter()
+            .flatten()
+            .map(|b| b.size()),
+        )
         .sum()
     }
 

@@ -109,6 +109,7 @@ pub(crate) struct Frame {
     pub(crate) radius_scale: f32,
     pub(crate) reverse_z: u32,
     pub(crate) technique: u32,
+    pub(crate) params: [f32; 4],
 }
 
 /// `Lighting` in `shaders/highlight.wgsl`.
@@ -235,6 +236,7 @@ pub(crate) fn layouts() -> Vec<Layout> {
                 radius_scale,
                 reverse_z,
                 technique,
+                params,
             ]
         ),
         layout!("Lighting", Lighting, [light, color, material]),

@@ -45,6 +45,7 @@
 //! thumbnails, the `chamfer render` command).
 
 mod camera;
+mod derived;
 mod error;
 mod gpu_asset;
 pub(crate) mod layout;
@@ -60,6 +61,7 @@ mod technique;
 mod techniques;
 
 pub use camera::{Camera, Orbit};
+pub use derived::AssetExtras;
 pub use error::RenderError;
 pub use gpu_asset::GpuAsset;
 pub use lighting::{Highlight, Light};

@@ -45,6 +45,31 @@ pub(crate) fn caps() -> String {
     assemble(&[wgsl::COMMON, wgsl::HIGHLIGHT, wgsl::DRAW, wgsl::CAPS])
 }
 
+/// McGuire–Hughes edges and caps, classified per vertex.
+pub(crate) fn mcguire_hughes() -> String {
+    assemble(&[
+        wgsl::COMMON,
+        wgsl::FLAT,
+        wgsl::VERTEX_EDGES,
+        wgsl::MCGUIRE_HUGHES,
+    ])
+}
+
+/// Half-hex, plug and house edges.
+pub(crate) fn alternate() -> String {
+    assemble(&[
+        wgsl::COMMON,
+        wgsl::FLAT,
+        wgsl::VERTEX_EDGES,
+        wgsl::ALTERNATE,
+    ])
+}
+
+/// Fins extruded along the normals.
+pub(crate) fn fins() -> String {
+    assemble(&[wgsl::COMMON, wgsl::FLAT, wgsl::FINS])
+}
+
 /// The lit mesh.
 pub(crate) fn mesh() -> String {
     assemble(&[wgsl::MESH])
@@ -61,6 +86,9 @@ pub(crate) fn all() -> Vec<(&'static str, String)> {
         ("edges", edges()),
         ("caps", caps()),
         ("mesh", mesh()),
+        ("mcguire_hughes", mcguire_hughes()),
+        ("alternate", alternate()),
+        ("fins", fins()),
     ]
 }
 
@@ -105,7 +133,7 @@ mod tests {
     #[test]
     fn every_module_parses_and_validates_on_the_cpu() {
         let modules = all();
-        assert!(modules.len() >= 7);
+        assert!(modules.len() >= 10);
         for (name, source) in &modules {
             parse(name, source);
         }

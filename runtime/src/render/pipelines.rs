@@ -26,6 +26,9 @@ struct Inner {
     compiled: AtomicUsize,
     joined: OnceLock<Arc<techniques::joined::Pipelines>>,
     mesh: OnceLock<Arc<mesh::Pipeline>>,
+    mcguire_hughes: OnceLock<Arc<techniques::mcguire_hughes::Pipelines>>,
+    alternate: OnceLock<Arc<techniques::alternate::Pipelines>>,
+    fins: OnceLock<Arc<techniques::fins::Pipelines>>,
 }
 
 impl Pipelines {
@@ -42,6 +45,9 @@ impl Pipelines {
                 compiled: AtomicUsize::new(0),
                 joined: OnceLock::new(),
                 mesh: OnceLock::new(),
+                mcguire_hughes: OnceLock::new(),
+                alternate: OnceLock::new(),
+                fins: OnceLock::new(),
             }),
         })
     }
@@ -70,6 +76,24 @@ impl Pipelines {
         get_or_create(&self.inner.joined, || {
             techniques::joined::Pipelines::new(self)
         })
+    }
+
+    pub(crate) fn mcguire_hughes(
+        &self,
+    ) -> Result<Arc<techniques::mcguire_hughes::Pipelines>, RenderError> {
+        get_or_create(&self.inner.mcguire_hughes, || {
+            techniques::mcguire_hughes::Pipelines::new(self)
+        })
+    }
+
+    pub(crate) fn alternate(&self) -> Result<Arc<techniques::alternate::Pipelines>, RenderError> {
+        get_or_create(&self.inner.alternate, || {
+            techniques::alternate::Pipelines::new(self)
+        })
+    }
+
+    pub(crate) fn fins(&self) -> Result<Arc<techniques::fins::Pipelines>, RenderError> {
+        get_or_create(&self.inner.fins, || techniques::fins::Pipelines::new(self))
     }
 
     pub(crate) fn mesh(&self) -> Result<Arc<mesh::Pipeline>, RenderError> {

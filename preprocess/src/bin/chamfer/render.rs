@@ -8,7 +8,7 @@ use chamfer_runtime::asset::Asset;
 use chamfer_runtime::highlight::strip::Material;
 use chamfer_runtime::render::{
     Camera, CapMethod, EdgeClasses, EdgeRenderer, EdgeStyle, GpuAsset, Highlight, Image, Light,
-    MeshLight, MeshRenderer, MeshStyle, Offscreen, Orbit, Pipelines,
+    MeshLight, MeshRenderer, MeshStyle, Offscreen, Orbit, Pipelines, Technique,
 };
 use clap::{Args, ValueEnum};
 
@@ -58,6 +58,17 @@ pub struct ViewArgs {
     /// What to draw.
     #[arg(long, value_enum, default_value_t = Style::Edges)]
     style: Style,
+    /// Which technique draws the edges (`--style edges`).
+    #[arg(long, default_value = "joined", value_parser = technique_names(),
+          long_help = technique_help())]
+    technique: String,
+    /// `--technique fins`: fin length in model units (default: --edge-width pixels).
+    #[arg(long)]
+    fin_thickness: Option<f32>,
+    /// `--technique fins`: how far crease fins move towards the camera, model units (default: 0.2 %
+    /// of the model's diagonal; 0: none).
+    #[arg(long)]
+    fin_z_bias: Option<f32>,
     /// Edge classes to draw.
     #[arg(
         long,
@@ -132,7 +143,36 @@ enum Caps {
     None,
 }
 
+fn technique_names() -> clap::builder::PossibleValuesParser {
+    clap::builder::PossibleValuesParser::new(Technique::names())
+}
+
+fn technique_help() -> String {
+    let mut help = String::from("Which technique draws the edges (`--style edges`):\n");
+    for technique in Technique::all() {
+        help.push_str(&format!(
+            "  {:<16} {}\n",
+            technique.name(),
+            technique.summary()
+        ));
+    }
+    help
+}
+
 impl ViewArgs {
+    /// The technique named by `--technique`.
+    pub fn technique(&self) -> anyhow::Result<Technique> {
+        let technique = Technique::from_name(&self.technique)
+            .with_context(|| format!("--technique {}: no such technique", self.technique))?;
+        Ok(match technique {
+            Technique::Fins { .. } => Technique::Fins {
+                world_thickness: self.fin_thickness,
+                z_bias: self.fin_z_bias,
+            },
+            other => other,
+        })
+    }
+
     fn check(&self) -> anyhow::Result<()> {
         if !(1..=16_384).contains(&self.width) || !(1..=16_384).contains(&self.height) {
             bail!(
@@ -174,6 +214,14 @@ impl ViewArgs {
         {
             bail!("--light-dir / --light-pos need three finite numbers (a direction not 0,0,0)");
         }
+        for (name, value) in [
+            ("--fin-thickness", self.fin_thickness),
+            ("--fin-z-bias", self.fin_z_bias),
+        ] {
+            if value.is_some_and(|v| !(v.is_finite() && v >= 0.0)) {
+                bail!("{name} must be a number of at least 0");
+            }
+        }
         if self.k.is_some_and(|k| !(k.is_finite() && k >= 0.0)) {
             bail!("--k must be a number of at least 0");
         }
@@ -202,6 +250,7 @@ impl ViewArgs {
             k: self.k,
         });
         EdgeStyle {
+            technique: self.technique().unwrap_or_default(),
             classes,
             highlight,
             width_px: self.edge_width,
@@ -274,7 +323,7 @@ pub fn render(asset: &Asset, view: &ViewArgs) -> anyhow::Result<(Image, String)>
     let gpu = Offscreen::new()?;
     let target = gpu.target(view.width, view.height, view.samples)?;
     let pipelines = Pipelines::new(&gpu.device, &target.formats())?;
-    let uploaded = GpuAsset::new(&gpu.device, asset)?;
+    let uploaded = GpuAsset::for_techniques(&gpu.device, asset, &[view.technique()?])?;
     let orbit = Orbit {
         azimuth_deg: view.azimuth,
         elevation_deg: view.elevation,

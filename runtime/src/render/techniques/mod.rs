@@ -2,7 +2,10 @@
 //! per-frame state, a [`TechniqueFrame`] that an [`EdgeRenderer`](super::EdgeRenderer) owns for the
 //! technique its style names.
 
+pub(crate) mod alternate;
+pub(crate) mod fins;
 pub(crate) mod joined;
+pub(crate) mod mcguire_hughes;
 
 use super::{
     Camera, DrawCounts, EdgeStyle, FrameViews, GpuAsset, Pipelines, RenderError, Technique,
@@ -16,6 +19,11 @@ pub(crate) fn new_frame(
 ) -> Result<Box<dyn TechniqueFrame>, RenderError> {
     Ok(match technique {
         Technique::Joined => Box::new(joined::Frame::new(pipelines, asset)?),
+        Technique::McGuireHughes => Box::new(mcguire_hughes::Frame::new(pipelines, asset)?),
+        Technique::HalfHex | Technique::Plug | Technique::HalfHexPlug | Technique::House => {
+            Box::new(alternate::Frame::new(pipelines, asset, technique)?)
+        }
+        Technique::Fins { .. } => Box::new(fins::Frame::new(pipelines, asset, technique)?),
     })
 }
 
@@ -97,5 +105,83 @@ pub(crate) fn frame_uniform(cx: &FrameContext<'_>, technique: u32) -> super::lay
         radius_scale: asset.radius_scale,
         reverse_z: u32::from(cx.pipelines.target().reverse_z),
         technique,
+        params: [0.0; 4],
     }
+}
+
+/// The per-frame state of a technique that pulls its geometry in the vertex shader from the
+/// asset's buffers: its frame uniform and one bind group over it and the asset.
+#[derive(Debug)]
+pub(crate) struct Pulled {
+    uniform: wgpu::Buffer,
+    pub(crate) group: wgpu::BindGroup,
+}
+
+impl Pulled {
+    /// The uniform (binding 0) and the group of `set` over it and `buffers`.
+    pub(crate) fn new(
+        pipelines: &Pipelines,
+        layout: &wgpu::BindGroupLayout,
+        set: &super::pipelines::BindingSet,
+        buffers: &[(u32, &wgpu::Buffer)],
+    ) -> Self {
+        let device = pipelines.device();
+        let uniform = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(set.label),
+            size: std::mem::size_of::<super::layout::Frame>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut all = vec![(0, &uniform)];
+        all.extend_from_slice(buffers);
+        let group = set.group(device, layout, &all);
+        Self { uniform, group }
+    }
+
+    pub(crate) fn write(&self, queue: &wgpu::Queue, frame: &super::layout::Frame) {
+        queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(frame));
+    }
+
+    pub(crate) fn gpu_bytes(&self) -> u64 {
+        self.uniform.size()
+    }
+}
+
+/// `buffer`, or the error that says the asset was uploaded without `extra`.
+pub(crate) fn extra<'a>(
+    buffer: &'a Option<wgpu::Buffer>,
+    technique: &Technique,
+    needs: &'static str,
+) -> Result<&'a wgpu::Buffer, RenderError> {
+    buffer.as_ref().ok_or(RenderError::MissingAssetData {
+        technique: technique.name(),
+        needs,
+    })
+}
+
+/// A render pipeline of the pulled kind: no vertex buffers, one bind group, `primitive` triangles,
+/// depth tested (LessEqual, no writes) and alpha-blended like the default edges.
+pub(crate) fn pulled_pipeline(
+    cache: &Pipelines,
+    layout: &wgpu::BindGroupLayout,
+    label: &str,
+    module: &wgpu::ShaderModule,
+    vertex: &str,
+    fragment: &str,
+) -> Result<wgpu::RenderPipeline, RenderError> {
+    let target = cache.target();
+    cache.render_pipeline(
+        &[layout],
+        super::pipelines::RenderPipeline {
+            label,
+            module,
+            vertex,
+            fragment,
+            buffers: &[],
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: target.depth(false, wgpu::CompareFunction::LessEqual),
+            multisample: target.multisample(),
+            color: target.blended_color(),
+        },
+    )
 }

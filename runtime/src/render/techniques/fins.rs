@@ -1,0 +1,121 @@
+//! [`Technique::Fins`](crate::render::Technique::Fins): seed 003's geometry-shader inking, in the
+//! vertex shader (`shaders/fins.wgsl`): per edge instance, twelve vertices, a fin per front-facing
+//! face whose edge is a silhouette or a crease, extruded along that face's corner normals, crease
+//! fins biased towards the camera (Listing 3).
+
+use std::sync::Arc;
+
+use super::{FrameContext, Pulled, TechniqueFrame, extra, pulled_pipeline};
+use crate::render::pipelines::{Access, BindingSet};
+use crate::render::{GpuAsset, Pipelines as Cache, RenderError, Technique, modules};
+
+const SET: BindingSet = BindingSet {
+    label: "fins",
+    stages: wgpu::ShaderStages::VERTEX_FRAGMENT,
+    entries: &[
+        (0, Access::Uniform),
+        (1, Access::Read),
+        (2, Access::Read),
+        (3, Access::Read),
+        (5, Access::Read),
+        (6, Access::Read),
+    ],
+};
+
+/// The fin pipeline, per device and target.
+#[derive(Debug)]
+pub(crate) struct Pipelines {
+    layout: wgpu::BindGroupLayout,
+    fins: wgpu::RenderPipeline,
+}
+
+impl Pipelines {
+    pub(crate) fn new(cache: &Cache) -> Result<Self, RenderError> {
+        let layout = cache.layout(&SET);
+        let module = cache.module("fins.wgsl", &modules::fins())?;
+        let fins = pulled_pipeline(
+            cache,
+            &layout,
+            "fins",
+            &module,
+            "fin_vertex",
+            "flat_fragment",
+        )?;
+        Ok(Self { layout, fins })
+    }
+}
+
+/// One asset's frame.
+#[derive(Debug)]
+pub(crate) struct Frame {
+    pipelines: Arc<Pipelines>,
+    pulled: Pulled,
+    edge_count: u32,
+}
+
+impl Frame {
+    pub(crate) fn new(
+        cache: &Cache,
+        asset: &GpuAsset,
+        technique: &Technique,
+    ) -> Result<Self, RenderError> {
+        let pipelines = cache.fins()?;
+        let corners = extra(&asset.fin_corners, technique, "AssetExtras::FIN_CORNERS")?;
+        let pulled = Pulled::new(
+            cache,
+            &pipelines.layout,
+            &SET,
+            &[
+                (1, &asset.topology_positions),
+                (2, &asset.edge_vertices),
+                (3, &asset.edge_attributes),
+                (5, &asset.render_normals),
+                (6, corners),
+            ],
+        );
+        Ok(Self {
+            pipelines,
+            pulled,
+            edge_count: asset.edge_count,
+        })
+    }
+}
+
+impl TechniqueFrame for Frame {
+    fn prepare(
+        &mut self,
+        cx: &FrameContext<'_>,
+        _encoder: &mut wgpu::CommandEncoder,
+    ) -> Result<(), RenderError> {
+        let Technique::Fins {
+            world_thickness,
+            z_bias,
+        } = cx.style.technique
+        else {
+            return Err(RenderError::Unsupported {
+                technique: cx.style.technique.name(),
+                why: "a fins frame was asked to draw another technique".into(),
+            });
+        };
+        let [lo, hi] = cx.asset.bounds().map(glam::Vec3::from);
+        let finite = |v: f32| if v.is_finite() { v } else { 0.0 };
+        let mut uniform = super::frame_uniform(cx, 0);
+        uniform.params = match world_thickness {
+            Some(t) => [finite(t), 0.0, 0.0, 0.0],
+            None => [cx.style.width(), 1.0, 0.0, 0.0],
+        };
+        uniform.params[2] = finite(z_bias.unwrap_or(2e-3 * (hi - lo).length()));
+        self.pulled.write(cx.queue, &uniform);
+        Ok(())
+    }
+
+    fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
+        pass.set_bind_group(0, &self.pulled.group, &[]);
+        pass.set_pipeline(&self.pipelines.fins);
+        pass.draw(0..12, 0..self.edge_count);
+    }
+
+    fn gpu_bytes(&self) -> u64 {
+        self.pulled.gpu_bytes()
+    }
+}
