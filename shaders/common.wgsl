@@ -37,6 +37,11 @@ struct Frame {
     technique: u32,
     // Technique-specific parameters (see each technique's file).
     params: vec4<f32>,
+    // The mesh's index width and triangle count, for the techniques that pull triangles.
+    indices_u16: u32,
+    triangle_count: u32,
+    _pad0: u32,
+    _pad1: u32,
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;

@@ -45,4 +45,24 @@ wgsl! {
     ALTERNATE = "alternate.wgsl";
     /// Fins (seed 003).
     FINS = "fins.wgsl";
+    /// Triangles pulled from the render sections.
+    TRIANGLES = "triangles.wgsl";
+    /// The barycentric thick wireframe (seed 001).
+    WIREFRAME = "wireframe.wgsl";
+    /// The hardware contour methods (thesis §4).
+    HARDWARE = "hardware.wgsl";
+    /// Surface-angle contours (thesis §7.1).
+    SURFACE_ANGLE = "surface_angle.wgsl";
+    /// The inverted hull (thesis §7.2).
+    INVERTED_HULL = "inverted_hull.wgsl";
+    /// What the post-processes share.
+    POST = "post.wgsl";
+    /// The application's depth, single-sampled.
+    DEPTH_SINGLE = "depth_single.wgsl";
+    /// The application's depth, multisampled.
+    DEPTH_MULTI = "depth_multi.wgsl";
+    /// The hybrid depth shader (seed 004).
+    HYBRID = "hybrid.wgsl";
+    /// Image-space gradient operators (thesis §5).
+    IMAGE_SPACE = "image_space.wgsl";
 }

@@ -19,7 +19,8 @@ impl AssetExtras {
     /// Nothing beyond what [`Technique::Joined`](super::Technique::Joined) needs.
     pub const NONE: Self = Self(0);
     /// One smooth (area-weighted) normal per topology vertex, shared by every edge at it: the
-    /// `n0`, `n1` of McGuire–Hughes' edge mesh (thesis §8.1). 16 bytes per welded vertex.
+    /// `n0`, `n1` of McGuire–Hughes' edge mesh (thesis §8.1), and each render vertex's topology
+    /// vertex (for the smooth inverted hull). 16 bytes per welded vertex, 4 per render vertex.
     pub const VERTEX_NORMALS: Self = Self(1);
     /// Per edge, the render vertices of each face's corners at `v0` and `v1`, so a fin can extrude
     /// along its own face's (crease-split) normals (seed 003). 16 bytes per edge.

@@ -44,6 +44,8 @@ pub struct GpuAsset {
     pub(crate) extras: AssetExtras,
     /// [`AssetExtras::VERTEX_NORMALS`]: `vec4<f32>` per topology vertex.
     pub(crate) vertex_normals: Option<wgpu::Buffer>,
+    /// [`AssetExtras::VERTEX_NORMALS`]: the topology vertex (`u32`) of each render vertex.
+    pub(crate) render_to_topology: Option<wgpu::Buffer>,
     /// [`AssetExtras::FIN_CORNERS`]: `vec4<u32>` per edge.
     pub(crate) fin_corners: Option<wgpu::Buffer>,
     /// [`AssetExtras::TRIANGLE_EDGES`]: `u32` per triangle.
@@ -98,6 +100,8 @@ impl GpuAsset {
             let normals = derived::vertex_normals(asset, &map);
             uploaded.vertex_normals =
                 Some(extra("vertex normals", bytemuck::cast_slice(&normals))?);
+            uploaded.render_to_topology =
+                Some(extra("render to topology", bytemuck::cast_slice(&map))?);
         }
         if extras.contains(AssetExtras::FIN_CORNERS) {
             let corners = derived::fin_corners(asset, &map);
@@ -204,6 +208,7 @@ impl GpuAsset {
             ),
             extras: AssetExtras::NONE,
             vertex_normals: None,
+            render_to_topology: None,
             fin_corners: None,
             triangle_edges: None,
         })

@@ -110,6 +110,24 @@ pub(crate) struct Frame {
     pub(crate) reverse_z: u32,
     pub(crate) technique: u32,
     pub(crate) params: [f32; 4],
+    pub(crate) indices_u16: u32,
+    pub(crate) triangle_count: u32,
+    pub(crate) _pad0: u32,
+    pub(crate) _pad1: u32,
+}
+
+/// `Post` in `shaders/post.wgsl`: the uniform of the post-processes.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct Post {
+    pub(crate) inv_projection: [[f32; 4]; 4],
+    pub(crate) mvp: [[f32; 4]; 4],
+    pub(crate) color: [f32; 4],
+    pub(crate) params: [f32; 4],
+    pub(crate) more: [f32; 4],
+    pub(crate) viewport: [f32; 2],
+    pub(crate) depth_ref: f32,
+    pub(crate) variant: u32,
 }
 
 /// `Lighting` in `shaders/highlight.wgsl`.
@@ -237,9 +255,27 @@ pub(crate) fn layouts() -> Vec<Layout> {
                 reverse_z,
                 technique,
                 params,
+                indices_u16,
+                triangle_count,
+                _pad0,
+                _pad1,
             ]
         ),
         layout!("Lighting", Lighting, [light, color, material]),
+        layout!(
+            "Post",
+            Post,
+            [
+                inv_projection,
+                mvp,
+                color,
+                params,
+                more,
+                viewport,
+                depth_ref,
+                variant
+            ]
+        ),
         layout!("MeshFrame", MeshFrame, [mvp, light, color, params, eye]),
         layout!(
             "DrawArgs",

@@ -76,7 +76,7 @@ impl Pipeline {
                 label: "mesh",
                 module: &module,
                 vertex: "mesh_vertex",
-                fragment: "mesh_fragment",
+                fragment: Some("mesh_fragment"),
                 buffers: &[
                     vertex_buffer(&wgpu::vertex_attr_array![0 => Float32x3]),
                     vertex_buffer(&wgpu::vertex_attr_array![1 => Float32x3]),
@@ -84,7 +84,7 @@ impl Pipeline {
                 primitive: wgpu::PrimitiveState::default(),
                 depth_stencil: target.depth(true, wgpu::CompareFunction::Less),
                 multisample: target.multisample(),
-                color: target.blended_color(),
+                color: Some(target.blended_color()),
             },
         )?;
         Ok(Self { layout, pipeline })

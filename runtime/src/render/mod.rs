@@ -71,4 +71,4 @@ pub use pipelines::Pipelines;
 pub use renderer::{DrawCounts, EdgeRenderer, FrameViews, Prepared};
 pub use style::{CapMethod, EdgeClasses, EdgeColors, EdgeStyle};
 pub use target::Target;
-pub use technique::Technique;
+pub use technique::{HardwareContour, HybridDepth, ImageSpace, Operator, Technique};

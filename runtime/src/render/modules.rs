@@ -70,6 +70,44 @@ pub(crate) fn fins() -> String {
     assemble(&[wgsl::COMMON, wgsl::FLAT, wgsl::FINS])
 }
 
+/// The barycentric wireframe.
+pub(crate) fn wireframe() -> String {
+    assemble(&[wgsl::COMMON, wgsl::TRIANGLES, wgsl::WIREFRAME])
+}
+
+/// The hardware contour passes.
+pub(crate) fn hardware() -> String {
+    assemble(&[wgsl::COMMON, wgsl::FLAT, wgsl::TRIANGLES, wgsl::HARDWARE])
+}
+
+/// Surface-angle contours.
+pub(crate) fn surface_angle() -> String {
+    assemble(&[wgsl::COMMON, wgsl::SURFACE_ANGLE])
+}
+
+/// The inverted hull.
+pub(crate) fn inverted_hull() -> String {
+    assemble(&[wgsl::COMMON, wgsl::FLAT, wgsl::INVERTED_HULL])
+}
+
+/// The hybrid depth shader, for a multisampled depth or not.
+pub(crate) fn hybrid(multisampled: bool) -> String {
+    assemble(&[post_depth(multisampled), wgsl::POST, wgsl::HYBRID])
+}
+
+/// Image-space operators, for a multisampled depth or not.
+pub(crate) fn image_space(multisampled: bool) -> String {
+    assemble(&[post_depth(multisampled), wgsl::POST, wgsl::IMAGE_SPACE])
+}
+
+fn post_depth(multisampled: bool) -> &'static str {
+    if multisampled {
+        wgsl::DEPTH_MULTI
+    } else {
+        wgsl::DEPTH_SINGLE
+    }
+}
+
 /// The lit mesh.
 pub(crate) fn mesh() -> String {
     assemble(&[wgsl::MESH])
@@ -89,6 +127,14 @@ pub(crate) fn all() -> Vec<(&'static str, String)> {
         ("mcguire_hughes", mcguire_hughes()),
         ("alternate", alternate()),
         ("fins", fins()),
+        ("wireframe", wireframe()),
+        ("hardware", hardware()),
+        ("surface_angle", surface_angle()),
+        ("inverted_hull", inverted_hull()),
+        ("hybrid", hybrid(false)),
+        ("hybrid msaa", hybrid(true)),
+        ("image_space", image_space(false)),
+        ("image_space msaa", image_space(true)),
     ]
 }
 
@@ -133,7 +179,7 @@ mod tests {
     #[test]
     fn every_module_parses_and_validates_on_the_cpu() {
         let modules = all();
-        assert!(modules.len() >= 10);
+        assert!(modules.len() >= 18);
         for (name, source) in &modules {
             parse(name, source);
         }

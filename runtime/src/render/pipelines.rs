@@ -29,6 +29,12 @@ struct Inner {
     mcguire_hughes: OnceLock<Arc<techniques::mcguire_hughes::Pipelines>>,
     alternate: OnceLock<Arc<techniques::alternate::Pipelines>>,
     fins: OnceLock<Arc<techniques::fins::Pipelines>>,
+    wireframe: OnceLock<Arc<techniques::wireframe::Pipelines>>,
+    hardware: OnceLock<Arc<techniques::hardware::Pipelines>>,
+    surface_angle: OnceLock<Arc<techniques::surface_angle::Pipelines>>,
+    inverted_hull: OnceLock<Arc<techniques::inverted_hull::Pipelines>>,
+    hybrid: OnceLock<Arc<techniques::hybrid::Pipelines>>,
+    image_space: OnceLock<Arc<techniques::image_space::Pipelines>>,
 }
 
 impl Pipelines {
@@ -48,6 +54,12 @@ impl Pipelines {
                 mcguire_hughes: OnceLock::new(),
                 alternate: OnceLock::new(),
                 fins: OnceLock::new(),
+                wireframe: OnceLock::new(),
+                hardware: OnceLock::new(),
+                surface_angle: OnceLock::new(),
+                inverted_hull: OnceLock::new(),
+                hybrid: OnceLock::new(),
+                image_space: OnceLock::new(),
             }),
         })
     }
@@ -94,6 +106,48 @@ impl Pipelines {
 
     pub(crate) fn fins(&self) -> Result<Arc<techniques::fins::Pipelines>, RenderError> {
         get_or_create(&self.inner.fins, || techniques::fins::Pipelines::new(self))
+    }
+
+    pub(crate) fn wireframe(&self) -> Result<Arc<techniques::wireframe::Pipelines>, RenderError> {
+        get_or_create(&self.inner.wireframe, || {
+            techniques::wireframe::Pipelines::new(self)
+        })
+    }
+
+    pub(crate) fn hardware(&self) -> Result<Arc<techniques::hardware::Pipelines>, RenderError> {
+        get_or_create(&self.inner.hardware, || {
+            techniques::hardware::Pipelines::new(self)
+        })
+    }
+
+    pub(crate) fn surface_angle(
+        &self,
+    ) -> Result<Arc<techniques::surface_angle::Pipelines>, RenderError> {
+        get_or_create(&self.inner.surface_angle, || {
+            techniques::surface_angle::Pipelines::new(self)
+        })
+    }
+
+    pub(crate) fn inverted_hull(
+        &self,
+    ) -> Result<Arc<techniques::inverted_hull::Pipelines>, RenderError> {
+        get_or_create(&self.inner.inverted_hull, || {
+            techniques::inverted_hull::Pipelines::new(self)
+        })
+    }
+
+    pub(crate) fn hybrid(&self) -> Result<Arc<techniques::hybrid::Pipelines>, RenderError> {
+        get_or_create(&self.inner.hybrid, || {
+            techniques::hybrid::Pipelines::new(self)
+        })
+    }
+
+    pub(crate) fn image_space(
+        &self,
+    ) -> Result<Arc<techniques::image_space::Pipelines>, RenderError> {
+        get_or_create(&self.inner.image_space, || {
+            techniques::image_space::Pipelines::new(self)
+        })
     }
 
     pub(crate) fn mesh(&self) -> Result<Arc<mesh::Pipeline>, RenderError> {
@@ -166,6 +220,8 @@ impl Pipelines {
         checked(device, descriptor.label, || {
             let layouts: Vec<Option<&wgpu::BindGroupLayout>> =
                 layouts.iter().map(|&l| Some(l)).collect();
+            let targets: Vec<Option<wgpu::ColorTargetState>> =
+                descriptor.color.into_iter().map(Some).collect();
             let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
                 label: Some(descriptor.label),
                 bind_group_layouts: &layouts,
@@ -183,11 +239,11 @@ impl Pipelines {
                 primitive: descriptor.primitive,
                 depth_stencil: descriptor.depth_stencil,
                 multisample: descriptor.multisample,
-                fragment: Some(wgpu::FragmentState {
+                fragment: descriptor.fragment.map(|entry| wgpu::FragmentState {
                     module: descriptor.module,
-                    entry_point: Some(descriptor.fragment),
+                    entry_point: Some(entry),
                     compilation_options: Default::default(),
-                    targets: &[Some(descriptor.color)],
+                    targets: &targets,
                 }),
                 multiview_mask: None,
                 cache: None,
@@ -201,12 +257,13 @@ pub(crate) struct RenderPipeline<'a> {
     pub(crate) label: &'a str,
     pub(crate) module: &'a wgpu::ShaderModule,
     pub(crate) vertex: &'a str,
-    pub(crate) fragment: &'a str,
+    /// `None`: a depth-only pipeline for a pass of the renderer's own without colour.
+    pub(crate) fragment: Option<&'a str>,
     pub(crate) buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
     pub(crate) primitive: wgpu::PrimitiveState,
     pub(crate) depth_stencil: Option<wgpu::DepthStencilState>,
     pub(crate) multisample: wgpu::MultisampleState,
-    pub(crate) color: wgpu::ColorTargetState,
+    pub(crate) color: Option<wgpu::ColorTargetState>,
 }
 
 /// `cell`'s value, created by `create` the first time. (A race may create it twice; one is kept.)

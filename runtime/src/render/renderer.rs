@@ -61,8 +61,10 @@ impl EdgeRenderer {
         camera: &Camera,
         style: &EdgeStyle,
     ) -> Result<Prepared<'_>, RenderError> {
+        // A frame serves every parameter of its technique that needs the same per-asset data.
         let same_kind = self.frame.as_ref().is_some_and(|(t, _)| {
             std::mem::discriminant(t) == std::mem::discriminant(&style.technique)
+                && t.needs() == style.technique.needs()
         });
         if !same_kind {
             // Free the old technique's state before making the new one.

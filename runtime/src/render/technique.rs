@@ -59,12 +59,226 @@ pub enum Technique {
         /// bounding-box diagonal; `Some(0.0)`: no bias (the article's z-fighting).
         z_bias: Option<f32>,
     },
+    /// The barycentric thick wireframe (seed 001, final version): every triangle edge of the mesh at
+    /// `width_px` whatever the triangle's shape, from per-corner edge coordinates computed in the
+    /// vertex shader (no geometry shader). Drawn in the contour colour; ignores `classes` (all edges
+    /// are one class), `caps`, `half_quad_contours`, `highlight`. With `feature_only` it needs
+    /// [`AssetExtras::TRIANGLE_EDGES`].
+    Wireframe {
+        /// Only the asset's feature edges (boundaries, creases, marks), not the diagonals of flat or
+        /// smooth regions.
+        feature_only: bool,
+        /// Anti-aliased inner border (a one-pixel ramp).
+        smooth: bool,
+        /// The seed's first, naive attempt: unit barycentrics with this threshold; its width follows
+        /// the triangle's size and shape. For comparison.
+        naive_threshold: Option<f32>,
+    },
+    /// A hardware contour method of the thesis' survey (§4): render state alone, no edge
+    /// detection. See [`HardwareContour`] for each method and its limits. Draws contours (and for
+    /// [`HardwareContour::Raskar`] creases) in their class colours; `width_px` where the method has
+    /// a width; ignores `caps`, `half_quad_contours`, `highlight`.
+    Hardware(HardwareContour),
+    /// Surface-angle contours (§7.1): pixels whose normal is within `threshold` of perpendicular to
+    /// the view, |N·V| < threshold. Width follows curvature; flat faces fail (whole face or none).
+    /// Ignores everything but the contour colour.
+    SurfaceAngle {
+        /// |N·V| below which a pixel is inked.
+        threshold: f32,
+    },
+    /// The expanded inverted hull (§7.2): the mesh pushed out along its normals by `width_px`,
+    /// front faces culled, in the contour colour. With the crease-split normals the hull tears at
+    /// hard edges; `smooth_normals` pushes along smooth normals. Needs
+    /// [`AssetExtras::VERTEX_NORMALS`].
+    InvertedHull {
+        /// Push along each topology vertex's smooth normal instead of the render normals.
+        smooth_normals: bool,
+    },
+    /// The hybrid depth shader of seed 004: one post-process over the application's depth alone
+    /// that gives edges, ambient shading or both, from the same code with the paper's parameters,
+    /// multiplied over the scene's colour (or over this asset only). Runs in
+    /// [`Prepared::finish`](super::Prepared::finish); works on whatever the depth holds, so its cost
+    /// follows the resolution, not the mesh. Ignores every style field but `depth_scaled`... none:
+    /// it has its own parameters. Known limits (§2, §4): a dark halo where depth jumps far
+    /// (the bleach factor's reason), parameters to tune per scene.
+    Hybrid(HybridDepth),
+    /// Image-space edges (thesis §5): Sobel, Prewitt, Scharr or Roberts' cross over the depth and a
+    /// normal buffer, thresholded, drawn after the application's pass in the contour colour. Line
+    /// thickness is `width_px` (the kernel's reach), scaled with depth if `depth_scaled`. Known
+    /// limits (§5.6): missed and false edges, thresholds to tune, no control over style. Ignores
+    /// `classes` (one colour), `caps`, `half_quad_contours`, `highlight`.
+    ImageSpace(ImageSpace),
+}
+
+/// Parameters of the hybrid depth shader (seed 004, §3.3–3.4, §4).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HybridDepth {
+    /// `r`: the neighbours' distance in pixels (1 to 10 in the paper): thin lines at 1, broad
+    /// shading at 5 or more.
+    pub step_px: f32,
+    /// `L`, the bleach factor of eq. 5 (0 to 1): low values lighten the dark halos of large depth
+    /// differences, 1 keeps them.
+    pub bleach: f32,
+    /// The exponent the averaged shade is raised to.
+    pub contrast: f32,
+    /// Inverted brightness (0 to 2): 0 leaves flat regions white, higher values darken everything.
+    pub brightness: f32,
+    /// What a depth difference is divided by, as a share of the far plane's distance (the paper
+    /// advises 0.8; an infinite far plane counts as twice the model's far side): smaller values
+    /// bring out smaller depth differences.
+    pub range: f32,
+    /// Apply to this asset's pixels and outline only (the Laplacian mask steps of §3.1), not to the
+    /// whole scene.
+    pub object_only: bool,
+}
+
+impl HybridDepth {
+    /// Edge detection (§4, Fig. 3 right: a small step, bleach 1, brightness 0), with the range the
+    /// paper advises.
+    pub const EDGES: Self = Self {
+        step_px: 2.0,
+        bleach: 1.0,
+        contrast: 100.0,
+        brightness: 0.0,
+        range: 0.8,
+        object_only: false,
+    };
+    /// Ambient shading (§4, Fig. 5: a wide step, low bleach), with a shorter range so that the
+    /// gentle depth changes of corners count.
+    pub const AMBIENT: Self = Self {
+        step_px: 10.0,
+        bleach: 0.3,
+        contrast: 30.0,
+        brightness: 0.0,
+        range: 0.2,
+        object_only: false,
+    };
+    /// Both at once (§4, Fig. 6): a step between the two, bleach 1 so silhouettes stay dark, and a
+    /// range between the two.
+    pub const BOTH: Self = Self {
+        step_px: 5.0,
+        bleach: 1.0,
+        contrast: 30.0,
+        brightness: 0.0,
+        range: 0.3,
+        object_only: false,
+    };
+}
+
+/// An image-space gradient operator (thesis §5.1–5.2).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Operator {
+    /// Sobel, 3×3 (1 2 1).
+    Sobel,
+    /// Prewitt, 3×3 (1 1 1).
+    Prewitt,
+    /// Scharr, 3×3 (3 10 3).
+    Scharr,
+    /// Roberts' cross, 2×2 (the least accurate).
+    Roberts,
+}
+
+impl Operator {
+    /// Every operator.
+    pub const ALL: [Self; 4] = [Self::Sobel, Self::Prewitt, Self::Scharr, Self::Roberts];
+}
+
+/// Parameters of the image-space edges (thesis §5).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ImageSpace {
+    /// The gradient operator.
+    pub operator: Operator,
+    /// Edge where the depth gradient, relative to the pixel's depth, exceeds this; 0: depth unused.
+    pub depth_threshold: f32,
+    /// Edge where the normal gradient exceeds this; 0: no normal buffer.
+    pub normal_threshold: f32,
+}
+
+impl ImageSpace {
+    /// `operator` over depth (relative gradient 0.15) and normals (gradient 0.8).
+    pub const fn new(operator: Operator) -> Self {
+        Self {
+            operator,
+            depth_threshold: 0.15,
+            normal_threshold: 0.8,
+        }
+    }
+}
+
+/// The hardware contour methods of the thesis' survey (§4), each a short pass configuration.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum HardwareContour {
+    /// §4.1, Rossignac and van Emmerik: the mesh into depth, then every triangle's wireframe,
+    /// `width_px` thick, pushed back by a depth offset (`depth_bias_px`). Only edges that poke out
+    /// past the silhouette show; joints between the thick lines gap.
+    RossignacVanEmmerik,
+    /// §4.1, Gooch and Gooch: back faces' wireframe with LessEqual over the front faces: a contour
+    /// of at most one pixel at width 1; thicker lines, no offset.
+    GoochWireframe,
+    /// §4.2, Raskar and Cohen: back faces filled with LessEqual: contours of at most one pixel that
+    /// flicker with depth quantization.
+    BackFaces,
+    /// §4.3: back faces filled and pulled towards the camera (`depth_bias_px`): thick, but the
+    /// width follows the front surface's orientation and is uncontrollable.
+    OffsetBackFaces,
+    /// §4.4, "polygon fattening": each back face's edges pushed out by `width_px` on screen and the
+    /// polygon closed again, so contours are evenly thick; the fan caps do not always fill the joint.
+    FattenedBackFaces,
+    /// §4.5, McReynolds and Blythe: the mesh four times one step off into the stencil, the edge
+    /// colour where it counts 2 or 3. Outlines the whole silhouette (not inner contours); four
+    /// extra draws of the mesh. Needs a stencil buffer; changes it.
+    StencilShifted,
+    /// §4.6, Akeley: front faces' wireframe inverting the stencil, the edge colour where it is 1.
+    /// One pixel wide; misses back-facing boundaries; rasterization noise. Needs a stencil buffer.
+    InvertedStencil,
+    /// §4.7, Raskar: fattened back faces for contours; ridges as quads per front edge turned down
+    /// by `crease_deg` about the edge (hidden by the next face unless it folds away more), valleys
+    /// turned up and kept only between the front surface and a second depth buffer of the back
+    /// faces. Z-fights where a fold equals the angle.
+    Raskar {
+        /// The fold, in degrees between face normals, from which an edge is a crease.
+        crease_deg: f32,
+    },
+}
+
+impl HardwareContour {
+    /// Every method, with default parameters.
+    pub const ALL: [Self; 8] = [
+        Self::RossignacVanEmmerik,
+        Self::GoochWireframe,
+        Self::BackFaces,
+        Self::OffsetBackFaces,
+        Self::FattenedBackFaces,
+        Self::StencilShifted,
+        Self::InvertedStencil,
+        Self::Raskar { crease_deg: 30.0 },
+    ];
+
+    /// The method's name, as `chamfer render --technique` takes it.
+    pub const fn name(&self) -> &'static str {
+        match self {
+            Self::RossignacVanEmmerik => "rossignac-van-emmerik",
+            Self::GoochWireframe => "gooch-wireframe",
+            Self::BackFaces => "back-faces",
+            Self::OffsetBackFaces => "offset-back-faces",
+            Self::FattenedBackFaces => "fattened-back-faces",
+            Self::StencilShifted => "stencil-shifted",
+            Self::InvertedStencil => "inverted-stencil",
+            Self::Raskar { .. } => "raskar",
+        }
+    }
+
+    /// True if the method draws through the stencil buffer.
+    pub const fn needs_stencil(&self) -> bool {
+        matches!(self, Self::StencilShifted | Self::InvertedStencil)
+    }
 }
 
 impl Technique {
     /// Every technique with its default parameters, in the order of [`Technique::names`].
     pub fn all() -> Vec<Self> {
-        vec![
+        let mut all = vec![
             Self::Joined,
             Self::McGuireHughes,
             Self::HalfHex,
@@ -75,11 +289,36 @@ impl Technique {
                 world_thickness: None,
                 z_bias: None,
             },
-        ]
+            Self::Wireframe {
+                feature_only: false,
+                smooth: true,
+                naive_threshold: None,
+            },
+            Self::Wireframe {
+                feature_only: true,
+                smooth: true,
+                naive_threshold: None,
+            },
+        ];
+        all.extend(HardwareContour::ALL.map(Self::Hardware));
+        all.extend([
+            Self::SurfaceAngle { threshold: 0.2 },
+            Self::InvertedHull {
+                smooth_normals: false,
+            },
+            Self::InvertedHull {
+                smooth_normals: true,
+            },
+            Self::Hybrid(HybridDepth::EDGES),
+            Self::Hybrid(HybridDepth::AMBIENT),
+            Self::Hybrid(HybridDepth::BOTH),
+        ]);
+        all.extend(Operator::ALL.map(|o| Self::ImageSpace(ImageSpace::new(o))));
+        all
     }
 
     /// The technique's name, as `chamfer render --technique` takes it.
-    pub const fn name(&self) -> &'static str {
+    pub fn name(&self) -> &'static str {
         match self {
             Self::Joined => "joined",
             Self::McGuireHughes => "mcguire-hughes",
@@ -88,6 +327,27 @@ impl Technique {
             Self::HalfHexPlug => "half-hex-plug",
             Self::House => "house",
             Self::Fins { .. } => "fins",
+            Self::Wireframe {
+                feature_only: false,
+                ..
+            } => "wireframe",
+            Self::Wireframe { .. } => "wireframe-features",
+            Self::Hardware(method) => method.name(),
+            Self::SurfaceAngle { .. } => "surface-angle",
+            Self::InvertedHull {
+                smooth_normals: false,
+            } => "inverted-hull",
+            Self::InvertedHull { .. } => "inverted-hull-smooth",
+            Self::Hybrid(p) if p.eq(&HybridDepth::EDGES) => "hybrid-edges",
+            Self::Hybrid(p) if p.eq(&HybridDepth::AMBIENT) => "hybrid-ambient",
+            Self::Hybrid(p) if p.eq(&HybridDepth::BOTH) => "hybrid-both",
+            Self::Hybrid(_) => "hybrid",
+            Self::ImageSpace(p) => match p.operator {
+                Operator::Sobel => "image-sobel",
+                Operator::Prewitt => "image-prewitt",
+                Operator::Scharr => "image-scharr",
+                Operator::Roberts => "image-roberts",
+            },
         }
     }
 
@@ -102,7 +362,7 @@ impl Technique {
     }
 
     /// A one-line description: what it is and which seed section it follows.
-    pub const fn summary(&self) -> &'static str {
+    pub fn summary(&self) -> &'static str {
         match self {
             Self::Joined => {
                 "compacted edges with gap-free joins and round caps (thesis §10, §13; the default)"
@@ -115,6 +375,55 @@ impl Technique {
             Self::HalfHexPlug => "half-hex contours with plug edges for the rest (thesis §9.3)",
             Self::House => "house edges, for their artifacts (thesis §9.3)",
             Self::Fins { .. } => "fins extruded along the normals, with a z-bias (seed 003)",
+            Self::Wireframe {
+                feature_only: false,
+                ..
+            } => "barycentric thick wireframe of every triangle (seed 001)",
+            Self::Wireframe { .. } => "barycentric thick wireframe of the feature edges (seed 001)",
+            Self::Hardware(HardwareContour::RossignacVanEmmerik) => {
+                "thick wireframe pushed behind the mesh's depth (thesis §4.1)"
+            }
+            Self::Hardware(HardwareContour::GoochWireframe) => {
+                "back faces' wireframe over the front faces (thesis §4.1, Gooch)"
+            }
+            Self::Hardware(HardwareContour::BackFaces) => {
+                "back faces filled with LessEqual (thesis §4.2)"
+            }
+            Self::Hardware(HardwareContour::OffsetBackFaces) => {
+                "back faces pulled towards the camera (thesis §4.3)"
+            }
+            Self::Hardware(HardwareContour::FattenedBackFaces) => {
+                "back faces fattened by the line width (thesis §4.4)"
+            }
+            Self::Hardware(HardwareContour::StencilShifted) => {
+                "stencil of the mesh shifted four ways (thesis §4.5)"
+            }
+            Self::Hardware(HardwareContour::InvertedStencil) => {
+                "front-face wireframe inverting the stencil (thesis §4.6)"
+            }
+            Self::Hardware(HardwareContour::Raskar { .. }) => {
+                "Raskar's fattened back faces and rotated crease quads (thesis §4.7)"
+            }
+            Self::SurfaceAngle { .. } => {
+                "pixels whose normal is nearly perpendicular to the view (thesis §7.1)"
+            }
+            Self::InvertedHull {
+                smooth_normals: false,
+            } => "the mesh pushed out along its normals, front faces culled (thesis §7.2)",
+            Self::InvertedHull { .. } => "inverted hull along smooth normals (thesis §7.2)",
+            Self::Hybrid(p) if p.eq(&HybridDepth::EDGES) => {
+                "hybrid depth shader, edge setting: post-process of the depth alone (seed 004)"
+            }
+            Self::Hybrid(p) if p.eq(&HybridDepth::AMBIENT) => {
+                "hybrid depth shader, ambient-shading setting (seed 004)"
+            }
+            Self::Hybrid(p) if p.eq(&HybridDepth::BOTH) => {
+                "hybrid depth shader, edges and ambient shading at once (seed 004)"
+            }
+            Self::Hybrid(_) => "hybrid depth shader, own parameters (seed 004)",
+            Self::ImageSpace(_) => {
+                "gradient operator over depth and normal buffers, thresholded (thesis §5)"
+            }
         }
     }
 
@@ -128,6 +437,29 @@ impl Technique {
                 AssetExtras::VERTEX_NORMALS
             }
             Self::Fins { .. } => AssetExtras::FIN_CORNERS,
+            Self::Wireframe {
+                feature_only: true, ..
+            } => AssetExtras::TRIANGLE_EDGES,
+            Self::InvertedHull { .. } => AssetExtras::VERTEX_NORMALS,
+            Self::Wireframe { .. }
+            | Self::Hardware(_)
+            | Self::SurfaceAngle { .. }
+            | Self::Hybrid(_)
+            | Self::ImageSpace(_) => AssetExtras::NONE,
+        }
+    }
+
+    /// True if the technique works after the application's pass, in
+    /// [`Prepared::finish`](super::Prepared::finish), and reads its depth.
+    pub const fn is_post_process(&self) -> bool {
+        matches!(self, Self::Hybrid(_) | Self::ImageSpace(_))
+    }
+
+    /// True if the technique needs a stencil aspect in the target's depth format.
+    pub const fn needs_stencil(&self) -> bool {
+        match self {
+            Self::Hardware(method) => method.needs_stencil(),
+            _ => false,
         }
     }
 }

@@ -7,8 +7,8 @@ use chamfer_preprocess::write::{ensure_not_an_input, write_atomically};
 use chamfer_runtime::asset::Asset;
 use chamfer_runtime::highlight::strip::Material;
 use chamfer_runtime::render::{
-    Camera, CapMethod, EdgeClasses, EdgeRenderer, EdgeStyle, GpuAsset, Highlight, Image, Light,
-    MeshLight, MeshRenderer, MeshStyle, Offscreen, Orbit, Pipelines, Technique,
+    Camera, CapMethod, EdgeClasses, EdgeRenderer, EdgeStyle, GpuAsset, Highlight, HybridDepth,
+    Image, Light, MeshLight, MeshRenderer, MeshStyle, Offscreen, Orbit, Pipelines, Technique,
 };
 use clap::{Args, ValueEnum};
 
@@ -69,6 +69,24 @@ pub struct ViewArgs {
     /// of the model's diagonal; 0: none).
     #[arg(long)]
     fin_z_bias: Option<f32>,
+    /// `--technique hybrid-*`: the neighbours' distance r, pixels (seed 004 §3.3).
+    #[arg(long)]
+    hybrid_step: Option<f32>,
+    /// `--technique hybrid-*`: the bleach factor L, 0 to 1 (eq. 5).
+    #[arg(long)]
+    hybrid_bleach: Option<f32>,
+    /// `--technique hybrid-*`: the contrast exponent.
+    #[arg(long)]
+    hybrid_contrast: Option<f32>,
+    /// `--technique hybrid-*`: the (inverted) brightness, 0 to 2.
+    #[arg(long)]
+    hybrid_brightness: Option<f32>,
+    /// `--technique hybrid-*`: the depth range, as a share of the far plane's distance.
+    #[arg(long)]
+    hybrid_range: Option<f32>,
+    /// `--technique hybrid-*`: over the model only, with its Laplacian outline (§3.1).
+    #[arg(long)]
+    hybrid_object: bool,
     /// Edge classes to draw.
     #[arg(
         long,
@@ -169,6 +187,14 @@ impl ViewArgs {
                 world_thickness: self.fin_thickness,
                 z_bias: self.fin_z_bias,
             },
+            Technique::Hybrid(preset) => Technique::Hybrid(HybridDepth {
+                step_px: self.hybrid_step.unwrap_or(preset.step_px),
+                bleach: self.hybrid_bleach.unwrap_or(preset.bleach),
+                contrast: self.hybrid_contrast.unwrap_or(preset.contrast),
+                brightness: self.hybrid_brightness.unwrap_or(preset.brightness),
+                range: self.hybrid_range.unwrap_or(preset.range),
+                object_only: self.hybrid_object,
+            }),
             other => other,
         })
     }
@@ -217,6 +243,11 @@ impl ViewArgs {
         for (name, value) in [
             ("--fin-thickness", self.fin_thickness),
             ("--fin-z-bias", self.fin_z_bias),
+            ("--hybrid-step", self.hybrid_step),
+            ("--hybrid-bleach", self.hybrid_bleach),
+            ("--hybrid-contrast", self.hybrid_contrast),
+            ("--hybrid-brightness", self.hybrid_brightness),
+            ("--hybrid-range", self.hybrid_range),
         ] {
             if value.is_some_and(|v| !(v.is_finite() && v >= 0.0)) {
                 bail!("{name} must be a number of at least 0");

@@ -92,10 +92,7 @@ impl TechniqueFrame for Frame {
             z_bias,
         } = cx.style.technique
         else {
-            return Err(RenderError::Unsupported {
-                technique: cx.style.technique.name(),
-                why: "a fins frame was asked to draw another technique".into(),
-            });
+            return Err(super::mismatch(cx));
         };
         let [lo, hi] = cx.asset.bounds().map(glam::Vec3::from);
         let finite = |v: f32| if v.is_finite() { v } else { 0.0 };

@@ -135,12 +135,12 @@ impl Pipelines {
                     label,
                     module,
                     vertex,
-                    fragment,
+                    fragment: Some(fragment),
                     buffers: &[],
                     primitive: wgpu::PrimitiveState::default(),
                     depth_stencil: target.depth(false, wgpu::CompareFunction::LessEqual),
                     multisample: target.multisample(),
-                    color: target.blended_color(),
+                    color: Some(target.blended_color()),
                 },
             )
         };

@@ -4,8 +4,15 @@
 
 pub(crate) mod alternate;
 pub(crate) mod fins;
+pub(crate) mod hardware;
+pub(crate) mod hybrid;
+pub(crate) mod image_space;
+pub(crate) mod inverted_hull;
 pub(crate) mod joined;
 pub(crate) mod mcguire_hughes;
+pub(crate) mod post;
+pub(crate) mod surface_angle;
+pub(crate) mod wireframe;
 
 use super::{
     Camera, DrawCounts, EdgeStyle, FrameViews, GpuAsset, Pipelines, RenderError, Technique,
@@ -24,6 +31,16 @@ pub(crate) fn new_frame(
             Box::new(alternate::Frame::new(pipelines, asset, technique)?)
         }
         Technique::Fins { .. } => Box::new(fins::Frame::new(pipelines, asset, technique)?),
+        Technique::Wireframe { .. } => {
+            Box::new(wireframe::Frame::new(pipelines, asset, technique)?)
+        }
+        Technique::Hardware(method) => Box::new(hardware::Frame::new(pipelines, asset, *method)?),
+        Technique::SurfaceAngle { .. } => Box::new(surface_angle::Frame::new(pipelines, asset)?),
+        Technique::InvertedHull { .. } => {
+            Box::new(inverted_hull::Frame::new(pipelines, asset, technique)?)
+        }
+        Technique::Hybrid(_) => Box::new(hybrid::Frame::new(pipelines, asset)?),
+        Technique::ImageSpace(_) => Box::new(image_space::Frame::new(pipelines, asset)?),
     })
 }
 
@@ -106,6 +123,10 @@ pub(crate) fn frame_uniform(cx: &FrameContext<'_>, technique: u32) -> super::lay
         reverse_z: u32::from(cx.pipelines.target().reverse_z),
         technique,
         params: [0.0; 4],
+        indices_u16: u32::from(asset.index_format == wgpu::IndexFormat::Uint16),
+        triangle_count: asset.index_count / 3,
+        _pad0: 0,
+        _pad1: 0,
     }
 }
 
@@ -145,6 +166,10 @@ impl Pulled {
     pub(crate) fn gpu_bytes(&self) -> u64 {
         self.uniform.size()
     }
+
+    pub(crate) fn uniform(&self) -> &wgpu::Buffer {
+        &self.uniform
+    }
 }
 
 /// `buffer`, or the error that says the asset was uploaded without `extra`.
@@ -176,12 +201,29 @@ pub(crate) fn pulled_pipeline(
             label,
             module,
             vertex,
-            fragment,
+            fragment: Some(fragment),
             buffers: &[],
             primitive: wgpu::PrimitiveState::default(),
             depth_stencil: target.depth(false, wgpu::CompareFunction::LessEqual),
             multisample: target.multisample(),
-            color: target.blended_color(),
+            color: Some(target.blended_color()),
         },
     )
+}
+
+/// The error for a frame asked to draw a technique other than the one it was made for (the
+/// renderer remakes frames when the technique changes, so this is a bug).
+pub(crate) fn mismatch(cx: &FrameContext<'_>) -> RenderError {
+    RenderError::Unsupported {
+        technique: cx.style.technique.name(),
+        why: "its frame state was made for another technique (a bug: please report it)".into(),
+    }
+}
+
+/// Draws `asset`'s triangles with its position and normal vertex buffers.
+pub(crate) fn draw_mesh(pass: &mut wgpu::RenderPass<'_>, asset: &GpuAsset) {
+    pass.set_vertex_buffer(0, asset.render_positions.slice(..));
+    pass.set_vertex_buffer(1, asset.render_normals.slice(..));
+    pass.set_index_buffer(asset.mesh_indices.slice(..), asset.index_format);
+    pass.draw_indexed(0..asset.index_count, 0, 0..1);
 }

@@ -1,0 +1,350 @@
+//! What the post-processes share (`shaders/post.wgsl`): a full-screen pass after the application's
+//! pass into its finished colour, reading its depth; textures of their own sized to the viewport;
+//! the `Post` uniform.
+
+use crate::render::layout::Post;
+use crate::render::pipelines::RenderPipeline;
+use crate::render::target::checked;
+use crate::render::{FrameViews, GpuAsset, Pipelines as Cache, RenderError};
+
+use super::FrameContext;
+
+/// How a post-process's output meets the scene colour.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Blend {
+    /// Multiplied over it (shading factors, seed 004 §3.1).
+    Multiply,
+    /// Alpha-blended over it (coloured lines).
+    Alpha,
+}
+
+/// The layout of a post-process: the uniform, the application's depth, and `own` textures of the
+/// frame's (binding, single-sample float texture).
+pub(crate) fn layout(cache: &Cache, label: &str, own: &[u32]) -> wgpu::BindGroupLayout {
+    let fragment = wgpu::ShaderStages::FRAGMENT;
+    let mut entries = vec![
+        wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        },
+        wgpu::BindGroupLayoutEntry {
+            binding: 1,
+            visibility: fragment,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Depth,
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: cache.target().sample_count > 1,
+            },
+            count: None,
+        },
+    ];
+    entries.extend(own.iter().map(|&binding| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: fragment,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable: false },
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    }));
+    cache
+        .device()
+        .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some(label),
+            entries: &entries,
+        })
+}
+
+/// The full-screen pipeline of `fragment`, drawing into the single-sample finished colour.
+pub(crate) fn pipeline(
+    cache: &Cache,
+    layout: &wgpu::BindGroupLayout,
+    label: &str,
+    module: &wgpu::ShaderModule,
+    fragment: &str,
+    blend: Blend,
+) -> Result<wgpu::RenderPipeline, RenderError> {
+    let target = cache.target();
+    let blend = match blend {
+        Blend::Multiply => wgpu::BlendState {
+            color: wgpu::BlendComponent {
+                src_factor: wgpu::BlendFactor::Dst,
+                dst_factor: wgpu::BlendFactor::Zero,
+                operation: wgpu::BlendOperation::Add,
+            },
+            alpha: wgpu::BlendComponent {
+                src_factor: wgpu::BlendFactor::Zero,
+                dst_factor: wgpu::BlendFactor::One,
+                operation: wgpu::BlendOperation::Add,
+            },
+        },
+        Blend::Alpha => wgpu::BlendState::ALPHA_BLENDING,
+    };
+    cache.render_pipeline(
+        &[layout],
+        RenderPipeline {
+            label,
+            module,
+            vertex: "post_vertex",
+            fragment: Some(fragment),
+            buffers: &[],
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: None,
+            multisample: wgpu::MultisampleState::default(),
+            color: Some(target.color(Some(blend))),
+        },
+    )
+}
+
+/// The uniform of this frame.
+pub(crate) fn uniform(cx: &FrameContext<'_>, variant: u32) -> Post {
+    let camera = cx.camera;
+    let mvp = camera.view_projection();
+    let depth_ref = if cx.style.depth_scaled {
+        let c = camera.model_view * cx.asset.center().extend(1.0);
+        (-c.z).max(1e-6)
+    } else {
+        0.0
+    };
+    Post {
+        inv_projection: camera.projection.inverse().to_cols_array_2d(),
+        mvp: mvp.to_cols_array_2d(),
+        color: cx.style.colors.contour,
+        params: [0.0; 4],
+        more: [0.0; 4],
+        viewport: camera.viewport.map(|v| v.max(1) as f32),
+        depth_ref,
+        variant,
+    }
+}
+
+/// The distance to the camera's far plane, view units (from the inverse projection), or a finite
+/// stand-in for an infinite one: twice the distance to the model's far side.
+pub(crate) fn far_distance(cx: &FrameContext<'_>) -> f32 {
+    let far_depth = cx.pipelines.target().far_depth();
+    let v = cx.camera.projection.inverse() * glam::Vec4::new(0.0, 0.0, far_depth, 1.0);
+    let far = -v.z / v.w;
+    if far.is_finite() && far > 0.0 {
+        return far;
+    }
+    let [lo, hi] = cx.asset.bounds().map(glam::Vec3::from);
+    let centre = -(cx.camera.model_view * cx.asset.center().extend(1.0)).z;
+    2.0 * (centre + 0.5 * (hi - lo).length()).max(1e-3)
+}
+
+/// A texture of the frame's own, sized to the viewport, remade when the viewport changes.
+#[derive(Debug)]
+pub(crate) struct Own {
+    pub(crate) size: [u32; 2],
+    pub(crate) view: wgpu::TextureView,
+    pub(crate) depth: Option<wgpu::TextureView>,
+    pub(crate) format: wgpu::TextureFormat,
+}
+
+impl Own {
+    /// A `format` colour texture (and a depth texture if `with_depth`) of `size`.
+    pub(crate) fn new(
+        cache: &Cache,
+        label: &str,
+        size: [u32; 2],
+        format: wgpu::TextureFormat,
+        with_depth: bool,
+    ) -> Result<Self, RenderError> {
+        let device = cache.device();
+        let texture = |format, usage| {
+            checked(device, label, || {
+                device.create_texture(&wgpu::TextureDescriptor {
+                    label: Some(label),
+                    size: wgpu::Extent3d {
+                        width: size[0],
+                        height: size[1],
+                        depth_or_array_layers: 1,
+                    },
+                    mip_level_count: 1,
+                    sample_count: 1,
+                    dimension: wgpu::TextureDimension::D2,
+                    format,
+                    usage,
+                    view_formats: &[],
+                })
+            })
+        };
+        let attachment = wgpu::TextureUsages::RENDER_ATTACHMENT;
+        let view = texture(format, attachment | wgpu::TextureUsages::TEXTURE_BINDING)?
+            .create_view(&Default::default());
+        let depth = if with_depth {
+            Some(texture(OWN_DEPTH, attachment)?.create_view(&Default::default()))
+        } else {
+            None
+        };
+        Ok(Self {
+            size,
+            view,
+            depth,
+            format,
+        })
+    }
+
+    /// GPU bytes of the textures.
+    pub(crate) fn bytes(&self) -> u64 {
+        let pixels = u64::from(self.size[0]) * u64::from(self.size[1]);
+        let per_pixel = self.format.block_copy_size(None).unwrap_or(4);
+        pixels * u64::from(per_pixel) + if self.depth.is_some() { 4 * pixels } else { 0 }
+    }
+
+    /// Records a pass that clears the texture to zero and draws `asset` with `pipeline`.
+    pub(crate) fn draw_mesh(
+        &self,
+        cache: &Cache,
+        encoder: &mut wgpu::CommandEncoder,
+        pipeline: &wgpu::RenderPipeline,
+        group: &wgpu::BindGroup,
+        asset: &GpuAsset,
+    ) {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("post-process buffer"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &self.view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: self.depth.as_ref().map(|view| {
+                wgpu::RenderPassDepthStencilAttachment {
+                    view,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(cache.target().far_depth()),
+                        store: wgpu::StoreOp::Discard,
+                    }),
+                    stencil_ops: None,
+                }
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, group, &[]);
+        super::draw_mesh(&mut pass, asset);
+    }
+}
+
+/// The depth format of the frame's own mesh passes (the target's depth convention).
+pub(crate) const OWN_DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// A pipeline drawing `asset`'s mesh into an [`Own`] texture of `format` (with depth if `depth`).
+pub(crate) fn own_pipeline(
+    cache: &Cache,
+    layout: &wgpu::BindGroupLayout,
+    label: &str,
+    module: &wgpu::ShaderModule,
+    (vertex, fragment): (&str, &str),
+    format: wgpu::TextureFormat,
+    depth: bool,
+) -> Result<wgpu::RenderPipeline, RenderError> {
+    cache.render_pipeline(
+        &[layout],
+        RenderPipeline {
+            label,
+            module,
+            vertex,
+            fragment: Some(fragment),
+            buffers: &super::surface_angle::mesh_buffers(),
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: depth.then_some(wgpu::DepthStencilState {
+                format: OWN_DEPTH,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(cache.target().nearer(wgpu::CompareFunction::Less)),
+                stencil: wgpu::StencilState::default(),
+                bias: wgpu::DepthBiasState::default(),
+            }),
+            multisample: wgpu::MultisampleState::default(),
+            color: Some(wgpu::ColorTargetState {
+                format,
+                blend: None,
+                write_mask: wgpu::ColorWrites::ALL,
+            }),
+        },
+    )
+}
+
+/// Records the full-screen pass of `pipeline` over `views.color` with `entries` (the uniform and
+/// the frame's own textures; the application's depth is added as binding 1).
+pub(crate) fn full_screen(
+    cache: &Cache,
+    encoder: &mut wgpu::CommandEncoder,
+    views: &FrameViews<'_>,
+    layout: &wgpu::BindGroupLayout,
+    pipeline: &wgpu::RenderPipeline,
+    uniform: &wgpu::Buffer,
+    own: &[(u32, &wgpu::TextureView)],
+) -> Result<(), RenderError> {
+    let device = cache.device();
+    let mut entries = vec![
+        wgpu::BindGroupEntry {
+            binding: 0,
+            resource: uniform.as_entire_binding(),
+        },
+        wgpu::BindGroupEntry {
+            binding: 1,
+            resource: wgpu::BindingResource::TextureView(views.depth),
+        },
+    ];
+    entries.extend(own.iter().map(|&(binding, view)| wgpu::BindGroupEntry {
+        binding,
+        resource: wgpu::BindingResource::TextureView(view),
+    }));
+    // The application's views are checked here: a depth view that cannot be sampled is a typed
+    // error, not a panic.
+    let group = checked(
+        device,
+        "the post-process bindings (is the depth TEXTURE_BINDING?)",
+        || {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("post-process"),
+                layout,
+                entries: &entries,
+            })
+        },
+    )?;
+    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some("post-process"),
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view: views.color,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Load,
+                store: wgpu::StoreOp::Store,
+            },
+        })],
+        depth_stencil_attachment: None,
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    });
+    pass.set_pipeline(pipeline);
+    pass.set_bind_group(0, &group, &[]);
+    pass.draw(0..3, 0..1);
+    Ok(())
+}
+
+/// A uniform buffer for [`Post`].
+pub(crate) fn uniform_buffer(cache: &Cache, label: &str) -> wgpu::Buffer {
+    cache.device().create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: std::mem::size_of::<Post>() as u64,
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
+}

@@ -1,0 +1,25 @@
+// The expanded inverted hull (thesis §7.2, Evans; what most games ship): the mesh drawn a second
+// time, each vertex pushed out along its normal by the line width (pixels at its depth), with its
+// front faces culled, so only the hull's far side shows, as a rim around the silhouette. With the
+// asset's crease-split normals the hull tears open at hard edges; params.x > 0 pushes along the
+// smooth normal of each render vertex's topology vertex instead, which keeps it closed.
+
+@group(0) @binding(4) var<storage, read> vertex_normals: array<vec4<f32>>;
+// The topology vertex of each render vertex.
+@group(0) @binding(6) var<storage, read> render_to_topology: array<u32>;
+
+@vertex
+fn hull_vertex(
+    @builtin(vertex_index) r: u32,
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+) -> FlatVarying {
+    var n = normal;
+    if frame.params.x > 0.0 {
+        n = vertex_normals[render_to_topology[r]].xyz;
+    }
+    let w = (frame.mvp * vec4<f32>(position, 1.0)).w;
+    let push = 2.0 * half_width(w) * frame.pixel_scale * w;
+    let c = frame.mvp * vec4<f32>(position + normalize(n) * push, 1.0);
+    return flat_vertex(COLOR_CONTOUR, c);
+}
