@@ -1,17 +1,17 @@
 // McGuire and Hughes' hardware-determined feature edges (thesis §8): every edge of the asset is drawn
-// (instance = edge), each of its vertices classifies it again and either builds its corner or sends
+// (instance = edge, vertex = one of its four edge vertices), each of which classifies it again and either builds its corner or sends
 // it nowhere. The edge pass draws a quad per edge, full or half (contours, §8.3); two cap passes draw
 // a triangle at each end that meets the neighbouring edge's cap along the projected vertex normal
 // (§8.4). The caps' known flaw (§8.5): where the projected normal does not follow the surface's bend,
 // a cap lands on the wrong side of the joint and leaves the gap open.
 
-// Corner `i` (0..5, two triangles) of the edge's quad.
+// Corner `i` (0..3) of the edge's quad, drawn indexed (0 1 2, 0 2 3) so each corner is shaded once,
+// as the thesis' four edge vertices are: 0 (s0, below), 1 (s1, below), 2 (s1, above), 3 (s0, above).
 @vertex
 fn mh_edge_vertex(@builtin(vertex_index) i: u32, @builtin(instance_index) e: u32) -> FlatVarying {
     let edge = vertex_edge(e);
-    // (end, side): (0,-) (1,-) (1,+) / (0,-) (1,+) (0,+), side - is "below", + "above".
-    let k = (0x16u >> i) & 1u;
-    let above = ((0x34u >> i) & 1u) == 1u;
+    let k = select(0u, 1u, i == 1u || i == 2u);
+    let above = i >= 2u;
     let s = select(edge.s0, edge.s1, k == 1u);
     let h = edge.h[k];
     var offset = edge.p * select(-h, h, above);

@@ -237,6 +237,22 @@ impl GpuAsset {
         (Vec3::from(self.bounds[0]) + Vec3::from(self.bounds[1])) * 0.5
     }
 
+    /// GPU bytes of the buffers this upload derived for `extras` (0 for extras it did not derive).
+    pub fn extras_bytes(&self, extras: AssetExtras) -> u64 {
+        let size = |b: &Option<wgpu::Buffer>| b.as_ref().map_or(0, wgpu::Buffer::size);
+        let mut bytes = 0;
+        if extras.contains(AssetExtras::VERTEX_NORMALS) {
+            bytes += size(&self.vertex_normals) + size(&self.render_to_topology);
+        }
+        if extras.contains(AssetExtras::FIN_CORNERS) {
+            bytes += size(&self.fin_corners);
+        }
+        if extras.contains(AssetExtras::TRIANGLE_EDGES) {
+            bytes += size(&self.triangle_edges);
+        }
+        bytes
+    }
+
     /// GPU bytes of the asset's buffers.
     pub fn gpu_bytes(&self) -> u64 {
         [

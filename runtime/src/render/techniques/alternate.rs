@@ -1,6 +1,6 @@
 //! The thesis' alternate drawable edge types (§9.3, `shaders/alternate.wgsl`):
 //! [`Technique::HalfHex`], [`Technique::Plug`], [`Technique::HalfHexPlug`] and [`Technique::House`].
-//! Each draws an edge and its caps in one pass of twelve vertices (four triangles) per edge,
+//! Each draws an edge and its caps in one pass of six points (four indexed triangles) per edge,
 //! classified in the vertex shader like McGuire–Hughes (they share `shaders/vertex_edges.wgsl`); one
 //! pipeline serves all four shapes, chosen by the frame uniform.
 //!
@@ -20,6 +20,10 @@ use crate::render::{GpuAsset, Pipelines as Cache, RenderError, Technique, module
 pub(crate) struct Pipelines {
     layout: wgpu::BindGroupLayout,
     shapes: wgpu::RenderPipeline,
+    /// The four triangles of the half hex and the plug over their six points.
+    hex_plug: wgpu::Buffer,
+    /// The house's fan.
+    house: wgpu::Buffer,
 }
 
 impl Pipelines {
@@ -34,7 +38,16 @@ impl Pipelines {
             "alternate_vertex",
             "flat_fragment",
         )?;
-        Ok(Self { layout, shapes })
+        Ok(Self {
+            layout,
+            shapes,
+            hex_plug: super::corner_indices(
+                cache,
+                "half hex, plug",
+                &[0, 1, 2, 0, 2, 3, 0, 3, 4, 1, 5, 2],
+            ),
+            house: super::corner_indices(cache, "house", &[0, 1, 2, 0, 2, 3, 0, 3, 4, 0, 4, 5]),
+        })
     }
 }
 
@@ -54,6 +67,7 @@ pub(crate) struct Frame {
     pipelines: Arc<Pipelines>,
     pulled: Pulled,
     edge_count: u32,
+    house: bool,
 }
 
 impl Frame {
@@ -83,6 +97,7 @@ impl Frame {
             pipelines,
             pulled,
             edge_count: asset.edge_count,
+            house: false,
         })
     }
 }
@@ -94,6 +109,7 @@ impl TechniqueFrame for Frame {
         _encoder: &mut wgpu::CommandEncoder,
     ) -> Result<(), RenderError> {
         let uniform = super::frame_uniform(cx, shape(&cx.style.technique));
+        self.house = cx.style.technique == Technique::House;
         self.pulled.write(cx.queue, &uniform);
         Ok(())
     }
@@ -101,7 +117,13 @@ impl TechniqueFrame for Frame {
     fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
         pass.set_bind_group(0, &self.pulled.group, &[]);
         pass.set_pipeline(&self.pipelines.shapes);
-        pass.draw(0..12, 0..self.edge_count);
+        let indices = if self.house {
+            &self.pipelines.house
+        } else {
+            &self.pipelines.hex_plug
+        };
+        pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint16);
+        pass.draw_indexed(0..12, 0, 0..self.edge_count);
     }
 
     fn gpu_bytes(&self) -> u64 {

@@ -32,6 +32,8 @@ pub(crate) struct Pipelines {
     edges: wgpu::RenderPipeline,
     cap0: wgpu::RenderPipeline,
     cap1: wgpu::RenderPipeline,
+    /// The quad's two triangles over its four edge vertices.
+    quad: wgpu::Buffer,
 }
 
 impl Pipelines {
@@ -45,6 +47,7 @@ impl Pipelines {
             edges: pipeline("mcguire-hughes edges", "mh_edge_vertex")?,
             cap0: pipeline("mcguire-hughes v0 caps", "mh_cap0_vertex")?,
             cap1: pipeline("mcguire-hughes v1 caps", "mh_cap1_vertex")?,
+            quad: super::corner_indices(cache, "edge quad", &[0, 1, 2, 0, 2, 3]),
             layout,
         })
     }
@@ -101,7 +104,8 @@ impl TechniqueFrame for Frame {
     fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
         pass.set_bind_group(0, &self.pulled.group, &[]);
         pass.set_pipeline(&self.pipelines.edges);
-        pass.draw(0..6, 0..self.edge_count);
+        pass.set_index_buffer(self.pipelines.quad.slice(..), wgpu::IndexFormat::Uint16);
+        pass.draw_indexed(0..6, 0, 0..self.edge_count);
         if self.caps {
             pass.set_pipeline(&self.pipelines.cap0);
             pass.draw(0..3, 0..self.edge_count);

@@ -227,3 +227,20 @@ pub(crate) fn draw_mesh(pass: &mut wgpu::RenderPass<'_>, asset: &GpuAsset) {
     pass.set_index_buffer(asset.mesh_indices.slice(..), asset.index_format);
     pass.draw_indexed(0..asset.index_count, 0, 0..1);
 }
+
+/// An index buffer of `indices` (`u16`), for drawing one instance's corners indexed.
+pub(crate) fn corner_indices(cache: &Pipelines, label: &str, indices: &[u16]) -> wgpu::Buffer {
+    use wgpu::util::DeviceExt;
+    // Index buffers are padded to four bytes.
+    let mut padded = indices.to_vec();
+    if padded.len() % 2 == 1 {
+        padded.push(0);
+    }
+    cache
+        .device()
+        .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents: bytemuck::cast_slice(&padded),
+            usage: wgpu::BufferUsages::INDEX,
+        })
+}
