@@ -22,3 +22,6 @@ for technique in $names; do
         "${common[@]}" --azimuth 5 --elevation 15 --edge-width 2 >/dev/null
     echo "$technique"
 done
+# McGuire-Hughes without its cap passes: the joints' gaps (thesis §6.4).
+"$chamfer" render fixtures/shapes/cube.obj -o "$out/cube-mcguire-hughes-nocaps.png" --technique mcguire-hughes \
+    --caps none --width 240 --height 200 --edge-width 12 >/dev/null
