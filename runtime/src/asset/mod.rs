@@ -61,6 +61,10 @@ pub const FORMAT_VERSION: u32 = 1;
 pub const MAX_HEADER_BYTES: u32 = 1 << 20;
 /// Every section starts at a multiple of this many bytes.
 pub const SECTION_ALIGN: usize = 16;
+/// The largest number of kept edge ends at one vertex that the runtime's join walk follows
+/// (`MAX_RING` in `shaders/joins.wgsl`): a longer ring would get incomplete joins, so
+/// [`Asset::decode`] refuses it and the bake refuses to write it.
+pub const MAX_RING: u32 = 4096;
 
 /// What a pipeline classified an edge as; several bits can be set at once.
 ///
