@@ -27,13 +27,12 @@ pub fn run(args: &AnnotateArgs) -> anyhow::Result<()> {
     let options = args.options.to_options()?;
     let annotated = chamfer_preprocess::annotate::annotate(&args.input, &args.output, &options)?;
     for warning in &annotated.warnings {
-        eprintln!("warning: {}: {warning}", args.input.display());
+        crate::warn(format_args!("warning: {}: {warning}", args.input.display()));
     }
-    println!(
+    crate::say(format_args!(
         "{} -> {}: {} marked or chamfer edges written",
         args.input.display(),
         args.output.display(),
         annotated.edges
-    );
-    Ok(())
+    ))
 }
