@@ -77,11 +77,16 @@ pub fn ensure_replaceable(path: &Path) -> Result<Option<std::fs::Permissions>, E
     }
 }
 
-/// tempfile adds the temporary file's path to its errors; the user named another path.
+/// tempfile appends ` at path "<the temporary file>"` to its errors (and hides the OS error
+/// behind that wrapper); the user named another path, so only the reason is kept.
 fn without_path(error: std::io::Error) -> std::io::Error {
-    match error.raw_os_error() {
-        Some(code) => std::io::Error::from_raw_os_error(code),
-        None => std::io::Error::from(error.kind()),
+    if let Some(code) = error.raw_os_error() {
+        return std::io::Error::from_raw_os_error(code);
+    }
+    let text = error.to_string();
+    match text.rfind(" at path ") {
+        Some(end) => std::io::Error::new(error.kind(), &text[..end]),
+        None => error,
     }
 }
 
