@@ -323,7 +323,7 @@ fn fits_the_device(limits: &wgpu::Limits, view: &ViewArgs) -> anyhow::Result<()>
         );
     }
     let row =
-        u64::from(view.width * 4).next_multiple_of(u64::from(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT));
+        (u64::from(view.width) * 4).next_multiple_of(u64::from(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT));
     let readback = row * u64::from(view.height);
     if readback > limits.max_buffer_size {
         bail!(
@@ -349,4 +349,35 @@ pub fn write_png(image: &Image, path: &Path) -> anyhow::Result<()> {
         writer.finish().map_err(std::io::Error::other)
     })?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::Parser;
+
+    use super::*;
+
+    #[derive(Parser)]
+    struct View {
+        #[command(flatten)]
+        view: ViewArgs,
+    }
+
+    fn view(width: &str, height: &str) -> ViewArgs {
+        View::parse_from(["render", "--width", width, "--height", height]).view
+    }
+
+    #[test]
+    fn pictures_larger_than_the_device_allows_are_refused_with_its_limits() {
+        let small = wgpu::Limits::downlevel_defaults(); // 2048 px textures, 256 MiB buffers
+        assert!(fits_the_device(&small, &view("2048", "1024")).is_ok());
+        let error = fits_the_device(&small, &view("4096", "16")).expect_err("too wide");
+        assert!(error.to_string().contains("at most 2048"), "{error}");
+        let tiny_buffers = wgpu::Limits {
+            max_buffer_size: 1 << 20,
+            ..small
+        };
+        let error = fits_the_device(&tiny_buffers, &view("1024", "1024")).expect_err("readback");
+        assert!(error.to_string().contains("readback"), "{error}");
+    }
 }
