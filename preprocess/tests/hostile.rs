@@ -490,3 +490,19 @@ fn bake_all_owned(
     let (assets, out) = (assets.to_owned(), out.to_owned());
     move || bake_dir_into(&assets, &out, &BakeOptions::DEFAULT, &mut |_| ())
 }
+
+/// Inputs the fuzz harness (`tests/fuzz.rs`) stopped on when run against the code before issue 16
+/// was fixed: a memory abort (`mtllib /dev/zero`), a hang (a PLY element with no properties and
+/// 2^64 - 1 elements) and a panic (a glTF `byteOffset` of `u64::MAX`). Each is now an error.
+#[test]
+fn fuzz_findings_on_the_unfixed_code_are_errors() {
+    let hostile = Path::new(env!("CARGO_MANIFEST_DIR")).join("../fixtures/hostile");
+    for (name, expected) in [
+        ("fuzz-obj-mtllib-dev-zero.obj", "outside the file's folder"),
+        ("fuzz-ply-empty-element.ply", "no 'x' property"),
+        ("fuzz-gltf-offset-overflow.gltf", "runs past the end"),
+    ] {
+        let text = refused(&hostile.join(name));
+        assert!(text.contains(expected), "{name}: {text}");
+    }
+}

@@ -10,7 +10,8 @@ impl Asset {
     ///
     /// Rejects, with a typed error: bad magic, another format version, a header or section table
     /// that does not fit the file, sections whose lengths disagree with each other, indices out of
-    /// range, non-finite floats, unknown flag bits, next-index rings that are not closed and vertices
+    /// range, non-finite floats, unknown flag bits, next-index rings that are not closed, cap heads
+    /// without rings and vertices
     /// with more kept edge ends than [`MAX_RING`].
     /// Allocates at most about twice the input's size. Never panics.
     pub fn decode(bytes: &[u8]) -> Result<Asset, DecodeError> {
@@ -91,6 +92,16 @@ impl Asset {
             ends,
             1,
         )?;
+        // A head is where the walk around its vertex's ring starts: without rings it means nothing.
+        if next_ends.is_empty() && !cap_heads.is_empty() {
+            return Err(length_error(
+                SectionKind::CapHeads,
+                format!(
+                    "{} cap heads but no next ends (the runtime walks a head's ring)",
+                    cap_heads.len()
+                ),
+            ));
+        }
 
         let asset = Asset {
             header,

@@ -348,3 +348,23 @@ fn errors_read_as_sentences_not_rust_debug_text() {
         .to_string();
     assert!(text.contains("section mesh_indices"), "{text}");
 }
+
+#[test]
+fn cap_heads_without_next_ends_are_refused() {
+    // Found by the fuzz harness (tests/fuzz.rs, asset target): a section table that empties
+    // NextEnds but keeps CapHeads decoded, leaving heads whose rings do not exist.
+    let mut asset = tetrahedron();
+    asset.next_ends = Indices::default();
+    assert!(matches!(
+        Asset::decode(&asset.encode_to_vec()),
+        Err(DecodeError::BadSectionLength {
+            kind: SectionKind::CapHeads,
+            ..
+        })
+    ));
+    asset.cap_heads = Indices::default();
+    assert!(
+        Asset::decode(&asset.encode_to_vec()).is_ok(),
+        "neither is fine"
+    );
+}
