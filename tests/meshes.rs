@@ -38,7 +38,9 @@ fn edge_counts_match_a_brute_force_reference_on_every_mesh() {
         "fixtures/meshes changed: update PUBLISHED"
     );
     for path in meshes {
-        let mesh = load::load(&path, &Limits::DEFAULT).unwrap_or_else(|e| panic!("{e}")).mesh;
+        let mesh = load::load(&path, &Limits::DEFAULT)
+            .unwrap_or_else(|e| panic!("{e}"))
+            .mesh;
         let reference = brute_force_edges(&mesh);
         let baked =
             bake(mesh, &name(&path), &BakeOptions::DEFAULT).unwrap_or_else(|e| panic!("{e}"));
