@@ -16,6 +16,7 @@ use crate::bake::OptionArgs;
 
 /// Render an asset (`.chamfer`) or a mesh (baked on the fly with the bake flags) to a PNG.
 #[derive(Args)]
+#[command(after_help = crate::bake::SAFETY_HELP)]
 pub struct RenderArgs {
     /// A `.chamfer` asset, or an OBJ, glTF/GLB or PLY mesh.
     input: PathBuf,
