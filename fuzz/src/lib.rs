@@ -24,10 +24,11 @@ pub fn load_and_bake(name: &str, data: &[u8]) {
     let Ok(loaded) = load::load_bytes(&path, data, &limits) else {
         return;
     };
-    if let Ok(baked) = bake(loaded.mesh, name, &BakeOptions::DEFAULT.with_limits(limits)) {
-        if let Err(e) = Asset::decode(&baked.asset.encode_to_vec()) {
-            panic!("a baked asset does not decode: {e}");
-        }
+    let Ok(baked) = bake(loaded.mesh, name, &BakeOptions::DEFAULT.with_limits(limits)) else {
+        return;
+    };
+    if let Err(e) = Asset::decode(&baked.asset.encode_to_vec()) {
+        panic!("a baked asset does not decode: {e}");
     }
 }
 

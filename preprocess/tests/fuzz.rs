@@ -555,7 +555,8 @@ fn run(
     let worker = {
         let current = current.clone();
         std::thread::spawn(move || {
-            let _ = done.send(execute(target, salt, &seeds, mutate, check, &current));
+            execute(target, salt, &seeds, mutate, check, &current);
+            let _ = done.send(());
         })
     };
     match finished.recv_timeout(std::time::Duration::from_secs(WATCHDOG_SECONDS)) {
