@@ -12,7 +12,7 @@ use crate::{Error, Limits};
 
 /// Reads the input file `path`, inflating it if its name ends in `.gz`; refuses anything but a
 /// regular file and more than `limits.max_input_bytes` (compressed or inflated).
-pub fn read_input(path: &Path, limits: &Limits) -> Result<Vec<u8>, Error> {
+pub(crate) fn read_input(path: &Path, limits: &Limits) -> Result<Vec<u8>, Error> {
     let read_error = |source| Error::Read {
         path: path.to_owned(),
         source,
@@ -42,7 +42,7 @@ pub fn read_input(path: &Path, limits: &Limits) -> Result<Vec<u8>, Error> {
 
 /// Why a file an input refers to was not read.
 #[derive(Debug)]
-pub enum RefusedReference {
+pub(crate) enum RefusedReference {
     /// It does not exist (loaders may carry on without it).
     Missing,
     /// Any other reason, in words.
@@ -51,7 +51,7 @@ pub enum RefusedReference {
 
 /// Reads `reference` (relative to the folder of `input`, as the input names it) if it resolves
 /// inside that folder and is a regular file of at most `limit` bytes.
-pub fn read_reference(
+pub(crate) fn read_reference(
     input: &Path,
     reference: &Path,
     limit: u64,
@@ -89,23 +89,18 @@ pub fn read_reference(
 }
 
 /// The folder an input's references are relative to (`.` for a bare file name).
-pub fn folder_of(input: &Path) -> &Path {
+pub(crate) fn folder_of(input: &Path) -> &Path {
     match input.parent() {
         Some(folder) if !folder.as_os_str().is_empty() => folder,
         _ => Path::new("."),
     }
 }
 
-/// True if `path`, after following links, is inside `folder` (both must exist).
-pub fn resolves_inside(path: &Path, folder: &Path) -> io::Result<bool> {
-    Ok(path.canonicalize()?.starts_with(folder.canonicalize()?))
-}
-
 /// Opens `path` for reading only if it is a regular file; returns it and its length.
 ///
 /// The type is checked before opening (opening some devices has effects) and again on the open
 /// file (the name may have been swapped in between); the open never blocks on a FIFO.
-pub fn open_regular(path: &Path) -> Result<(File, u64), Error> {
+pub(crate) fn open_regular(path: &Path) -> Result<(File, u64), Error> {
     let read_error = |source| Error::Read {
         path: path.to_owned(),
         source,
@@ -143,7 +138,7 @@ fn read_capped(source: impl Read, expected: u64, limit: u64) -> io::Result<Optio
 }
 
 /// "a FIFO", "a directory", ... for messages.
-pub fn kind_of(meta: &Metadata) -> &'static str {
+pub(crate) fn kind_of(meta: &Metadata) -> &'static str {
     let file_type = meta.file_type();
     if file_type.is_dir() {
         return "a directory";

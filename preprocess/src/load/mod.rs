@@ -2,10 +2,10 @@
 //!
 //! Every loader reads the whole file, checks what it reads, and reports problems as
 //! [`Error`]s naming the file. Loaders never modify their input, read only regular files, read
-//! files an input refers to only inside the input's folder ([`files`]), and check the counts a file
+//! files an input refers to only inside the input's folder (`files.rs`), and check the counts a file
 //! declares against [`Limits`] before allocating or looping over them.
 
-pub mod files;
+pub(crate) mod files;
 pub(crate) mod gltf;
 mod obj;
 mod ply;
@@ -74,8 +74,8 @@ pub fn load_bytes(path: &Path, bytes: &[u8], limits: &Limits) -> Result<Loaded, 
     Ok(Loaded { mesh, warnings })
 }
 
-/// Reads a mesh file (a regular file, at most `limits.max_input_bytes`), inflating it if its name
-/// ends in `.gz`.
+/// Reads an input file (a mesh, or an asset): only a regular file, never a FIFO or device, at most
+/// `limits.max_input_bytes`, inflated as a stream if its name ends in `.gz`.
 pub fn read(path: &Path, limits: &Limits) -> Result<Vec<u8>, Error> {
     files::read_input(path, limits)
 }

@@ -29,7 +29,7 @@ impl InspectArgs {
 }
 
 pub fn run(args: &InspectArgs) -> anyhow::Result<()> {
-    let bytes = chamfer_preprocess::load::files::read_input(&args.asset, &Limits::DEFAULT)?;
+    let bytes = chamfer_preprocess::load::read(&args.asset, &Limits::DEFAULT)?;
     let asset = Asset::decode(&bytes)
         .with_context(|| format!("{}: not a valid .chamfer asset", args.asset.display()))?;
     let report = summary(&asset, bytes.len() as u64);

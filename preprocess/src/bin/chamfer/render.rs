@@ -250,7 +250,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("chamfer"))
     {
-        let bytes = chamfer_preprocess::load::files::read_input(&args.input, &options.limits)?;
+        let bytes = chamfer_preprocess::load::read(&args.input, &options.limits)?;
         Asset::decode(&bytes).with_context(|| format!("{}", args.input.display()))?
     } else {
         let baked = chamfer_preprocess::bake_file(&args.input, &options)?;
