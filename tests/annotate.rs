@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use chamfer_preprocess::annotate::annotate;
-use chamfer_preprocess::{BakeOptions, Radius, bake_file, load};
+use chamfer_preprocess::{BakeOptions, Limits, Radius, bake_file, load};
 use chamfer_runtime::asset::{Asset, EdgeFlags};
 use chamfer_tests::fixture;
 
@@ -92,8 +92,8 @@ fn round_trip(input: &str, output_name: &str) {
 
     // The geometry is what it was.
     let (a, b) = (
-        load::load(&input).expect("load").mesh,
-        load::load(&output).expect("load").mesh,
+        load::load(&input, &Limits::DEFAULT).expect("load").mesh,
+        load::load(&output, &Limits::DEFAULT).expect("load").mesh,
     );
     assert_eq!(
         (a.positions, a.triangles, a.materials),

@@ -3,7 +3,7 @@
 use std::collections::HashSet;
 use std::path::Path;
 
-use chamfer_preprocess::{BakeOptions, bake, bake_file, load};
+use chamfer_preprocess::{BakeOptions, Limits, bake, bake_file, load};
 use chamfer_runtime::asset::{Asset, EdgeFlags};
 use chamfer_tests::{brute_force_edges, fixture, public_meshes};
 
@@ -38,7 +38,9 @@ fn edge_counts_match_a_brute_force_reference_on_every_mesh() {
         "fixtures/meshes changed: update PUBLISHED"
     );
     for path in meshes {
-        let mesh = load::load(&path).unwrap_or_else(|e| panic!("{e}")).mesh;
+        let mesh = load::load(&path, &Limits::DEFAULT)
+            .unwrap_or_else(|e| panic!("{e}"))
+            .mesh;
         let reference = brute_force_edges(&mesh);
         let baked =
             bake(mesh, &name(&path), &BakeOptions::DEFAULT).unwrap_or_else(|e| panic!("{e}"));

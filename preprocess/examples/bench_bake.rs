@@ -14,7 +14,7 @@ use std::process::Command;
 use std::time::{Duration, Instant};
 
 use chamfer_preprocess::write::write_atomically;
-use chamfer_preprocess::{BakeOptions, load};
+use chamfer_preprocess::{BakeOptions, Limits, load};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -188,7 +188,7 @@ fn report(values: &[(&str, f64)]) -> Result<(), Box<dyn std::error::Error>> {
 
 /// The obvious implementation: hash every position, then hash every edge to its list of faces.
 fn child_naive(path: &Path) -> Result<(), Box<dyn std::error::Error>> {
-    let mesh = load::load(path)?.mesh;
+    let mesh = load::load(path, &Limits::DEFAULT)?.mesh;
     let start = Instant::now();
     let mut ids: HashMap<[u32; 3], u32> = HashMap::new();
     let remap: Vec<u32> = mesh

@@ -34,8 +34,7 @@ fn main() -> anyhow::Result<()> {
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("chamfer"))
     {
-        let bytes =
-            std::fs::read(&input).with_context(|| format!("{}: cannot read", input.display()))?;
+        let bytes = chamfer_preprocess::load::read(&input, &chamfer_preprocess::Limits::DEFAULT)?;
         Asset::decode(&bytes).with_context(|| format!("{}", input.display()))?
     } else {
         let options = chamfer_preprocess::BakeOptions::DEFAULT

@@ -4,7 +4,7 @@
 use std::path::Path;
 use std::time::{Duration, Instant};
 
-use chamfer_runtime::asset::{Asset, Header, Indices, Stats, pack_attributes};
+use chamfer_runtime::asset::{Asset, Header, Indices, MAX_RING, Stats, pack_attributes};
 use glam::Vec3;
 
 use crate::corners::VertexCorners;
@@ -58,7 +58,7 @@ impl Timings {
 pub fn bake_file(path: &Path, options: &BakeOptions) -> Result<Baked, Error> {
     options.validate()?;
     let start = Instant::now();
-    let loaded = load::load(path)?;
+    let loaded = load::load(path, &options.limits)?;
     bake_loaded(path, loaded, start.elapsed(), options)
 }
 
@@ -66,7 +66,7 @@ pub fn bake_file(path: &Path, options: &BakeOptions) -> Result<Baked, Error> {
 pub fn bake_bytes(path: &Path, bytes: &[u8], options: &BakeOptions) -> Result<Baked, Error> {
     options.validate()?;
     let start = Instant::now();
-    let loaded = load::load_bytes(path, bytes)?;
+    let loaded = load::load_bytes(path, bytes, &options.limits)?;
     bake_loaded(path, loaded, start.elapsed(), options)
 }
 
@@ -168,6 +168,7 @@ pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Er
     );
     lap(&mut timings.classify);
 
+    refuse_long_rings(&positions, &edges).map_err(mesh_error)?;
     let corners = VertexCorners::new(&triangles, positions.len());
     let rings = caps::rings_around(&corners, &triangles, &edges, positions.len());
     lap(&mut timings.caps);
@@ -186,6 +187,26 @@ pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Er
         warnings: Vec::new(),
         radii,
     })
+}
+
+/// Every asset written must decode: no vertex may have more kept edge ends than the runtime's
+/// join walk follows.
+fn refuse_long_rings(positions: &[Vec3], edges: &adjacency::Edges) -> Result<(), MeshError> {
+    let mut ends = vec![0u32; positions.len()];
+    for edge in &edges.vertices {
+        for &v in &edge[..2] {
+            ends[v as usize] = ends[v as usize].saturating_add(1);
+        }
+    }
+    match ends.iter().position(|&n| n > MAX_RING) {
+        None => Ok(()),
+        Some(vertex) => Err(MeshError::RingTooLong {
+            vertex: vertex as u32,
+            position: positions[vertex].to_array(),
+            ends: u64::from(ends[vertex]),
+            limit: MAX_RING,
+        }),
+    }
 }
 
 /// Packs the results into the asset's sections, as narrow as the counts allow.

@@ -15,8 +15,10 @@
 //! hash of the input's bytes, the options and this crate's version; when it matches, the bake is
 //! skipped. A broken input fails the build with its path and what is wrong.
 
+use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
+use crate::load::files::{kind_of, open_regular};
 use crate::load::format_of;
 use crate::write::write_atomically;
 use crate::{BakeOptions, Error, bake_bytes, load};
@@ -36,7 +38,9 @@ pub struct BakedFile {
 ///
 /// Prints `cargo:rerun-if-changed` for `dir`, each sub-folder and each input. Fails with
 /// [`Error::Read`] when `OUT_DIR` is not set (not running under Cargo) or `dir` cannot be read, and
-/// with the first broken input's error otherwise.
+/// with the first broken input's error otherwise. Inputs and the folders they are in must resolve,
+/// after following links, inside `dir`; two inputs that would give the same asset
+/// (`part.glb` and `part.ply`) fail with [`Error::OutputClash`] before anything is written.
 pub fn bake_dir(dir: impl AsRef<Path>, options: &BakeOptions) -> Result<Vec<BakedFile>, Error> {
     let out_dir = std::env::var_os("OUT_DIR")
         .map(PathBuf::from)
@@ -60,18 +64,15 @@ pub fn bake_dir_into(
     cargo: &mut dyn FnMut(String),
 ) -> Result<Vec<BakedFile>, Error> {
     options.validate()?;
-    let mut inputs = Vec::new();
-    collect(dir, &mut inputs, cargo)?;
-    let mut results = Vec::with_capacity(inputs.len());
-    for input in inputs {
+    let jobs = plan_dir(dir, out_dir, cargo)?;
+    let mut results = Vec::with_capacity(jobs.len());
+    for (input, output) in jobs {
         cargo(format!("cargo:rerun-if-changed={}", input.display()));
-        let relative = input.strip_prefix(dir).unwrap_or(&input);
-        let output = out_dir.join(asset_name(relative));
         let key_path = output.with_extension("chamfer.key");
-        let bytes = load::read(&input)?; // inflated if .gz
+        let bytes = load::read(&input, &options.limits)?; // inflated if .gz
         let key = format!(
             "{:016x}\n",
-            content_key(&bytes, &companions(&input)?, options)
+            content_key(&bytes, &companions(&input, options)?, options)
         );
         let up_to_date =
             output.is_file() && std::fs::read_to_string(&key_path).is_ok_and(|k| k == key);
@@ -97,27 +98,103 @@ pub fn bake_dir_into(
     Ok(results)
 }
 
-/// Every mesh file under `dir`, sorted; announces each folder to Cargo.
-fn collect(
+/// Every mesh under `dir` paired with its asset under `out_dir` (`props/crate.glb` ->
+/// `props/crate.chamfer`), sorted; refuses inputs outside `dir`, special files named like meshes,
+/// and two inputs with one output. Announces each folder to Cargo.
+pub fn plan_dir(
     dir: &Path,
-    inputs: &mut Vec<PathBuf>,
+    out_dir: &Path,
     cargo: &mut dyn FnMut(String),
-) -> Result<(), Error> {
-    cargo(format!("cargo:rerun-if-changed={}", dir.display()));
+) -> Result<Vec<(PathBuf, PathBuf)>, Error> {
     let read_error = |source| Error::Read {
         path: dir.to_owned(),
         source,
     };
+    let root = dir.canonicalize().map_err(read_error)?;
+    let mut inputs = Vec::new();
+    collect(dir, &root, &mut HashSet::new(), &mut inputs, cargo)?;
+    let mut jobs = Vec::with_capacity(inputs.len());
+    let mut outputs: HashMap<PathBuf, PathBuf> = HashMap::new();
+    for input in inputs {
+        let relative = input.strip_prefix(dir).unwrap_or(&input);
+        let output = out_dir.join(asset_name(relative));
+        if let Some(first) = outputs.insert(output.clone(), input.clone()) {
+            return Err(Error::OutputClash {
+                first,
+                second: input,
+                output,
+            });
+        }
+        jobs.push((input, output));
+    }
+    Ok(jobs)
+}
+
+/// Every mesh file under `dir`, sorted. Links are followed only when they resolve inside `root`
+/// (the folder being baked), and each real folder is entered once, so a link loop ends.
+fn collect(
+    dir: &Path,
+    root: &Path,
+    entered: &mut HashSet<PathBuf>,
+    inputs: &mut Vec<PathBuf>,
+    cargo: &mut dyn FnMut(String),
+) -> Result<(), Error> {
+    let read_error = |path: &Path| {
+        let path = path.to_owned();
+        move |source| Error::Read { path, source }
+    };
+    let real = dir.canonicalize().map_err(read_error(dir))?;
+    if !entered.insert(real) {
+        return Ok(());
+    }
+    cargo(format!("cargo:rerun-if-changed={}", dir.display()));
     let mut entries: Vec<PathBuf> = std::fs::read_dir(dir)
-        .map_err(read_error)?
+        .map_err(read_error(dir))?
         .map(|entry| entry.map(|e| e.path()))
         .collect::<Result<_, _>>()
-        .map_err(read_error)?;
+        .map_err(read_error(dir))?;
     entries.sort();
     for path in entries {
-        if path.is_dir() {
-            collect(&path, inputs, cargo)?;
-        } else if format_of(&path).is_some() {
+        let is_mesh = format_of(&path).is_some();
+        let link = std::fs::symlink_metadata(&path)
+            .map_err(read_error(&path))?
+            .file_type()
+            .is_symlink();
+        if link {
+            // A dangling link, or one that leaves the folder, is not an input.
+            let Ok(target) = path.canonicalize() else {
+                if is_mesh {
+                    return Err(Error::Read {
+                        path,
+                        source: std::io::Error::new(
+                            std::io::ErrorKind::NotFound,
+                            "a link to nothing",
+                        ),
+                    });
+                }
+                continue;
+            };
+            if !target.starts_with(root) {
+                if is_mesh || target.is_dir() {
+                    return Err(Error::Reference {
+                        path,
+                        reference: format!("a link to {}", target.display()),
+                        problem: format!("resolves outside {}", dir.display()),
+                    });
+                }
+                continue;
+            }
+        }
+        let meta = std::fs::metadata(&path).map_err(read_error(&path))?;
+        if meta.is_dir() {
+            collect(&path, root, entered, inputs, cargo)?;
+        } else if is_mesh {
+            if !meta.is_file() {
+                return Err(Error::NotAFile {
+                    path,
+                    kind: kind_of(&meta),
+                });
+            }
             inputs.push(path);
         }
     }
@@ -125,7 +202,7 @@ fn collect(
 }
 
 /// `props/crate.glb` -> `props/crate.chamfer`; `scan.ply.gz` -> `scan.chamfer`.
-fn asset_name(relative: &Path) -> PathBuf {
+pub fn asset_name(relative: &Path) -> PathBuf {
     let name = relative
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
@@ -137,9 +214,11 @@ fn asset_name(relative: &Path) -> PathBuf {
     relative.with_file_name(format!("{stem}.chamfer"))
 }
 
-/// Files an OBJ or `.gltf` may refer to (`.mtl`, `.bin`, ...): every non-mesh file beside it, sorted.
-/// Conservative: a change to any of them re-bakes the meshes of that folder.
-fn companions(input: &Path) -> Result<Vec<Vec<u8>>, Error> {
+/// What an OBJ or `.gltf` may refer to (`.mtl`, `.bin`, ...): every non-mesh regular file beside
+/// it, sorted, by content. Conservative: a change to any of them re-bakes the meshes of that folder.
+/// Links leaving the folder and special files are skipped (the loader would refuse them); a file
+/// over the input-bytes limit is keyed by its length and modification time instead of read.
+fn companions(input: &Path, options: &BakeOptions) -> Result<Vec<Vec<u8>>, Error> {
     let refers = input
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("obj") || e.eq_ignore_ascii_case("gltf"));
@@ -150,19 +229,39 @@ fn companions(input: &Path) -> Result<Vec<Vec<u8>>, Error> {
         path: dir.to_owned(),
         source,
     };
+    let folder = dir.canonicalize().map_err(read_error)?;
     let mut siblings: Vec<PathBuf> = std::fs::read_dir(dir)
         .map_err(read_error)?
         .filter_map(|entry| entry.ok().map(|e| e.path()))
-        .filter(|p| p.is_file() && format_of(p).is_none())
+        .filter(|p| format_of(p).is_none())
+        .filter(|p| {
+            p.canonicalize()
+                .is_ok_and(|real| real.starts_with(&folder) && real.is_file())
+        })
         .collect();
     siblings.sort();
+    let limit = options.limits.max_input_bytes;
     siblings
         .iter()
         .map(|p| {
-            std::fs::read(p).map_err(|source| Error::Read {
-                path: p.clone(),
-                source,
-            })
+            let (file, length) = open_regular(p)?;
+            if length > limit {
+                let modified = file
+                    .metadata()
+                    .and_then(|m| m.modified())
+                    .ok()
+                    .and_then(|t| t.duration_since(std::time::UNIX_EPOCH).ok())
+                    .map_or(0, |d| d.as_nanos());
+                return Ok(format!("{length} bytes, modified {modified}").into_bytes());
+            }
+            let mut bytes = Vec::new();
+            std::io::Read::read_to_end(&mut std::io::Read::take(file, limit), &mut bytes).map_err(
+                |source| Error::Read {
+                    path: p.clone(),
+                    source,
+                },
+            )?;
+            Ok(bytes)
         })
         .collect()
 }

@@ -2,6 +2,7 @@
 
 use std::path::PathBuf;
 
+use crate::limits::Limited;
 use crate::mesh::MeshError;
 use crate::options::OptionsError;
 
@@ -65,5 +66,51 @@ pub enum Error {
     OutputIsInput {
         /// The path given as both.
         path: PathBuf,
+    },
+    /// The file asks for more than [`Limits`](crate::Limits) allow; nothing was allocated for it.
+    #[error(
+        "{}: needs at least {count} {}, more than the limit of {limit} (raise it with {} or Limits)",
+        path.display(),
+        what.noun(),
+        what.flag()
+    )]
+    LimitExceeded {
+        /// The file.
+        path: PathBuf,
+        /// Which limit.
+        what: Limited,
+        /// How many the file declares (or at least how many).
+        count: u64,
+        /// The limit.
+        limit: u64,
+    },
+    /// A path names a FIFO, device, socket or directory where a regular file is needed; it was
+    /// neither opened nor replaced.
+    #[error("{}: is {kind}, not a regular file (left alone)", path.display())]
+    NotAFile {
+        /// The path.
+        path: PathBuf,
+        /// What it is ("a FIFO", "a character device", ...).
+        kind: &'static str,
+    },
+    /// A file that the input refers to (an OBJ's `mtllib`, a glTF buffer `uri`) was refused.
+    #[error("{}: {reference}: {problem}", path.display())]
+    Reference {
+        /// The input file.
+        path: PathBuf,
+        /// What it refers to and where ("material library '../a.mtl' on line 3").
+        reference: String,
+        /// Why it was not read ("resolves outside the file's folder", ...).
+        problem: String,
+    },
+    /// Two inputs would be written to the same output.
+    #[error("{} and {} would both be written to {}", first.display(), second.display(), output.display())]
+    OutputClash {
+        /// The first input.
+        first: PathBuf,
+        /// The second input.
+        second: PathBuf,
+        /// Their common output.
+        output: PathBuf,
     },
 }

@@ -20,6 +20,7 @@ pub mod classify;
 mod corners;
 pub mod degenerate;
 mod error;
+pub mod limits;
 pub mod load;
 pub mod mesh;
 pub mod normals;
@@ -30,4 +31,5 @@ pub mod write;
 
 pub use bake::{Baked, Timings, bake, bake_bytes, bake_file};
 pub use error::Error;
+pub use limits::Limits;
 pub use options::{BakeOptions, OptionsError, Radius};

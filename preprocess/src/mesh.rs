@@ -92,6 +92,22 @@ pub enum MeshError {
         /// The length it must have.
         expected: usize,
     },
+    /// More kept edges meet at one vertex than the runtime's join walk follows
+    /// ([`MAX_RING`](chamfer_runtime::asset::MAX_RING)); the asset would not decode.
+    #[error(
+        "welded vertex {vertex} at ({}, {}, {}) has {ends} kept edge ends, more than the {limit} the runtime's join walk follows",
+        position[0], position[1], position[2]
+    )]
+    RingTooLong {
+        /// The welded vertex.
+        vertex: u32,
+        /// Its position.
+        position: [f32; 3],
+        /// Kept edge ends at it.
+        ends: u64,
+        /// The bound.
+        limit: u32,
+    },
     /// More vertices or triangles than 32-bit indices can address.
     #[error("{what} count {count} exceeds the limit of {limit}")]
     TooLarge {

@@ -1,5 +1,7 @@
 //! Bake settings: parsed once (by the CLI or a build script) and passed by reference to every step.
 
+use crate::Limits;
+
 /// How to bake a mesh. Start from [`BakeOptions::DEFAULT`] and change fields with the `with_*` setters.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
@@ -18,6 +20,10 @@ pub struct BakeOptions {
     pub radius: Radius,
     /// Also give [`radius`](Self::radius) to valley creases. Default false.
     pub radius_valleys: bool,
+    /// How much work one input file may ask for (triangles, vertices, glTF instances, bytes).
+    /// Default [`Limits::DEFAULT`]. Limits never change an asset, only whether a file is refused,
+    /// so they are not part of [`describe`](Self::describe).
+    pub limits: Limits,
 }
 
 /// The chamfer radius rule.
@@ -52,6 +58,7 @@ impl BakeOptions {
         crease_deg: 30.0,
         radius: Radius::None,
         radius_valleys: false,
+        limits: Limits::DEFAULT,
     };
 
     /// Sets [`weld_epsilon`](Self::weld_epsilon).
@@ -86,6 +93,11 @@ impl BakeOptions {
             radius_valleys,
             ..self
         }
+    }
+
+    /// Sets [`limits`](Self::limits).
+    pub fn with_limits(self, limits: Limits) -> Self {
+        Self { limits, ..self }
     }
 
     /// Checks every field's range.

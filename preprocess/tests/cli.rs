@@ -398,3 +398,272 @@ fn render_refuses_bad_input_and_options_and_keeps_the_old_picture() {
         "temporary files left"
     );
 }
+
+/// Runs `command`, killing it and failing the test if it has not exited within 30 s.
+fn finish(mut command: Command) -> Output {
+    use std::process::Stdio;
+    let mut child = command
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawn");
+    let start = std::time::Instant::now();
+    while child.try_wait().expect("wait").is_none() {
+        if start.elapsed() > std::time::Duration::from_secs(30) {
+            let _ = child.kill();
+            panic!("{command:?} did not finish within 30 s");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    child.wait_with_output().expect("output")
+}
+
+#[cfg(unix)]
+fn mkfifo(path: &Path) {
+    assert!(
+        Command::new("mkfifo")
+            .arg(path)
+            .status()
+            .expect("mkfifo")
+            .success()
+    );
+}
+
+#[cfg(unix)]
+fn mode(path: &Path) -> u32 {
+    use std::os::unix::fs::PermissionsExt;
+    std::fs::metadata(path)
+        .expect("metadata")
+        .permissions()
+        .mode()
+        & 0o7777
+}
+
+#[cfg(unix)]
+#[test]
+fn outputs_get_the_umask_mode_and_replaced_files_keep_theirs() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("cube.chamfer");
+    let cube = fixture("shapes/cube.obj");
+    let bake_under_umask_022 = || {
+        let mut command = Command::new("sh");
+        command.args([
+            "-c",
+            "umask 022 && exec \"$0\" \"$@\"",
+            env!("CARGO_BIN_EXE_chamfer"),
+            "bake",
+            path_str(&cube),
+            "-o",
+            path_str(&out),
+        ]);
+        let run = finish(command);
+        assert!(run.status.success(), "{}", text(&run.stderr));
+    };
+    bake_under_umask_022();
+    assert_eq!(
+        mode(&out),
+        0o644,
+        "a new asset is -rw-r--r-- under umask 022"
+    );
+    std::fs::set_permissions(&out, std::fs::Permissions::from_mode(0o640)).expect("chmod");
+    bake_under_umask_022();
+    assert_eq!(mode(&out), 0o640, "a replaced asset keeps its mode");
+}
+
+#[cfg(unix)]
+#[test]
+fn an_output_that_is_a_fifo_is_refused_and_left_a_fifo() {
+    use std::os::unix::fs::FileTypeExt;
+    let dir = tempfile::tempdir().expect("tempdir");
+    let fifo = dir.path().join("some.fifo");
+    mkfifo(&fifo);
+    let mut command = Command::new(env!("CARGO_BIN_EXE_chamfer"));
+    command.args([
+        "bake",
+        path_str(&fixture("shapes/cube.obj")),
+        "-o",
+        path_str(&fifo),
+    ]);
+    let run = finish(command);
+    let stderr = text(&run.stderr);
+    assert_eq!(run.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("some.fifo") && stderr.contains("FIFO"),
+        "{stderr}"
+    );
+    let file_type = std::fs::symlink_metadata(&fifo)
+        .expect("still there")
+        .file_type();
+    assert!(file_type.is_fifo(), "the FIFO was replaced");
+    // Reading one as an asset does not block either.
+    let mut command = Command::new(env!("CARGO_BIN_EXE_chamfer"));
+    command.args(["inspect", path_str(&fifo)]);
+    let run = finish(command);
+    assert_eq!(run.status.code(), Some(1));
+    assert!(text(&run.stderr).contains("FIFO"), "{}", text(&run.stderr));
+}
+
+#[test]
+fn write_errors_name_the_output_not_the_temporary_file() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("missing/cube.chamfer");
+    let run = chamfer(&[
+        "bake",
+        path_str(&fixture("shapes/cube.obj")),
+        "-o",
+        path_str(&out),
+    ]);
+    let stderr = text(&run.stderr);
+    assert_eq!(run.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains(path_str(&out)), "{stderr}");
+    assert!(
+        !stderr.contains(".chamfer-") && !stderr.contains("at path"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("No such file or directory"), "{stderr}");
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn stdout_errors_are_errors_and_a_closed_pipe_is_quiet() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let asset = dir.path().join("cube.chamfer");
+    let cube = fixture("shapes/cube.obj");
+    assert!(
+        chamfer(&["bake", path_str(&cube), "-o", path_str(&asset)])
+            .status
+            .success()
+    );
+    let full = std::fs::OpenOptions::new()
+        .write(true)
+        .open("/dev/full")
+        .expect("/dev/full");
+    let run = Command::new(env!("CARGO_BIN_EXE_chamfer"))
+        .args(["inspect", path_str(&asset)])
+        .stdout(full)
+        .output()
+        .expect("run");
+    let stderr = text(&run.stderr);
+    assert_eq!(run.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("standard output") && !stderr.contains("panicked"),
+        "{stderr}"
+    );
+    for args in [
+        vec!["bake", path_str(&cube), "-o", path_str(&asset)],
+        vec!["inspect", path_str(&asset)],
+    ] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_chamfer"))
+            .args(&args)
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .expect("spawn");
+        drop(child.stdout.take()); // the reader is gone before anything is written
+        let run = child.wait_with_output().expect("wait");
+        assert_eq!(
+            run.status.code(),
+            Some(0),
+            "{args:?}: {}",
+            text(&run.stderr)
+        );
+        assert!(run.stderr.is_empty(), "{args:?}: {}", text(&run.stderr));
+    }
+}
+
+#[test]
+fn inputs_of_one_stem_fail_before_anything_is_created() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("baked");
+    let run = chamfer(&[
+        "bake",
+        path_str(&fixture("shapes/two-materials.glb")),
+        path_str(&fixture("shapes/two-materials.gltf")),
+        "-o",
+        path_str(&out),
+    ]);
+    let stderr = text(&run.stderr);
+    assert_eq!(run.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("two-materials.glb") && stderr.contains("two-materials.gltf"),
+        "{stderr}"
+    );
+    assert!(!out.exists(), "the output folder was created");
+}
+
+#[test]
+fn a_folder_input_is_baked_like_build_bake_dir() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let assets = dir.path().join("assets");
+    std::fs::create_dir_all(assets.join("props")).expect("mkdir");
+    std::fs::copy(fixture("shapes/cube.obj"), assets.join("cube.obj")).expect("copy");
+    std::fs::copy(
+        fixture("shapes/two-materials.glb"),
+        assets.join("props/pair.glb"),
+    )
+    .expect("copy");
+    std::fs::write(assets.join("notes.txt"), "not a mesh").expect("write");
+    let out = dir.path().join("baked");
+    let run = chamfer(&["bake", path_str(&assets), "-o", path_str(&out)]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert!(out.join("cube.chamfer").is_file());
+    assert!(out.join("props/pair.chamfer").is_file());
+    assert_eq!(std::fs::read_dir(&out).expect("dir").count(), 2);
+}
+
+#[test]
+fn warnings_go_to_stderr() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let obj = dir.path().join("lonely.obj");
+    std::fs::write(
+        &obj,
+        "mtllib gone.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+    )
+    .expect("write");
+    let out = dir.path().join("lonely.chamfer");
+    let run = chamfer(&["bake", path_str(&obj), "-o", path_str(&out)]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert!(
+        !text(&run.stdout).contains("warning"),
+        "{}",
+        text(&run.stdout)
+    );
+    assert!(
+        text(&run.stderr).contains("warning: ") && text(&run.stderr).contains("gone.mtl"),
+        "{}",
+        text(&run.stderr)
+    );
+}
+
+#[test]
+fn limits_are_flags_and_documented_in_help() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("cube.chamfer");
+    let run = chamfer(&[
+        "bake",
+        path_str(&fixture("shapes/cube.obj")),
+        "--max-triangles",
+        "11",
+        "-o",
+        path_str(&out),
+    ]);
+    let stderr = text(&run.stderr);
+    assert_eq!(run.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("cube.obj") && stderr.contains("--max-triangles"),
+        "{stderr}"
+    );
+    assert!(!out.exists());
+    let help = text(&chamfer(&["bake", "--help"]).stdout);
+    for flag in [
+        "--max-triangles",
+        "--max-vertices",
+        "--max-instances",
+        "--max-input-bytes",
+        "Limits:",
+        "inside the mesh's folder",
+    ] {
+        assert!(help.contains(flag), "bake --help lacks {flag}");
+    }
+}

@@ -55,13 +55,15 @@ pub fn annotate(input: &Path, output: &Path, options: &BakeOptions) -> Result<An
         });
     }
     ensure_not_an_input(output, &[input])?;
-    let bytes = load::read(input)?;
+    let bytes = load::read(input, &options.limits)?;
     let mut warnings = Vec::new();
     let mut spans = Vec::new();
     let mesh = match format {
-        Format::Gltf => load::gltf::parse_with_spans(input, &bytes, &mut warnings, &mut spans)?,
+        Format::Gltf => {
+            load::gltf::parse_with_spans(input, &bytes, &options.limits, &mut warnings, &mut spans)?
+        }
         _ => {
-            let loaded = load::load_bytes(input, &bytes)?;
+            let loaded = load::load_bytes(input, &bytes, &options.limits)?;
             warnings = loaded.warnings;
             loaded.mesh
         }

@@ -1,17 +1,19 @@
 //! Loaders: OBJ (tobj), glTF 2.0 / GLB (gltf) and PLY (ply-rs-bw) into one [`Mesh`].
 //!
 //! Every loader reads the whole file, checks what it reads, and reports problems as
-//! [`Error`]s naming the file. Loaders never modify their input.
+//! [`Error`]s naming the file. Loaders never modify their input, read only regular files, read
+//! files an input refers to only inside the input's folder (`files.rs`), and check the counts a file
+//! declares against [`Limits`] before allocating or looping over them.
 
+pub(crate) mod files;
 pub(crate) mod gltf;
 mod obj;
 mod ply;
 
-use std::io::Read;
 use std::path::Path;
 
-use crate::Error;
 use crate::mesh::Mesh;
+use crate::{Error, Limits};
 
 /// The mesh formats this crate reads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -46,24 +48,24 @@ pub struct Loaded {
 }
 
 /// Loads a mesh file, choosing the loader by extension, and validates it.
-pub fn load(path: &Path) -> Result<Loaded, Error> {
+pub fn load(path: &Path, limits: &Limits) -> Result<Loaded, Error> {
     format_of(path).ok_or_else(|| Error::UnknownFormat {
         path: path.to_owned(),
     })?;
-    load_bytes(path, &read(path)?)
+    load_bytes(path, &read(path, limits)?, limits)
 }
 
 /// Parses a mesh already in memory; `path` picks the format and resolves files it refers to
 /// (an OBJ's `.mtl`, a `.gltf`'s buffers). `bytes` must already be inflated if the name ends in `.gz`.
-pub fn load_bytes(path: &Path, bytes: &[u8]) -> Result<Loaded, Error> {
+pub fn load_bytes(path: &Path, bytes: &[u8], limits: &Limits) -> Result<Loaded, Error> {
     let format = format_of(path).ok_or_else(|| Error::UnknownFormat {
         path: path.to_owned(),
     })?;
     let mut warnings = Vec::new();
     let mesh = match format {
-        Format::Obj => obj::parse(path, bytes, &mut warnings)?,
-        Format::Gltf => gltf::parse(path, bytes, &mut warnings)?,
-        Format::Ply => ply::parse(path, bytes, &mut warnings)?,
+        Format::Obj => obj::parse(path, bytes, limits, &mut warnings)?,
+        Format::Gltf => gltf::parse(path, bytes, limits, &mut warnings)?,
+        Format::Ply => ply::parse(path, bytes, limits, &mut warnings)?,
     };
     mesh.validate().map_err(|source| Error::Mesh {
         path: path.to_owned(),
@@ -72,21 +74,10 @@ pub fn load_bytes(path: &Path, bytes: &[u8]) -> Result<Loaded, Error> {
     Ok(Loaded { mesh, warnings })
 }
 
-/// Reads a file, inflating it if its name ends in `.gz`.
-pub(crate) fn read(path: &Path) -> Result<Vec<u8>, Error> {
-    let read_error = |source| Error::Read {
-        path: path.to_owned(),
-        source,
-    };
-    let bytes = std::fs::read(path).map_err(read_error)?;
-    if !path.to_string_lossy().to_ascii_lowercase().ends_with(".gz") {
-        return Ok(bytes);
-    }
-    let mut inflated = Vec::new();
-    flate2::read::GzDecoder::new(bytes.as_slice())
-        .read_to_end(&mut inflated)
-        .map_err(read_error)?;
-    Ok(inflated)
+/// Reads an input file (a mesh, or an asset): only a regular file, never a FIFO or device, at most
+/// `limits.max_input_bytes`, inflated as a stream if its name ends in `.gz`.
+pub fn read(path: &Path, limits: &Limits) -> Result<Vec<u8>, Error> {
+    files::read_input(path, limits)
 }
 
 /// Splits a polygon into a triangle fan, the convention of OBJ and PLY readers (trimesh, tobj).

@@ -15,10 +15,16 @@ use ply_rs_bw::ply::{
     BeginList, ElementDef, Encoding, Header, Property, PropertyAccess, PropertyAccessResult,
 };
 
-use crate::Error;
+use crate::limits::Limited;
 use crate::mesh::{Mark, Mesh};
+use crate::{Error, Limits};
 
-pub(super) fn parse(path: &Path, bytes: &[u8], _warnings: &mut Vec<String>) -> Result<Mesh, Error> {
+pub(super) fn parse(
+    path: &Path,
+    bytes: &[u8],
+    limits: &Limits,
+    _warnings: &mut Vec<String>,
+) -> Result<Mesh, Error> {
     let parse_error = |message: String| Error::Parse {
         path: path.to_owned(),
         format: "PLY",
@@ -39,14 +45,40 @@ pub(super) fn parse(path: &Path, bytes: &[u8], _warnings: &mut Vec<String>) -> R
                 element.count
             ))
         };
-        // Counts come from the (untrusted) header: reserve no more than the bytes could hold.
-        let plausible = element.count.min(bytes.len());
+        // An element without properties occupies no bytes: there is nothing to read, however
+        // many the header claims (2^64 - 1 of them would otherwise loop for ever).
+        if element.properties.is_empty() {
+            if name == "vertex" {
+                return Err(parse_error(
+                    "element 'vertex' has no x, y, z properties".into(),
+                ));
+            }
+            continue;
+        }
+        // Every other element takes at least one byte (a binary value or an ASCII line), so a count
+        // larger than the file is a lie: refuse it before looping over it.
+        if element.count > bytes.len() {
+            return Err(parse_error(format!(
+                "element '{name}' claims {} elements but the whole file has {} bytes",
+                element.count,
+                bytes.len()
+            )));
+        }
+        let plausible = element.count;
         match name.as_str() {
             "vertex" => {
+                limits.check(path, Limited::Vertices, element.count as u64)?;
                 let has_normals = ["nx", "ny", "nz"]
                     .iter()
                     .all(|p| element.properties.contains_key(*p));
                 mesh.positions.reserve(plausible);
+                for axis in ["x", "y", "z"] {
+                    if !element.properties.contains_key(axis) {
+                        return Err(parse_error(format!(
+                            "element 'vertex' has no '{axis}' property"
+                        )));
+                    }
+                }
                 let mut normals = Vec::with_capacity(if has_normals { plausible } else { 0 });
                 for_each_element(input, &header, element, |v: Vertex| {
                     mesh.positions.push(Vec3::from(v.position));
@@ -59,8 +91,10 @@ pub(super) fn parse(path: &Path, bytes: &[u8], _warnings: &mut Vec<String>) -> R
                 mesh.normals = has_normals.then_some(normals);
             }
             "face" => {
-                mesh.triangles.reserve(plausible);
-                for_each_element(input, &header, element, |mut face: Face| {
+                mesh.triangles
+                    .reserve(plausible.min(limits.max_triangles as usize));
+                let mut over_limit = false;
+                let faces = for_each_element(input, &header, element, |mut face: Face| {
                     // `int` lists arrive unconverted through the in-place fast path.
                     if !face.signed.is_empty() {
                         let signed = std::mem::take(&mut face.signed);
@@ -70,9 +104,16 @@ pub(super) fn parse(path: &Path, bytes: &[u8], _warnings: &mut Vec<String>) -> R
                         return Err(format!("negative vertex index {v}"));
                     }
                     super::fan(&face.indices, &mut mesh.triangles);
+                    if mesh.triangles.len() as u64 > limits.max_triangles {
+                        over_limit = true;
+                        return Err(String::new());
+                    }
                     Ok(())
-                })
-                .map_err(err)?;
+                });
+                if over_limit {
+                    limits.check(path, Limited::Triangles, mesh.triangles.len() as u64)?;
+                }
+                faces.map_err(err)?;
             }
             "edge" => {
                 for_each_element(input, &header, element, |edge: Edge| {

@@ -2,7 +2,7 @@
 
 use super::{
     Asset, DecodeError, EdgeFlags, FORMAT_VERSION, Header, IndexWidth, Indices, MAGIC,
-    MAX_HEADER_BYTES, SECTION_ALIGN, SectionKind, attribute_flags, envelope,
+    MAX_HEADER_BYTES, MAX_RING, SECTION_ALIGN, SectionKind, attribute_flags, envelope,
 };
 
 impl Asset {
@@ -10,7 +10,9 @@ impl Asset {
     ///
     /// Rejects, with a typed error: bad magic, another format version, a header or section table
     /// that does not fit the file, sections whose lengths disagree with each other, indices out of
-    /// range, non-finite floats, unknown flag bits and next-index rings that are not closed.
+    /// range, non-finite floats, unknown flag bits, next-index rings that are not closed, cap heads
+    /// without rings and vertices
+    /// with more kept edge ends than [`MAX_RING`].
     /// Allocates at most about twice the input's size. Never panics.
     pub fn decode(bytes: &[u8]) -> Result<Asset, DecodeError> {
         let header = read_header(bytes)?;
@@ -90,6 +92,16 @@ impl Asset {
             ends,
             1,
         )?;
+        // A head is where the walk around its vertex's ring starts: without rings it means nothing.
+        if next_ends.is_empty() && !cap_heads.is_empty() {
+            return Err(length_error(
+                SectionKind::CapHeads,
+                format!(
+                    "{} cap heads but no next ends (the runtime walks a head's ring)",
+                    cap_heads.len()
+                ),
+            ));
+        }
 
         let asset = Asset {
             header,
@@ -103,6 +115,7 @@ impl Asset {
             cap_heads,
         };
         validate_attributes(&asset)?;
+        validate_ring_lengths(&asset)?;
         validate_rings(&asset)?;
         Ok(asset)
     }
@@ -177,18 +190,24 @@ fn section_ranges(
         })?;
         if entry.offset % SECTION_ALIGN as u64 != 0 {
             return Err(DecodeError::BadSectionTable(format!(
-                "{kind:?} starts at {}, not a multiple of {SECTION_ALIGN}",
+                "{} starts at {}, not a multiple of {SECTION_ALIGN}",
+                kind.name(),
                 entry.offset
             )));
         }
         if entry.offset < previous_end {
             return Err(DecodeError::BadSectionTable(format!(
-                "{kind:?} at {} overlaps what comes before it (ends at {previous_end})",
+                "{} at {} overlaps what comes before it (ends at {previous_end})",
+                kind.name(),
                 entry.offset
             )));
         }
         let end = entry.offset.checked_add(entry.length).ok_or_else(|| {
-            DecodeError::BadSectionTable(format!("{kind:?} length {} overflows", entry.length))
+            DecodeError::BadSectionTable(format!(
+                "{} length {} overflows",
+                kind.name(),
+                entry.length
+            ))
         })?;
         if end > file_len {
             return Err(DecodeError::Truncated {
@@ -200,7 +219,8 @@ fn section_ranges(
         let slot = &mut ranges[kind as usize - 1];
         if slot.is_some() {
             return Err(DecodeError::BadSectionTable(format!(
-                "{kind:?} appears twice"
+                "{} appears twice",
+                kind.name()
             )));
         }
         *slot = Some(entry.offset as usize..end as usize);
@@ -214,7 +234,7 @@ fn section_ranges(
         .map(|&kind| {
             ranges[kind as usize - 1]
                 .take()
-                .ok_or_else(|| DecodeError::BadSectionTable(format!("{kind:?} is missing")))
+                .ok_or_else(|| DecodeError::BadSectionTable(format!("{} is missing", kind.name())))
         })
         .collect()
 }
@@ -278,8 +298,9 @@ fn read_indices(
         return Err(length_error(
             kind,
             format!(
-                "{} bytes is not a whole number of groups of {group} {width:?} indices",
-                bytes.len()
+                "{} bytes is not a whole number of groups of {group} {}-bit indices",
+                bytes.len(),
+                8 * width.bytes()
             ),
         ));
     }
@@ -327,6 +348,28 @@ fn validate_attributes(asset: &Asset) -> Result<(), DecodeError> {
             return Err(invalid(format!(
                 "radius {radius} is not finite and non-negative"
             )));
+        }
+    }
+    Ok(())
+}
+
+/// No vertex may have more kept edge ends than the join walk follows ([`MAX_RING`]), whether or
+/// not the asset carries rings: the cap-buffer walk has the same bound.
+fn validate_ring_lengths(asset: &Asset) -> Result<(), DecodeError> {
+    let mut ends = vec![0u32; asset.topology_positions.len()];
+    for end in 0..2 * asset.edge_count() as u32 {
+        let vertex = asset.end_vertex(end);
+        let count = &mut ends[vertex as usize];
+        *count += 1;
+        if *count > MAX_RING {
+            let total = (0..2 * asset.edge_count() as u32)
+                .filter(|&e| asset.end_vertex(e) == vertex)
+                .count();
+            return Err(DecodeError::RingTooLong {
+                vertex,
+                ends: total as u64,
+                limit: MAX_RING,
+            });
         }
     }
     Ok(())

@@ -23,7 +23,7 @@ pub(super) fn encode_header(header: &Header) -> std::io::Result<Vec<u8>> {
 /// Deserializes a header that must fill `bytes` exactly.
 pub(super) fn decode_header(bytes: &[u8]) -> Result<Header, DecodeError> {
     let (header, used): (Header, usize) = bincode::serde::decode_from_slice(bytes, config())
-        .map_err(|e| DecodeError::BadHeader(e.to_string()))?;
+        .map_err(|e| DecodeError::BadHeader(describe(&e)))?;
     if used != bytes.len() {
         return Err(DecodeError::BadHeader(format!(
             "header is {} bytes but its length field says {}",
@@ -32,4 +32,29 @@ pub(super) fn decode_header(bytes: &[u8]) -> Result<Header, DecodeError> {
         )));
     }
     Ok(header)
+}
+
+/// bincode's own `Display` is its `Debug` text (`LimitExceeded`); say what it means instead.
+fn describe(error: &bincode::error::DecodeError) -> String {
+    use bincode::error::DecodeError as E;
+    match error {
+        E::UnexpectedEnd { additional } => {
+            format!("the header ends {additional} bytes before its last field")
+        }
+        E::LimitExceeded => format!(
+            "a length inside the header would take it past the {MAX_HEADER_BYTES}-byte header limit"
+        ),
+        E::Utf8 { .. } => "a text field of the header is not valid UTF-8".into(),
+        E::OutsideUsizeRange(n) => format!("a length inside the header ({n}) is out of range"),
+        E::InvalidBooleanValue(b) => format!("a yes/no field of the header holds {b}"),
+        E::UnexpectedVariant {
+            type_name, found, ..
+        } => {
+            format!("the header's {type_name} field holds an unknown value {found}")
+        }
+        E::ArrayLengthMismatch { required, found } => {
+            format!("a fixed-size list of the header has {found} entries, not {required}")
+        }
+        _ => "the header's fields could not be read".into(),
+    }
 }

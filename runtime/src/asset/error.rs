@@ -39,7 +39,7 @@ pub enum DecodeError {
     #[error("bad section table: {0}")]
     BadSectionTable(String),
     /// A section's length does not fit its element size or its count.
-    #[error("section {kind:?}: {reason}")]
+    #[error("section {}: {reason}", kind.name())]
     BadSectionLength {
         /// The section.
         kind: SectionKind,
@@ -48,7 +48,7 @@ pub enum DecodeError {
     },
     /// An index points past the end of what it indexes.
     #[error(
-        "section {kind:?}: element {position} is {value}, out of range (must be below {bound})"
+        "section {}: element {position} is {value}, out of range (must be below {bound})", kind.name()
     )]
     IndexOutOfRange {
         /// The section.
@@ -61,7 +61,7 @@ pub enum DecodeError {
         bound: u64,
     },
     /// A NaN or infinity where a finite number is required.
-    #[error("section {kind:?}: element {position} is not a finite number")]
+    #[error("section {}: element {position} is not a finite number", kind.name())]
     NonFinite {
         /// The section.
         kind: SectionKind,
@@ -69,7 +69,7 @@ pub enum DecodeError {
         position: u64,
     },
     /// Structurally valid numbers that break a rule of the format (e.g. unknown flag bits).
-    #[error("section {kind:?}: element {position}: {reason}")]
+    #[error("section {}: element {position}: {reason}", kind.name())]
     Invalid {
         /// The section.
         kind: SectionKind,
@@ -77,5 +77,17 @@ pub enum DecodeError {
         position: u64,
         /// The rule broken.
         reason: String,
+    },
+    /// More kept edges meet at one vertex than the runtime's join walk follows.
+    #[error(
+        "vertex {vertex} has {ends} kept edge ends, more than the {limit} the runtime's join walk follows"
+    )]
+    RingTooLong {
+        /// The topology vertex.
+        vertex: u32,
+        /// Kept edge ends at it.
+        ends: u64,
+        /// [`MAX_RING`](super::MAX_RING).
+        limit: u32,
     },
 }

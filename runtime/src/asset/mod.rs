@@ -24,7 +24,7 @@
 //! | [`SectionKind::EdgeVertices`] | index < V | 4 × E: `v0 v1 v2 v3` (thesis §8.1) |
 //! | [`SectionKind::EdgeAttributes`] | `u32` | E: low 16 bits [`EdgeFlags`], high 16 bits radius (f16) |
 //! | [`SectionKind::NextEnds`] | edge end < 2E | 2 × E, or empty |
-//! | [`SectionKind::CapHeads`] | edge end < 2E | one per capped vertex, or empty |
+//! | [`SectionKind::CapHeads`] | edge end < 2E | one per capped vertex, or empty (always empty without `NextEnds`) |
 //!
 //! An *index* section is `u16` when its values are bounded by 65 536 and `u32` otherwise
 //! ([`IndexWidth::for_bound`]); the width is implied by the counts, so it is never stored.
@@ -61,6 +61,10 @@ pub const FORMAT_VERSION: u32 = 1;
 pub const MAX_HEADER_BYTES: u32 = 1 << 20;
 /// Every section starts at a multiple of this many bytes.
 pub const SECTION_ALIGN: usize = 16;
+/// The largest number of kept edge ends at one vertex that the runtime's join walk follows
+/// (`MAX_RING` in `shaders/joins.wgsl`): a longer ring would get incomplete joins, so
+/// [`Asset::decode`] refuses it and the bake refuses to write it.
+pub const MAX_RING: u32 = 4096;
 
 /// What a pipeline classified an edge as; several bits can be set at once.
 ///

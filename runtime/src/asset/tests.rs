@@ -204,7 +204,7 @@ fn out_of_range_index_names_the_section() {
             bound: 4
         }
     );
-    assert!(err.to_string().contains("EdgeVertices"));
+    assert!(err.to_string().contains("edge_vertices"));
 }
 
 #[test]
@@ -292,4 +292,79 @@ fn radius_packing_keeps_half_precision() {
         assert!((attribute_radius(word, 1.0) - r).abs() <= r * 1e-3, "{r}");
         assert_eq!(attribute_flags(word), EdgeFlags::MARKED);
     }
+}
+
+/// `spokes` boundary edges from vertex 0 to vertices 1..=spokes, one next-index ring at vertex 0.
+fn star(spokes: u32) -> Asset {
+    let mut asset = tetrahedron();
+    asset.topology_positions = (0..=spokes).map(|i| [i as f32, 0.0, 0.0]).collect();
+    let vertices = spokes as usize + 1;
+    let edges: Vec<u32> = (1..=spokes)
+        .flat_map(|i| [0, i, i % spokes + 1, 0])
+        .collect();
+    asset.edge_vertices = Indices::with_bound(edges, vertices);
+    asset.edge_attributes = vec![pack_attributes(EdgeFlags::BOUNDARY, 0.0, 0.0); spokes as usize];
+    let ends = 2 * spokes;
+    let next: Vec<u32> = (0..ends)
+        .map(|end| if end % 2 == 0 { (end + 2) % ends } else { end })
+        .collect();
+    asset.next_ends = Indices::with_bound(next, ends as usize);
+    asset.cap_heads = Indices::with_bound(vec![0], ends as usize);
+    asset
+}
+
+#[test]
+fn a_vertex_with_more_ends_than_the_join_walk_follows_is_refused() {
+    assert!(Asset::decode(&star(MAX_RING).encode_to_vec()).is_ok());
+    let error = Asset::decode(&star(MAX_RING + 1).encode_to_vec()).expect_err("ring too long");
+    assert_eq!(
+        error,
+        DecodeError::RingTooLong {
+            vertex: 0,
+            ends: u64::from(MAX_RING) + 1,
+            limit: MAX_RING
+        }
+    );
+    assert!(error.to_string().contains("4097 kept edge ends"), "{error}");
+}
+
+#[test]
+fn errors_read_as_sentences_not_rust_debug_text() {
+    // The header starts with the source name's length: make it absurd.
+    let mut bytes = tetrahedron().encode_to_vec();
+    bytes[16..24].copy_from_slice(&(1u64 << 40).to_le_bytes());
+    let error = Asset::decode(&bytes).expect_err("bad header");
+    let text = error.to_string();
+    assert!(matches!(error, DecodeError::BadHeader(_)), "{error:?}");
+    assert!(
+        text.contains("header limit") && !text.contains("LimitExceeded"),
+        "{text}"
+    );
+    // Section names are the report names, not enum variants.
+    let mut asset = tetrahedron();
+    asset.mesh_indices = Indices::with_bound(vec![0, 1, 99], 100);
+    let text = Asset::decode(&asset.encode_to_vec())
+        .expect_err("out of range")
+        .to_string();
+    assert!(text.contains("section mesh_indices"), "{text}");
+}
+
+#[test]
+fn cap_heads_without_next_ends_are_refused() {
+    // Found by the fuzz harness (tests/fuzz.rs, asset target): a section table that empties
+    // NextEnds but keeps CapHeads decoded, leaving heads whose rings do not exist.
+    let mut asset = tetrahedron();
+    asset.next_ends = Indices::default();
+    assert!(matches!(
+        Asset::decode(&asset.encode_to_vec()),
+        Err(DecodeError::BadSectionLength {
+            kind: SectionKind::CapHeads,
+            ..
+        })
+    ));
+    asset.cap_heads = Indices::default();
+    assert!(
+        Asset::decode(&asset.encode_to_vec()).is_ok(),
+        "neither is fine"
+    );
 }

@@ -216,10 +216,16 @@ impl GpuAsset {
 
     /// Reads, validates and uploads the asset file at `path`.
     pub fn load(device: &wgpu::Device, path: &Path) -> Result<Self, RenderError> {
-        let bytes = std::fs::read(path).map_err(|source| RenderError::Read {
+        let read_error = |source| RenderError::Read {
             path: path.to_owned(),
             source,
-        })?;
+        };
+        // Only a regular file: a FIFO or a device would block or never end.
+        let metadata = std::fs::metadata(path).map_err(read_error)?;
+        if !metadata.is_file() {
+            return Err(read_error(std::io::Error::other("not a regular file")));
+        }
+        let bytes = std::fs::read(path).map_err(read_error)?;
         let asset = Asset::decode(&bytes).map_err(|source| RenderError::Decode {
             path: path.to_owned(),
             source,

@@ -274,12 +274,14 @@ impl OffscreenTarget {
         let row = 4 * self.width;
         let padded_row =
             row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
-        let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("offscreen readback"),
-            size: u64::from(padded_row) * u64::from(self.height),
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            mapped_at_creation: false,
-        });
+        let buffer = checked(&gpu.device, "the readback buffer", || {
+            gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("offscreen readback"),
+                size: u64::from(padded_row) * u64::from(self.height),
+                usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+                mapped_at_creation: false,
+            })
+        })?;
         let mut encoder = gpu.encoder();
         encoder.copy_texture_to_buffer(
             wgpu::TexelCopyTextureInfo {

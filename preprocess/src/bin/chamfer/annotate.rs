@@ -9,10 +9,12 @@ use crate::bake::OptionArgs;
 /// Write the mesh back in its own format with its chamfer marks and radii embedded (PLY `edge`
 /// element; glTF `extras.chamfer` per primitive), for artists and other tools to read and edit.
 #[derive(Args)]
-#[command(after_help = "Examples:
+#[command(after_help = format!("Examples:
   chamfer annotate part.ply --radius-rel 0.005 -o part-marked.ply
   chamfer annotate scene.glb --radius 0.01 -o scene-marked.glb
-  chamfer bake part-marked.ply -o part.chamfer     (the marks are read back)")]
+  chamfer bake part-marked.ply -o part.chamfer     (the marks are read back)
+
+{}", crate::bake::SAFETY_HELP))]
 pub struct AnnotateArgs {
     /// The mesh (PLY, glTF or GLB).
     input: PathBuf,
@@ -27,13 +29,12 @@ pub fn run(args: &AnnotateArgs) -> anyhow::Result<()> {
     let options = args.options.to_options()?;
     let annotated = chamfer_preprocess::annotate::annotate(&args.input, &args.output, &options)?;
     for warning in &annotated.warnings {
-        eprintln!("warning: {}: {warning}", args.input.display());
+        crate::warn(format_args!("warning: {}: {warning}", args.input.display()));
     }
-    println!(
+    crate::say(format_args!(
         "{} -> {}: {} marked or chamfer edges written",
         args.input.display(),
         args.output.display(),
         annotated.edges
-    );
-    Ok(())
+    ))
 }

@@ -6,22 +6,33 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use anyhow::{Context, bail};
-use chamfer_preprocess::write::{ensure_not_an_input, write_atomically};
-use chamfer_preprocess::{BakeOptions, Baked, Radius, bake_file};
+use chamfer_preprocess::write::{ensure_not_an_input, ensure_replaceable, write_atomically};
+use chamfer_preprocess::{BakeOptions, Baked, Error, Limits, Radius, bake_file, build};
 use clap::Args;
 use rayon::prelude::*;
 
 use crate::memory::peak_rss_bytes;
 
+/// What every command that reads a mesh says about limits and companion files.
+pub const SAFETY_HELP: &str = "Limits: a file asking for more than --max-triangles, --max-vertices, \
+--max-instances (glTF node and primitive instances) or --max-input-bytes (per file, after inflating .gz) \
+is refused before the work is done. Files a mesh refers to (OBJ mtllib, glTF buffer uri) are read only \
+when they are regular files inside the mesh's folder (after following links). Outputs replace only \
+regular files (never a FIFO or device), keep the mode of the file they replace, and are otherwise \
+created with the usual mode (0666 minus the umask).";
+
 /// Bake meshes into .chamfer edge assets.
 #[derive(Args)]
-#[command(after_help = "Examples:
+#[command(after_help = format!("Examples:
   chamfer bake model.obj -o model.chamfer
   chamfer bake assets/*.glb -o baked/            (many inputs: OUT is a directory)
+  chamfer bake assets/ -o baked/                 (a folder: every mesh under it, as build::bake_dir)
   chamfer bake scan.ply.gz -o scan.chamfer --weld-epsilon 1e-5 --crease-deg 40
-  chamfer bake part.obj -o part.chamfer --timings")]
+  chamfer bake part.obj -o part.chamfer --timings
+
+{SAFETY_HELP}"))]
 pub struct BakeArgs {
-    /// Mesh files: .obj, .gltf, .glb, .ply or .ply.gz.
+    /// Mesh files (.obj, .gltf, .glb, .ply or .ply.gz) or folders of them.
     #[arg(required = true)]
     inputs: Vec<PathBuf>,
     /// Output file, or a directory (required for several inputs; created if missing).
@@ -56,6 +67,18 @@ pub struct OptionArgs {
     /// Give valley creases the radius too.
     #[arg(long)]
     radius_valleys: bool,
+    /// Refuse a mesh with more triangles than this (after fanning polygons and glTF instancing).
+    #[arg(long, default_value_t = Limits::DEFAULT.max_triangles, value_name = "N")]
+    max_triangles: u64,
+    /// Refuse a mesh with more vertices than this (as loaded, before welding).
+    #[arg(long, default_value_t = Limits::DEFAULT.max_vertices, value_name = "N")]
+    max_vertices: u64,
+    /// Refuse a glTF whose node graph expands into more node and primitive instances than this.
+    #[arg(long, default_value_t = Limits::DEFAULT.max_instances, value_name = "N")]
+    max_instances: u64,
+    /// Refuse a file (or a file it refers to) larger than this many bytes, after inflating .gz.
+    #[arg(long, default_value_t = Limits::DEFAULT.max_input_bytes, value_name = "BYTES")]
+    max_input_bytes: u64,
 }
 
 impl OptionArgs {
@@ -70,7 +93,14 @@ impl OptionArgs {
                 (None, Some(f)) => Radius::Relative(f),
                 (None, None) => Radius::None,
             })
-            .with_radius_valleys(self.radius_valleys);
+            .with_radius_valleys(self.radius_valleys)
+            .with_limits(
+                Limits::DEFAULT
+                    .with_max_triangles(self.max_triangles)
+                    .with_max_vertices(self.max_vertices)
+                    .with_max_instances(self.max_instances)
+                    .with_max_input_bytes(self.max_input_bytes),
+            );
         options.validate()?;
         Ok(options)
     }
@@ -80,10 +110,10 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
     let options = args.options.to_options()?;
     let jobs = plan(&args.inputs, &args.output)?;
     let progress = Progress::start(jobs.len());
-    let results: Vec<anyhow::Result<String>> = jobs
+    let results: Vec<anyhow::Result<(Baked, Duration)>> = jobs
         .par_iter()
         .map(|(input, output)| {
-            let result = bake_one(input, output, &options, args.timings);
+            let result = bake_one(input, output, &options);
             progress.done_one();
             result
         })
@@ -91,52 +121,79 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
     progress.finish();
 
     let mut failed = 0;
-    for result in results {
+    let mut stdout = Ok(());
+    for ((input, output), result) in jobs.iter().zip(results) {
         match result {
-            Ok(report) => println!("{report}"),
+            Ok((baked, write)) => {
+                for warning in &baked.warnings {
+                    crate::warn(format_args!("warning: {}: {warning}", input.display()));
+                }
+                if stdout.is_ok() {
+                    stdout = crate::say(report(input, output, &baked, write, args.timings));
+                }
+            }
             Err(e) => {
                 failed += 1;
-                eprintln!("error: {}", crate::describe(&e));
+                crate::warn(format_args!("error: {}", crate::describe(&e)));
             }
         }
     }
     if failed > 0 {
         bail!("{failed} of {} inputs failed", jobs.len());
     }
-    Ok(())
+    stdout
 }
 
-/// Pairs every input with its output path and refuses clashes before any work starts.
+/// Pairs every input with its output path and refuses clashes, inputs named as outputs and
+/// outputs that are not regular files, before anything is created or baked. A folder among the
+/// inputs contributes every mesh under it, named by its path inside the folder.
 fn plan(inputs: &[PathBuf], output: &Path) -> anyhow::Result<Vec<(PathBuf, PathBuf)>> {
     let to_dir = inputs.len() > 1
+        || inputs.iter().any(|i| i.is_dir())
         || output.is_dir()
         || output
             .to_string_lossy()
             .ends_with(std::path::MAIN_SEPARATOR);
-    let jobs: Vec<(PathBuf, PathBuf)> = if to_dir {
-        std::fs::create_dir_all(output)
-            .with_context(|| format!("{}: cannot create output directory", output.display()))?;
-        inputs
-            .iter()
-            .map(|i| (i.clone(), output.join(format!("{}.chamfer", stem(i)))))
-            .collect()
+    let mut jobs: Vec<(PathBuf, PathBuf)> = Vec::new();
+    if to_dir {
+        for input in inputs {
+            if input.is_dir() {
+                jobs.extend(build::plan_dir(input, output, &mut |_| ())?);
+            } else {
+                jobs.push((
+                    input.clone(),
+                    output.join(format!("{}.chamfer", stem(input))),
+                ));
+            }
+        }
+        if jobs.is_empty() {
+            bail!("no mesh files (.obj, .gltf, .glb, .ply, .ply.gz) among the inputs");
+        }
     } else {
-        vec![(inputs[0].clone(), output.to_owned())]
-    };
+        jobs.push((inputs[0].clone(), output.to_owned()));
+    }
     let mut seen = std::collections::HashMap::new();
     for (input, out) in &jobs {
-        if let Some(other) = seen.insert(out.clone(), input.clone()) {
-            bail!(
-                "{} and {} would both be written to {}",
-                other.display(),
-                input.display(),
-                out.display()
-            );
+        if let Some(first) = seen.insert(out.clone(), input.clone()) {
+            return Err(Error::OutputClash {
+                first,
+                second: input.clone(),
+                output: out.clone(),
+            }
+            .into());
         }
     }
-    let input_refs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
+    let input_refs: Vec<&Path> = jobs.iter().map(|(i, _)| i.as_path()).collect();
     for (_, out) in &jobs {
         ensure_not_an_input(out, &input_refs)?;
+        ensure_replaceable(out)?;
+    }
+    if to_dir {
+        // The output folder, and the sub-folders (`props/`) of folder inputs under it.
+        for folder in jobs.iter().filter_map(|(_, out)| out.parent()) {
+            std::fs::create_dir_all(folder)
+                .with_context(|| format!("{}: cannot create output directory", folder.display()))?;
+        }
     }
     Ok(jobs)
 }
@@ -157,13 +214,11 @@ fn bake_one(
     input: &Path,
     output: &Path,
     options: &BakeOptions,
-    timings: bool,
-) -> anyhow::Result<String> {
+) -> anyhow::Result<(Baked, Duration)> {
     let baked = bake_file(input, options)?;
     let start = Instant::now();
     write_atomically(output, |out| baked.asset.encode(out))?;
-    let write = start.elapsed();
-    Ok(report(input, output, &baked, write, timings))
+    Ok((baked, start.elapsed()))
 }
 
 fn report(input: &Path, output: &Path, baked: &Baked, write: Duration, timings: bool) -> String {
@@ -180,9 +235,6 @@ fn report(input: &Path, output: &Path, baked: &Baked, write: Duration, timings: 
         stats.edges.coplanar_dropped,
         baked.asset.encoded_len(),
     );
-    for warning in &baked.warnings {
-        text += &format!("\n  warning: {}: {warning}", input.display());
-    }
     if timings {
         let t = &baked.timings;
         let ms = |d: Duration| d.as_secs_f64() * 1e3;

@@ -33,15 +33,18 @@ pub fn run(args: &DemoArgs) -> anyhow::Result<()> {
             .with_context(|| format!("{}: cannot create directory", dir.display()))?;
     }
     write_atomically(&args.output, |out| baked.asset.encode(out))?;
-    println!(
+    crate::say(format_args!(
         "baked the bundled fandisk.obj in {:.1} ms -> {}\n",
         baked.timings.processing().as_secs_f64() * 1e3,
         args.output.display()
-    );
+    ))?;
     let picture = args.output.with_extension("png");
     let (image, adapter) = crate::render::render(&baked.asset, &args.view)
         .with_context(|| "fandisk.obj: cannot render")?;
     crate::render::write_png(&image, &picture)?;
-    println!("rendered it on {adapter} -> {}\n", picture.display());
+    crate::say(format_args!(
+        "rendered it on {adapter} -> {}\n",
+        picture.display()
+    ))?;
     crate::inspect::run(&crate::inspect::InspectArgs::for_path(args.output.clone()))
 }

@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 
 use anyhow::Context;
+use chamfer_preprocess::Limits;
 use chamfer_runtime::asset::{Asset, SectionKind};
 use clap::Args;
 use serde_json::json;
@@ -28,17 +29,22 @@ impl InspectArgs {
 }
 
 pub fn run(args: &InspectArgs) -> anyhow::Result<()> {
-    let bytes = std::fs::read(&args.asset)
-        .with_context(|| format!("{}: cannot read", args.asset.display()))?;
+    let bytes = chamfer_preprocess::load::read(&args.asset, &Limits::DEFAULT)?;
     let asset = Asset::decode(&bytes)
         .with_context(|| format!("{}: not a valid .chamfer asset", args.asset.display()))?;
     let report = summary(&asset, bytes.len() as u64);
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        crate::say(serde_json::to_string_pretty(&report)?)
     } else {
-        print_table(&args.asset.display().to_string(), &asset, &report);
+        let mut text = String::new();
+        table(
+            &mut text,
+            &args.asset.display().to_string(),
+            &asset,
+            &report,
+        )?;
+        crate::say(text.trim_end())
     }
-    Ok(())
 }
 
 /// Bytes of the sections that describe edges, per kept edge: the figure the thesis compares (§11.2).
@@ -104,31 +110,37 @@ pub fn summary(asset: &Asset, total_bytes: u64) -> serde_json::Value {
     })
 }
 
-fn print_table(name: &str, asset: &Asset, r: &serde_json::Value) {
-    println!(
+/// The readable report: the same numbers as `--json`.
+fn table(out: &mut String, name: &str, asset: &Asset, r: &serde_json::Value) -> std::fmt::Result {
+    use std::fmt::Write;
+    writeln!(
+        out,
         "{name}  ({}, baked from {})",
         asset.header.generator, asset.header.source
-    );
+    )?;
     let settings: Vec<String> = asset
         .header
         .settings
         .iter()
         .map(|(k, v)| format!("{k}={v}"))
         .collect();
-    println!("  settings       {}", settings.join(" "));
-    println!(
+    writeln!(out, "  settings       {}", settings.join(" "))?;
+    writeln!(
+        out,
         "  vertices       {} input, {} welded, {} render",
         r["vertices"], r["welded_vertices"], r["render_vertices"]
-    );
-    println!(
+    )?;
+    writeln!(
+        out,
         "  triangles      {} ({} input, {} degenerate skipped)",
         r["triangles"], r["input_triangles"], r["degenerate_triangles"]
-    );
+    )?;
     let e = &r["edges"];
-    println!(
+    writeln!(
+        out,
         "  edges          {} unique, {} kept, {} coplanar dropped",
         e["total"], e["kept"], e["coplanar_dropped"]
-    );
+    )?;
     for class in [
         "boundary",
         "crease",
@@ -141,27 +153,36 @@ fn print_table(name: &str, asset: &Asset, r: &serde_json::Value) {
         "flipped",
         "marks_unmatched",
     ] {
-        println!("    {class:<14} {}", e[class]);
+        writeln!(out, "    {class:<14} {}", e[class])?;
     }
     let c = &r["chamfer"];
-    println!(
+    writeln!(
+        out,
         "  chamfer        {} edges with a radius ({} clamped), radius {:.6} .. {:.6}",
         c["edges"],
         c["clamped"],
         c["radius_min"].as_f64().unwrap_or(0.0),
         c["radius_max"].as_f64().unwrap_or(0.0)
-    );
-    println!(
+    )?;
+    writeln!(
+        out,
         "  caps           {} vertices where two or more kept edges meet",
         r["caps"]
-    );
+    )?;
     let b = &r["bytes"];
-    println!(
+    writeln!(
+        out,
         "  bytes          {} total, {:.1} per kept edge (edge + attribute + next + cap sections)",
         b["total"],
         b["per_edge"].as_f64().unwrap_or(0.0)
-    );
+    )?;
     for kind in SectionKind::ALL {
-        println!("    {:<18} {}", kind.name(), b["per_section"][kind.name()]);
+        writeln!(
+            out,
+            "    {:<18} {}",
+            kind.name(),
+            b["per_section"][kind.name()]
+        )?;
     }
+    Ok(())
 }

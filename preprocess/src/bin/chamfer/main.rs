@@ -41,11 +41,45 @@ fn main() -> ExitCode {
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
+        // The reader went away (`| head`): nothing more is wanted, as for any command-line tool.
+        Err(e)
+            if e.downcast_ref::<StdoutError>()
+                .is_some_and(StdoutError::is_closed_pipe) =>
+        {
+            ExitCode::SUCCESS
+        }
         Err(e) => {
-            eprintln!("error: {}", describe(&e));
+            warn(format_args!("error: {}", describe(&e)));
             ExitCode::FAILURE
         }
     }
+}
+
+/// Standard output could not be written (`> /dev/full`, a closed pipe).
+#[derive(Debug, thiserror::Error)]
+#[error("cannot write to standard output: {0}")]
+pub struct StdoutError(std::io::Error);
+
+impl StdoutError {
+    fn is_closed_pipe(&self) -> bool {
+        self.0.kind() == std::io::ErrorKind::BrokenPipe
+    }
+}
+
+/// Writes `text` and a newline to standard output, flushed, reporting failure instead of
+/// panicking as `println!` does.
+pub fn say(text: impl std::fmt::Display) -> anyhow::Result<()> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    writeln!(out, "{text}")
+        .and_then(|()| out.flush())
+        .map_err(|e| StdoutError(e).into())
+}
+
+/// Writes a line to standard error; if even that fails there is nobody left to tell.
+pub fn warn(text: impl std::fmt::Display) {
+    use std::io::Write;
+    let _ = writeln!(std::io::stderr().lock(), "{text}");
 }
 
 /// The error and its causes on one line, skipping a cause whose text the message already quotes

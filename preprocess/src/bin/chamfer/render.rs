@@ -3,7 +3,7 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, bail};
-use chamfer_preprocess::write::{ensure_not_an_input, write_atomically};
+use chamfer_preprocess::write::{ensure_not_an_input, ensure_replaceable, write_atomically};
 use chamfer_runtime::asset::Asset;
 use chamfer_runtime::highlight::strip::Material;
 use chamfer_runtime::render::{
@@ -16,6 +16,7 @@ use crate::bake::OptionArgs;
 
 /// Render an asset (`.chamfer`) or a mesh (baked on the fly with the bake flags) to a PNG.
 #[derive(Args)]
+#[command(after_help = crate::bake::SAFETY_HELP)]
 pub struct RenderArgs {
     /// A `.chamfer` asset, or an OBJ, glTF/GLB or PLY mesh.
     input: PathBuf,
@@ -322,21 +323,26 @@ impl ViewArgs {
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     args.view.check()?;
     ensure_not_an_input(&args.output, &[&args.input])?;
+    ensure_replaceable(&args.output)?;
+    let options = args.options.to_options()?;
     let asset = if args
         .input
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("chamfer"))
     {
-        let bytes = std::fs::read(&args.input)
-            .with_context(|| format!("{}: cannot read", args.input.display()))?;
+        let bytes = chamfer_preprocess::load::read(&args.input, &options.limits)?;
         Asset::decode(&bytes).with_context(|| format!("{}", args.input.display()))?
     } else {
-        chamfer_preprocess::bake_file(&args.input, &args.options.to_options()?)?.asset
+        let baked = chamfer_preprocess::bake_file(&args.input, &options)?;
+        for warning in &baked.warnings {
+            crate::warn(format_args!("warning: {}: {warning}", args.input.display()));
+        }
+        baked.asset
     };
     let (image, adapter) = render(&asset, &args.view)
         .with_context(|| format!("{}: cannot render", args.input.display()))?;
     write_png(&image, &args.output)?;
-    println!(
+    crate::say(format_args!(
         "{} ({} triangles, {} edges) -> {} ({}x{}, {adapter})",
         args.input.display(),
         asset.triangle_count(),
@@ -344,14 +350,14 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         args.output.display(),
         image.width,
         image.height,
-    );
-    Ok(())
+    ))
 }
 
 /// Renders `asset` as `view` says; returns the image and the adapter's name.
 pub fn render(asset: &Asset, view: &ViewArgs) -> anyhow::Result<(Image, String)> {
     view.check()?;
     let gpu = Offscreen::new()?;
+    fits_the_device(&gpu.device.limits(), view)?;
     let target = gpu.target(view.width, view.height, view.samples)?;
     let pipelines = Pipelines::new(&gpu.device, &target.formats())?;
     let uploaded = GpuAsset::for_techniques(&gpu.device, asset, &[view.technique()?])?;
@@ -386,6 +392,31 @@ pub fn render(asset: &Asset, view: &ViewArgs) -> anyhow::Result<(Image, String)>
     Ok((target.read(&gpu)?, adapter))
 }
 
+/// Refuses a picture larger than the device's textures or its largest buffer (the readback), so
+/// the request fails with a message instead of in the device's error handler.
+fn fits_the_device(limits: &wgpu::Limits, view: &ViewArgs) -> anyhow::Result<()> {
+    let largest = limits.max_texture_dimension_2d;
+    if view.width > largest || view.height > largest {
+        bail!(
+            "{}x{} pixels is larger than this device's textures (at most {largest} on a side)",
+            view.width,
+            view.height
+        );
+    }
+    let row =
+        (u64::from(view.width) * 4).next_multiple_of(u64::from(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT));
+    let readback = row * u64::from(view.height);
+    if readback > limits.max_buffer_size {
+        bail!(
+            "{}x{} pixels needs a {readback}-byte readback buffer, more than this device's {} bytes",
+            view.width,
+            view.height,
+            limits.max_buffer_size
+        );
+    }
+    Ok(())
+}
+
 /// Writes `image` as an RGBA PNG, atomically.
 pub fn write_png(image: &Image, path: &Path) -> anyhow::Result<()> {
     write_atomically(path, |out| {
@@ -399,4 +430,35 @@ pub fn write_png(image: &Image, path: &Path) -> anyhow::Result<()> {
         writer.finish().map_err(std::io::Error::other)
     })?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::Parser;
+
+    use super::*;
+
+    #[derive(Parser)]
+    struct View {
+        #[command(flatten)]
+        view: ViewArgs,
+    }
+
+    fn view(width: &str, height: &str) -> ViewArgs {
+        View::parse_from(["render", "--width", width, "--height", height]).view
+    }
+
+    #[test]
+    fn pictures_larger_than_the_device_allows_are_refused_with_its_limits() {
+        let small = wgpu::Limits::downlevel_defaults(); // 2048 px textures, 256 MiB buffers
+        assert!(fits_the_device(&small, &view("2048", "1024")).is_ok());
+        let error = fits_the_device(&small, &view("4096", "16")).expect_err("too wide");
+        assert!(error.to_string().contains("at most 2048"), "{error}");
+        let tiny_buffers = wgpu::Limits {
+            max_buffer_size: 1 << 20,
+            ..small
+        };
+        let error = fits_the_device(&tiny_buffers, &view("1024", "1024")).expect_err("readback");
+        assert!(error.to_string().contains("readback"), "{error}");
+    }
 }

@@ -2,6 +2,8 @@
 //! allows integer positions and normals), normalized or not, interleaved strides, and sparse
 //! substitution. Nothing here can read out of bounds or allocate more than the file implies.
 
+use std::borrow::Cow;
+
 use gltf::json::{self, accessor::ComponentType, validation::Checked};
 
 /// Accessors without a buffer view are all zeros (plus sparse values); more than this many
@@ -10,10 +12,15 @@ const MAX_IMPLICIT_ELEMENTS: u64 = 1 << 24;
 
 pub(super) struct Accessors<'a> {
     pub root: &'a json::Root,
-    pub buffers: &'a [Vec<u8>],
+    pub buffers: &'a [Cow<'a, [u8]>],
 }
 
 impl Accessors<'_> {
+    /// The element count an accessor declares, if it exists.
+    pub fn count(&self, index: usize) -> Option<u64> {
+        self.root.accessors.get(index).map(|a| a.count.0)
+    }
+
     /// Reads a VECn accessor as floats (integers converted, normalized if the accessor says so).
     pub fn read_vectors<const N: usize>(&self, index: usize) -> Result<Vec<[f32; N]>, String> {
         let (values, components) = self.read(index)?;
@@ -71,12 +78,14 @@ impl Accessors<'_> {
             Some(view) => {
                 let (data, stride) = self.view(view.value(), element_size)?;
                 let start = accessor.byte_offset.map_or(0, |o| o.0);
+                // Offsets, strides and counts are the file's: any sum or product may overflow.
                 let needed = if count == 0 {
                     Some(0)
                 } else {
                     (count - 1)
                         .checked_mul(stride as u64)
-                        .and_then(|b| b.checked_add(start + element_size as u64))
+                        .and_then(|b| b.checked_add(start))
+                        .and_then(|b| b.checked_add(element_size as u64))
                 };
                 if needed.is_none_or(|n| n > data.len() as u64) {
                     return Err(format!(

@@ -1,49 +1,62 @@
-//! Resolving glTF buffers: the GLB binary chunk, base64 `data:` URIs, or files beside the `.gltf`.
+//! Resolving glTF buffers: the GLB binary chunk, base64 `data:` URIs, or files beside the `.gltf`
+//! (regular files inside its folder after following links, see [`crate::load::files`]).
 
+use std::borrow::Cow;
 use std::path::{Component, Path};
 
 use base64::Engine;
 use gltf::json;
 
-pub(super) enum BufferError {
-    Read(std::io::Error),
-    Invalid(String),
-}
+use crate::Limits;
+use crate::load::files::{RefusedReference, read_reference};
 
-/// The bytes of every buffer, each at least as long as its declared `byteLength`.
-pub(super) fn load(
+/// The bytes of every buffer, each at least as long as its declared `byteLength`. Only the first
+/// buffer may be the GLB binary chunk (as the specification says), so a file listing a thousand
+/// buffers without a `uri` does not make a thousand copies of it.
+pub(super) fn load<'a>(
     root: &json::Root,
-    blob: Option<&[u8]>,
+    blob: Option<&'a [u8]>,
     path: &Path,
-) -> Result<Vec<Vec<u8>>, BufferError> {
-    let dir = path.parent().unwrap_or(Path::new("."));
+    limits: &Limits,
+) -> Result<Vec<Cow<'a, [u8]>>, String> {
     root.buffers
         .iter()
         .enumerate()
         .map(|(i, buffer)| {
             let data = match buffer.uri.as_deref() {
-                None => blob.map(<[u8]>::to_vec).ok_or_else(|| {
-                    BufferError::Invalid(format!(
-                        "buffer {i} has no uri and the file has no binary chunk"
-                    ))
+                None if i == 0 => blob.map(Cow::Borrowed).ok_or_else(|| {
+                    format!("buffer {i} has no uri and the file has no binary chunk")
                 })?,
-                Some(uri) if uri.starts_with("data:") => decode_data_uri(uri).ok_or_else(|| {
-                    BufferError::Invalid(format!("buffer {i}: malformed or non-base64 data URI"))
-                })?,
-                Some(uri) => std::fs::read(
-                    dir.join(
-                        relative_path(uri)
-                            .map_err(|e| BufferError::Invalid(format!("buffer {i}: {e}")))?,
-                    ),
-                )
-                .map_err(BufferError::Read)?,
+                None => {
+                    return Err(format!(
+                        "buffer {i} has no uri (only buffer 0 may be the GLB binary chunk)"
+                    ));
+                }
+                Some(uri) if uri.starts_with("data:") => Cow::Owned(
+                    decode_data_uri(uri)
+                        .ok_or_else(|| format!("buffer {i}: malformed or non-base64 data URI"))?,
+                ),
+                Some(uri) => {
+                    let relative = relative_path(uri).map_err(|e| format!("buffer {i}: {e}"))?;
+                    let bytes = read_reference(path, &relative, limits.max_input_bytes).map_err(
+                        |e| match e {
+                            RefusedReference::Missing => {
+                                format!("buffer {i}: uri '{uri}' names a file that does not exist")
+                            }
+                            RefusedReference::Refused(problem) => {
+                                format!("buffer {i}: uri '{uri}' {problem}")
+                            }
+                        },
+                    )?;
+                    Cow::Owned(bytes)
+                }
             };
             if (data.len() as u64) < buffer.byte_length.0 {
-                return Err(BufferError::Invalid(format!(
+                return Err(format!(
                     "buffer {i} declares {} bytes but holds {}",
                     buffer.byte_length.0,
                     data.len()
-                )));
+                ));
             }
             Ok(data)
         })

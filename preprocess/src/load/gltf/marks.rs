@@ -91,8 +91,24 @@ pub(super) fn read(
             .ok_or_else(|| format!("{ext}: no \"{field}\" accessor"))
     };
     const OUTLINE: &str = "CESIUM_primitive_outline";
+    // Mark accessors are bounded by the primitive's own size before they are read, so a huge one
+    // cannot cost more than the geometry the limits already allow.
+    let bounded = |index: usize, most: usize, ext: &str| {
+        let count = accessors.count(index).unwrap_or(0);
+        if count > most as u64 {
+            Err(format!(
+                "{ext}: accessor {index} has {count} elements, more than the {most} that {} triangles can use",
+                triangles.len()
+            ))
+        } else {
+            Ok(index)
+        }
+    };
     if let Some(outline) = extension(OUTLINE) {
-        let pairs = accessors.read_indices(accessor_of(outline, "indices", OUTLINE)?)?;
+        let index = accessor_of(outline, "indices", OUTLINE)?;
+        // An outline edge is a triangle edge: at most three pairs per triangle.
+        let index = bounded(index, 6 * triangles.len(), OUTLINE)?;
+        let pairs = accessors.read_indices(index)?;
         for pair in pairs.chunks_exact(2) {
             let [a, b] = [pair[0], pair[1]].map(f64::from);
             marks.push(Mark {
@@ -103,8 +119,9 @@ pub(super) fn read(
     }
     const VISIBILITY: &str = "EXT_mesh_primitive_edge_visibility";
     if let Some(visibility) = extension(VISIBILITY) {
-        let bytes = accessors.read_indices(accessor_of(visibility, "visibility", VISIBILITY)?)?;
         let needed = (triangles.len() * 6).div_ceil(8);
+        let index = accessor_of(visibility, "visibility", VISIBILITY)?;
+        let bytes = accessors.read_indices(bounded(index, 2 * needed + 4, VISIBILITY)?)?;
         if bytes.len() < needed {
             return Err(format!(
                 "{VISIBILITY}: {} bytes for {} triangles (needs {needed})",

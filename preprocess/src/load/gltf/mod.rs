@@ -1,7 +1,8 @@
 //! glTF 2.0 via the `gltf` crate: `.gltf` (external or base64-embedded buffers) and `.glb`.
 //!
 //! The default scene (or the first, or every mesh when there is no scene) is flattened with its node
-//! transforms. TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN primitives are read; points and lines are
+//! transforms; instances are counted through the node graph before anything is expanded, and
+//! each primitive is read once however many nodes draw it. TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN primitives are read; points and lines are
 //! skipped with a warning. Accessors are read here, bounds-checked, with sparse substitution and
 //! KHR_mesh_quantization's integer types; the crate's own validation is bypassed because it rejects
 //! every required extension, quantization included. Each primitive's material is its material id.
@@ -9,16 +10,20 @@
 
 mod accessor;
 mod buffers;
+mod instances;
 pub mod marks;
 
+use std::collections::HashMap;
+use std::collections::hash_map::Entry;
 use std::path::Path;
 
 use glam::{Mat3, Mat4, Quat, Vec2, Vec3};
 use gltf::json::{self, validation::Checked};
 
 use self::accessor::Accessors;
-use crate::Error;
+use crate::limits::Limited;
 use crate::mesh::Mesh;
+use crate::{Error, Limits};
 
 /// Compression schemes whose data this loader cannot decode.
 const COMPRESSION_EXTENSIONS: [&str; 3] = [
@@ -44,14 +49,20 @@ pub(crate) struct PrimitiveSpan {
     pub triangle_count: u32,
 }
 
-pub(super) fn parse(path: &Path, bytes: &[u8], warnings: &mut Vec<String>) -> Result<Mesh, Error> {
-    parse_with_spans(path, bytes, warnings, &mut Vec::new())
+pub(super) fn parse(
+    path: &Path,
+    bytes: &[u8],
+    limits: &Limits,
+    warnings: &mut Vec<String>,
+) -> Result<Mesh, Error> {
+    parse_with_spans(path, bytes, limits, warnings, &mut Vec::new())
 }
 
 /// [`parse`], also listing each primitive's first instance.
 pub(crate) fn parse_with_spans(
     path: &Path,
     bytes: &[u8],
+    limits: &Limits,
     warnings: &mut Vec<String>,
     spans: &mut Vec<PrimitiveSpan>,
 ) -> Result<Mesh, Error> {
@@ -60,6 +71,7 @@ pub(crate) fn parse_with_spans(
         format: "glTF",
         message,
     };
+    check_glb_length(bytes).map_err(invalid)?;
     let gltf =
         gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| invalid(e.to_string()))?;
     let root = gltf.document.as_json();
@@ -76,90 +88,100 @@ pub(crate) fn parse_with_spans(
             warnings.push(format!("required extension {ext} is ignored"));
         }
     }
-    let buffers = buffers::load(root, gltf.blob.as_deref(), path).map_err(|e| match e {
-        buffers::BufferError::Read(source) => Error::Read {
-            path: path.to_owned(),
-            source,
-        },
-        buffers::BufferError::Invalid(message) => invalid(message),
-    })?;
+    // Everything the file asks for is counted before any of it is read or expanded.
+    let instances = instances::mesh_instances(path, root, limits)?;
+    let (vertices, triangles) = instances
+        .iter()
+        .filter_map(|&(mesh, _)| root.meshes.get(mesh))
+        .flat_map(|m| &m.primitives)
+        .map(|p| primitive_size(root, p))
+        .fold((0u64, 0u64), |(v, t), (pv, pt)| {
+            (v.saturating_add(pv), t.saturating_add(pt))
+        });
+    limits.check(path, Limited::Vertices, vertices)?;
+    limits.check(path, Limited::Triangles, triangles)?;
+
+    let buffers = buffers::load(root, gltf.blob.as_deref(), path, limits).map_err(invalid)?;
     let accessors = Accessors {
         root,
         buffers: &buffers,
     };
 
+    // Each primitive is read once, however many nodes draw it; instances only transform it.
+    let mut read: HashMap<(usize, usize), Option<Mesh>> = HashMap::new();
     let mut mesh = Mesh::default();
-    for (mesh_index, transform) in mesh_instances(root).map_err(invalid)? {
+    for (mesh_index, transform) in instances {
         let Some(m) = root.meshes.get(mesh_index) else {
             return Err(invalid(format!(
                 "a node refers to mesh {mesh_index}, which does not exist"
             )));
         };
         for (p, primitive) in m.primitives.iter().enumerate() {
-            let name = format!("mesh {mesh_index} primitive {p}");
-            if let Some(part) = read_primitive(&accessors, primitive, transform, &name, warnings)
-                .map_err(|e| invalid(format!("{name}: {e}")))?
-            {
-                if !spans
-                    .iter()
-                    .any(|s| (s.mesh, s.primitive) == (mesh_index, p))
-                {
-                    spans.push(PrimitiveSpan {
-                        mesh: mesh_index,
-                        primitive: p,
-                        first_vertex: mesh.positions.len() as u32,
-                        first_triangle: mesh.triangles.len() as u32,
-                        triangle_count: part.triangles.len() as u32,
-                    });
+            let local = match read.entry((mesh_index, p)) {
+                Entry::Occupied(entry) => entry.into_mut(),
+                Entry::Vacant(entry) => {
+                    let name = format!("mesh {mesh_index} primitive {p}");
+                    entry.insert(
+                        read_primitive(&accessors, primitive, &name, warnings)
+                            .map_err(|e| invalid(format!("{name}: {e}")))?,
+                    )
                 }
-                mesh.append(part);
+            };
+            let Some(local) = local else {
+                continue;
+            };
+            if !spans
+                .iter()
+                .any(|s| (s.mesh, s.primitive) == (mesh_index, p))
+            {
+                spans.push(PrimitiveSpan {
+                    mesh: mesh_index,
+                    primitive: p,
+                    first_vertex: mesh.positions.len() as u32,
+                    first_triangle: mesh.triangles.len() as u32,
+                    triangle_count: local.triangles.len() as u32,
+                });
             }
+            mesh.append(transformed(local, transform));
         }
     }
     Ok(mesh)
 }
 
-/// Every (mesh, world transform) the document draws: the default scene's node tree, or each mesh
-/// once, untransformed, when the file has no scene.
-fn mesh_instances(root: &json::Root) -> Result<Vec<(usize, Mat4)>, String> {
-    let scene = root
-        .scene
-        .map(|s| s.value())
-        .or((!root.scenes.is_empty()).then_some(0));
-    let Some(scene) = scene else {
-        return Ok((0..root.meshes.len())
-            .map(|m| (m, Mat4::IDENTITY))
-            .collect());
-    };
-    let scene = root
-        .scenes
-        .get(scene)
-        .ok_or_else(|| format!("default scene {scene} does not exist"))?;
-    let mut instances = Vec::new();
-    let mut stack: Vec<(usize, Mat4, usize)> = scene
-        .nodes
-        .iter()
-        .map(|n| (n.value(), Mat4::IDENTITY, 0))
-        .collect();
-    while let Some((index, parent, depth)) = stack.pop() {
-        // A node tree is at most as deep as there are nodes; deeper means a cycle.
-        if depth > root.nodes.len() {
-            return Err(format!("node {index} is part of a cycle"));
-        }
-        let node = root
-            .nodes
-            .get(index)
-            .ok_or_else(|| format!("node {index} does not exist"))?;
-        let world = parent * local_transform(node);
-        if let Some(m) = node.mesh {
-            instances.push((m.value(), world));
-        }
-        for child in node.children.iter().flatten() {
-            stack.push((child.value(), world, depth + 1));
-        }
+/// A GLB's header states the file's length; a file longer or shorter than that is damaged (or
+/// carries something that is not glTF).
+fn check_glb_length(bytes: &[u8]) -> Result<(), String> {
+    if !bytes.starts_with(b"glTF") {
+        return Ok(());
     }
-    instances.reverse(); // depth-first in document order
-    Ok(instances)
+    let Some(&[a, b, c, d]) = bytes.get(8..12) else {
+        return Err(format!("GLB header is {} bytes, not 12", bytes.len()));
+    };
+    let declared = u32::from_le_bytes([a, b, c, d]);
+    if u64::from(declared) != bytes.len() as u64 {
+        return Err(format!(
+            "GLB header says the file is {declared} bytes, but it is {}",
+            bytes.len()
+        ));
+    }
+    Ok(())
+}
+
+/// Vertices and triangles one instance of `primitive` adds, from its accessors' declared counts.
+fn primitive_size(root: &json::Root, primitive: &json::mesh::Primitive) -> (u64, u64) {
+    use json::mesh::{Mode, Semantic};
+    let count = |index: usize| root.accessors.get(index).map_or(0, |a| a.count.0);
+    let vertices = primitive
+        .attributes
+        .get(&Checked::Valid(Semantic::Positions))
+        .map_or(0, |a| count(a.value()));
+    let corners = primitive.indices.map_or(vertices, |a| count(a.value()));
+    let triangles = match primitive.mode {
+        Checked::Valid(Mode::Triangles) => corners / 3,
+        Checked::Valid(Mode::TriangleStrip | Mode::TriangleFan) => corners.saturating_sub(2),
+        _ => return (0, 0),
+    };
+    (vertices, triangles)
 }
 
 fn local_transform(node: &json::scene::Node) -> Mat4 {
@@ -174,11 +196,10 @@ fn local_transform(node: &json::scene::Node) -> Mat4 {
     Mat4::from_scale_rotation_translation(s, r, t)
 }
 
-/// One primitive as a mesh part, transformed to world space; `None` if it is not made of triangles.
+/// One primitive as a mesh part in its own space; `None` if it is not made of triangles.
 fn read_primitive(
     accessors: &Accessors,
     primitive: &json::mesh::Primitive,
-    transform: Mat4,
     name: &str,
     warnings: &mut Vec<String>,
 ) -> Result<Option<Mesh>, String> {
@@ -218,15 +239,18 @@ fn read_primitive(
         .into_iter()
         .map(Vec3::from)
         .collect();
+    // Attributes of another length are ignored, so they are not read at all (a huge one would
+    // only cost time).
+    let matching = |a: &usize| accessors.count(*a) == Some(positions.len() as u64);
     let normals = attribute(Semantic::Normals)
+        .filter(matching)
         .map(|a| accessors.read_vectors::<3>(a))
         .transpose()?
-        .filter(|n| n.len() == positions.len())
         .map(|n| n.into_iter().map(Vec3::from).collect::<Vec<_>>());
     let uvs = attribute(Semantic::TexCoords(0))
+        .filter(matching)
         .map(|a| accessors.read_vectors::<2>(a))
         .transpose()?
-        .filter(|t| t.len() == positions.len())
         .map(|t| t.into_iter().map(Vec2::from).collect());
     let indices = match primitive.indices {
         Some(a) => accessors.read_indices(a.value())?,
@@ -243,35 +267,42 @@ fn read_primitive(
         name,
     )?;
 
-    // World space: positions by the matrix, normals by its inverse transpose; a mirroring
-    // transform reverses the winding, so swap two corners to keep faces outward.
+    let material = primitive.material.map_or(0, |m| m.value() as u32 + 1);
+    Ok(Some(Mesh {
+        positions,
+        normals,
+        uvs,
+        materials: vec![material; triangles.len()],
+        triangles,
+        marks,
+    }))
+}
+
+/// A primitive placed in world space: positions by the matrix, normals by its inverse transpose;
+/// a mirroring transform reverses the winding, so two corners swap to keep faces outward.
+fn transformed(local: &Mesh, transform: Mat4) -> Mesh {
     let mirrored = transform.determinant() < 0.0;
     let normal_matrix = Mat3::from_mat4(transform).inverse().transpose();
-    let part = Mesh {
-        positions: positions
+    Mesh {
+        positions: local
+            .positions
             .iter()
             .map(|&p| transform.transform_point3(p))
             .collect(),
-        normals: normals.map(|n| {
+        normals: local.normals.as_ref().map(|n| {
             n.iter()
                 .map(|&v| (normal_matrix * v).normalize_or_zero())
                 .collect()
         }),
-        uvs,
-        triangles: triangles
-            .into_iter()
-            .map(|[a, b, c]| if mirrored { [a, c, b] } else { [a, b, c] })
+        uvs: local.uvs.clone(),
+        triangles: local
+            .triangles
+            .iter()
+            .map(|&[a, b, c]| if mirrored { [a, c, b] } else { [a, b, c] })
             .collect(),
-        materials: Vec::new(),
-        marks: Vec::new(),
-    };
-
-    let material = primitive.material.map_or(0, |m| m.value() as u32 + 1);
-    Ok(Some(Mesh {
-        materials: vec![material; part.triangles.len()],
-        marks,
-        ..part
-    }))
+        materials: local.materials.clone(),
+        marks: local.marks.clone(),
+    }
 }
 
 /// Triangles from a triangle list, strip or fan, as the glTF specification numbers them.

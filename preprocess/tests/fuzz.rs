@@ -1,0 +1,709 @@
+//! The stable-Rust fuzz harness CI runs: structured mutations of the real fixture files fed to
+//! every loader and to the asset decoder, a fixed number of executions from a fixed seed (so a
+//! run is reproducible and takes bounded time). Coverage-guided fuzzing with libFuzzer lives in
+//! `fuzz/` (nightly); this harness needs nothing but `cargo test`.
+//!
+//! What must hold for every mutated input: no panic; a mesh that loads either bakes or is refused
+//! with an error; every asset the bake produces decodes; every asset that decodes re-encodes to an
+//! asset that decodes. A finding prints the seed file, the execution number and where the input
+//! was saved; freeze it as a named test in `tests/hostile.rs`.
+//!
+//! `CHAMFER_FUZZ_EXECUTIONS` (per target; default [`DEFAULT_EXECUTIONS`]) and `CHAMFER_FUZZ_SEED`
+//! change the run; `cargo test --release --test fuzz -- --nocapture` prints executions per second.
+
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use chamfer_preprocess::{BakeOptions, Limits, bake, bake_bytes, load};
+use chamfer_runtime::asset::Asset;
+use serde_json::Value;
+
+/// Executions per target in CI: five targets, 0.1 to 5 s each in release on two cores
+/// (BENCHMARKS.md). At this count the harness finds the hostile classes of issue 16 in the code
+/// before it was fixed (the OBJ, PLY and glTF targets each stop with a finding).
+const DEFAULT_EXECUTIONS: u64 = 40_000;
+
+/// Small limits: a mutation that asks for a lot is refused quickly instead of baked slowly.
+fn limits() -> Limits {
+    Limits::DEFAULT
+        .with_max_input_bytes(1 << 24)
+        .with_max_vertices(1 << 18)
+        .with_max_triangles(1 << 18)
+        .with_max_instances(1 << 12)
+}
+
+fn fixture(relative: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../fixtures")
+        .join(relative)
+}
+
+fn executions() -> u64 {
+    std::env::var("CHAMFER_FUZZ_EXECUTIONS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(DEFAULT_EXECUTIONS)
+}
+
+/// xorshift64*: deterministic, no dependency.
+struct Rng(u64);
+
+impl Rng {
+    fn new(salt: u64) -> Self {
+        let seed = std::env::var("CHAMFER_FUZZ_SEED")
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(0x5eed_c4a3_f3e0_0016u64);
+        Self((seed ^ salt.wrapping_mul(0x9e37_79b9_7f4a_7c15)) | 1)
+    }
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
+    }
+    fn below(&mut self, n: usize) -> usize {
+        if n == 0 {
+            0
+        } else {
+            (self.next() % n as u64) as usize
+        }
+    }
+    fn pick<'a, T>(&mut self, items: &'a [T]) -> &'a T {
+        &items[self.below(items.len())]
+    }
+}
+
+const NUMBERS: &[&str] = &[
+    "0",
+    "-1",
+    "1",
+    "2",
+    "3",
+    "-3",
+    "255",
+    "256",
+    "65535",
+    "65536",
+    "4096",
+    "4097",
+    "16777216",
+    "2147483647",
+    "-2147483648",
+    "4294967295",
+    "4294967296",
+    "9223372036854775807",
+    "18446744073709551615",
+    "18446744073709551612",
+    "1e39",
+    "-1e39",
+    "1e-45",
+    "nan",
+    "inf",
+    "0.5",
+    "-0",
+];
+const WORDS: &[u32] = &[
+    0,
+    1,
+    2,
+    3,
+    0x7f,
+    0x80,
+    0xff,
+    0x100,
+    0xffff,
+    0x1_0000,
+    4096,
+    4097,
+    0x7fff_ffff,
+    0x8000_0000,
+    0xffff_fffe,
+    0xffff_ffff,
+];
+
+/// Byte-level damage: bit flips, interesting values, insertions, deletions, duplication, truncation.
+fn mutate_bytes(bytes: &mut Vec<u8>, rng: &mut Rng) {
+    let len = bytes.len();
+    match rng.below(7) {
+        0 if len > 0 => {
+            let at = rng.below(len);
+            bytes[at] ^= 1 << rng.below(8);
+        }
+        1 if len > 0 => {
+            let at = rng.below(len);
+            bytes[at] = *rng.pick(&[0, 1, 0x7f, 0x80, 0xff, b'\n', b' ', b'-']);
+        }
+        2 if len >= 4 => {
+            let at = rng.below(len - 3);
+            let word = rng.pick(WORDS).to_le_bytes();
+            bytes[at..at + 4].copy_from_slice(&word);
+        }
+        3 => {
+            let at = rng.below(len + 1);
+            let count = 1 + rng.below(16);
+            let noise: Vec<u8> = (0..count).map(|_| rng.next() as u8).collect();
+            bytes.splice(at..at, noise);
+        }
+        4 if len > 0 => {
+            let at = rng.below(len);
+            let end = (at + 1 + rng.below(64)).min(len);
+            bytes.drain(at..end);
+        }
+        5 if len > 0 => {
+            let at = rng.below(len);
+            let end = (at + 1 + rng.below(256)).min(len);
+            let copy = bytes[at..end].to_vec();
+            let to = rng.below(len + 1);
+            bytes.splice(to..to, copy);
+        }
+        _ => bytes.truncate(rng.below(len + 1)),
+    }
+}
+
+/// Spans of number tokens (runs of digits, signs, dots and exponents holding a digit).
+fn number_spans(text: &[u8]) -> Vec<(usize, usize)> {
+    let is_part = |b: u8| b.is_ascii_digit() || matches!(b, b'-' | b'+' | b'.' | b'e' | b'E');
+    let mut spans = Vec::new();
+    let mut i = 0;
+    while i < text.len() {
+        if is_part(text[i]) && (i == 0 || !text[i - 1].is_ascii_alphanumeric()) {
+            let start = i;
+            while i < text.len() && is_part(text[i]) {
+                i += 1;
+            }
+            if text[start..i].iter().any(u8::is_ascii_digit) {
+                spans.push((start, i));
+            }
+        } else {
+            i += 1;
+        }
+    }
+    spans
+}
+
+/// Line- and token-level damage for text formats, with lines the format knows.
+fn mutate_text(text: &mut Vec<u8>, rng: &mut Rng, dictionary: &[&str]) {
+    let mut lines: Vec<Vec<u8>> = text.split(|&b| b == b'\n').map(<[u8]>::to_vec).collect();
+    match rng.below(6) {
+        0 | 1 => {
+            let spans = number_spans(text);
+            if let Some(&(start, end)) = (!spans.is_empty()).then(|| rng.pick(&spans)) {
+                let number = if rng.below(3) == 0 {
+                    (rng.next() % 100_000).to_string()
+                } else {
+                    rng.pick(NUMBERS).to_string()
+                };
+                text.splice(start..end, number.into_bytes());
+            }
+            return;
+        }
+        2 if !lines.is_empty() => {
+            let at = rng.below(lines.len());
+            let line = lines[at].clone();
+            lines.insert(rng.below(lines.len() + 1), line);
+        }
+        3 if !lines.is_empty() => {
+            lines.remove(rng.below(lines.len()));
+        }
+        4 if lines.len() > 1 => {
+            let (a, b) = (rng.below(lines.len()), rng.below(lines.len()));
+            lines.swap(a, b);
+        }
+        _ => {
+            let line = rng.pick(dictionary).as_bytes().to_vec();
+            lines.insert(rng.below(lines.len() + 1), line);
+        }
+    }
+    *text = lines.join(&b'\n');
+}
+
+const OBJ_LINES: &[&str] = &[
+    "mtllib ../secret.mtl",
+    "mtllib /dev/zero",
+    "mtllib materials.mtl",
+    "usemtl red",
+    "usemtl blue",
+    "o part",
+    "g group",
+    "f 1 2 3",
+    "f -1 -2 -3",
+    "f 1/1/1 2/2/2 3/3/3",
+    "f 1//1 2//1 3//1",
+    "f 1 2 3 4 5 6 7 8",
+    "f 1 1 1",
+    "f 0 1 2",
+    "v 1e30 0 0",
+    "v 0 0 0 1 0 0",
+    "vt 0 0",
+    "vn 0 0 1",
+    "l 1 2",
+    "p 1",
+    "s 1",
+    "\u{feff}v 0 0 0",
+];
+
+const PLY_HEADER_LINES: &[&str] = &[
+    "element junk 18446744073709551615",
+    "element edge 3",
+    "property int vertex1",
+    "property int vertex2",
+    "property float radius",
+    "property float nx",
+    "property list uint int vertex_indices",
+    "property list uchar uint vertex_index",
+    "property double z",
+    "comment fuzz",
+    "format binary_big_endian 1.0",
+];
+
+/// Mutates a PLY: header lines and counts, or the body's bytes.
+fn mutate_ply(bytes: &mut Vec<u8>, rng: &mut Rng) {
+    let marker = b"end_header\n";
+    let split = bytes
+        .windows(marker.len())
+        .position(|w| w == marker)
+        .map(|p| p + marker.len());
+    match split {
+        Some(at) if rng.below(2) == 0 => {
+            let mut header = bytes[..at - marker.len()].to_vec();
+            mutate_text(&mut header, rng, PLY_HEADER_LINES);
+            let mut out = header;
+            if !out.ends_with(b"\n") {
+                out.push(b'\n');
+            }
+            out.extend_from_slice(&bytes[at - marker.len()..]);
+            *bytes = out;
+        }
+        Some(at) => {
+            let mut body = bytes[at..].to_vec();
+            if bytes.starts_with(b"ply\nformat ascii") {
+                mutate_text(&mut body, rng, &["3 0 1 2", "4 0 1 2 3", "0 0 0", "-1 2 3"]);
+            } else {
+                mutate_bytes(&mut body, rng);
+            }
+            bytes.truncate(at);
+            bytes.extend(body);
+        }
+        None => mutate_bytes(bytes, rng),
+    }
+}
+
+const JSON_KEYS: &[&str] = &[
+    "byteOffset",
+    "byteStride",
+    "byteLength",
+    "count",
+    "bufferView",
+    "buffer",
+    "indices",
+    "children",
+    "mesh",
+    "mode",
+    "uri",
+    "sparse",
+    "componentType",
+    "normalized",
+    "matrix",
+    "scale",
+];
+const JSON_STRINGS: &[&str] = &[
+    "../secret.bin",
+    "/etc/passwd",
+    "/dev/zero",
+    "two-materials.bin",
+    "data:application/octet-stream;base64,AAAAAAAAAAAAAAAA",
+    "data:application/octet-stream;base64,@@",
+    "VEC3",
+    "VEC2",
+    "SCALAR",
+    "MAT4",
+    "KHR_draco_mesh_compression",
+];
+
+/// Every JSON pointer in `value`.
+fn pointers(value: &Value, at: String, out: &mut Vec<String>) {
+    match value {
+        Value::Array(items) => {
+            for (i, item) in items.iter().enumerate() {
+                pointers(item, format!("{at}/{i}"), out);
+            }
+        }
+        Value::Object(map) => {
+            for (key, item) in map {
+                pointers(
+                    item,
+                    format!("{at}/{}", key.replace('~', "~0").replace('/', "~1")),
+                    out,
+                );
+            }
+        }
+        _ => {}
+    }
+    out.push(at);
+}
+
+/// A structural change to a glTF document: numbers, strings, array elements and keys.
+fn mutate_json(document: &mut Value, rng: &mut Rng) {
+    let mut all = Vec::new();
+    pointers(document, String::new(), &mut all);
+    let target = rng.pick(&all).clone();
+    let Some(slot) = document.pointer_mut(&target) else {
+        return;
+    };
+    let number = |rng: &mut Rng| -> Value {
+        let text = rng.pick(NUMBERS);
+        serde_json::from_str(text).unwrap_or_else(|_| Value::from(rng.next() % 70_000))
+    };
+    match slot {
+        Value::Number(_) | Value::Bool(_) | Value::Null => *slot = number(rng),
+        Value::String(_) => *slot = Value::from(*rng.pick(JSON_STRINGS)),
+        Value::Array(items) => match rng.below(4) {
+            0 if !items.is_empty() => {
+                let i = rng.below(items.len());
+                let copy = items[i].clone();
+                items.insert(i, copy);
+            }
+            1 if !items.is_empty() => {
+                items.remove(rng.below(items.len()));
+            }
+            2 => items.push(number(rng)),
+            _ => *slot = number(rng),
+        },
+        Value::Object(map) => match rng.below(3) {
+            0 if !map.is_empty() => {
+                let key = map
+                    .keys()
+                    .nth(rng.below(map.len()))
+                    .cloned()
+                    .unwrap_or_default();
+                map.remove(&key);
+            }
+            _ => {
+                let value = if rng.below(2) == 0 {
+                    number(rng)
+                } else {
+                    Value::Array(vec![number(rng), number(rng)])
+                };
+                map.insert(rng.pick(JSON_KEYS).to_string(), value);
+            }
+        },
+    }
+}
+
+fn mutate_gltf(bytes: &mut Vec<u8>, rng: &mut Rng) {
+    match serde_json::from_slice::<Value>(bytes) {
+        Ok(mut document) if rng.below(4) != 0 => {
+            mutate_json(&mut document, rng);
+            *bytes = serde_json::to_vec(&document).unwrap_or_default();
+        }
+        _ => mutate_text(bytes, rng, &["{", "}", "[]", "\"uri\": \"../x.bin\","]),
+    }
+}
+
+/// Mutates a GLB's JSON chunk or binary chunk and rebuilds the container with true lengths, or
+/// (a quarter of the time) damages the container itself.
+fn mutate_glb(bytes: &mut Vec<u8>, rng: &mut Rng) {
+    let word = |b: &[u8], at: usize| {
+        b.get(at..at + 4)
+            .map(|w| u32::from_le_bytes([w[0], w[1], w[2], w[3]]) as usize)
+    };
+    let chunks = (|| {
+        let json_len = word(bytes, 12)?;
+        let json = bytes.get(20..20 + json_len)?.to_vec();
+        let bin_at = 20 + json_len;
+        let bin = match word(bytes, bin_at) {
+            Some(n) => bytes.get(bin_at + 8..bin_at + 8 + n)?.to_vec(),
+            None => Vec::new(),
+        };
+        Some((json, bin))
+    })();
+    let Some((mut json, mut bin)) = chunks.filter(|_| rng.below(4) != 0) else {
+        mutate_bytes(bytes, rng);
+        return;
+    };
+    if rng.below(3) == 0 {
+        mutate_bytes(&mut bin, rng);
+    } else {
+        mutate_gltf(&mut json, rng);
+    }
+    while json.len() % 4 != 0 {
+        json.push(b' ');
+    }
+    while bin.len() % 4 != 0 {
+        bin.push(0);
+    }
+    let mut out = b"glTF".to_vec();
+    out.extend(2u32.to_le_bytes());
+    out.extend(((28 + json.len() + bin.len()) as u32).to_le_bytes());
+    out.extend((json.len() as u32).to_le_bytes());
+    out.extend(b"JSON");
+    out.extend(json);
+    out.extend((bin.len() as u32).to_le_bytes());
+    out.extend(b"BIN\0");
+    out.extend(bin);
+    *bytes = out;
+}
+
+/// Damages an asset's bytes, often in its header and section table.
+fn mutate_asset(bytes: &mut Vec<u8>, rng: &mut Rng) {
+    let header_end = bytes
+        .get(12..16)
+        .map_or(0, |w| {
+            16 + u32::from_le_bytes([w[0], w[1], w[2], w[3]]) as usize
+        })
+        .min(bytes.len());
+    if header_end > 24 && rng.below(2) == 0 {
+        // A u64 of the header (lengths, counts, section offsets and lengths are all u64).
+        let at = 16 + 8 * rng.below((header_end - 24) / 8);
+        let value: u64 = match rng.below(4) {
+            0 => u64::from(*rng.pick(WORDS)),
+            1 => u64::MAX - rng.below(16) as u64,
+            2 => rng.next() % (bytes.len() as u64 + 64),
+            _ => 1 << rng.below(64),
+        };
+        bytes[at..at + 8].copy_from_slice(&value.to_le_bytes());
+    } else {
+        mutate_bytes(bytes, rng);
+    }
+}
+
+/// A mesh file the harness starts from, copied (with its companions) into a scratch folder so
+/// mutated references can only reach what is there.
+struct Seed {
+    name: String,
+    bytes: Vec<u8>,
+}
+
+fn seeds(names: &[&str]) -> Vec<Seed> {
+    names
+        .iter()
+        .map(|name| Seed {
+            name: Path::new(name)
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default(),
+            bytes: std::fs::read(fixture(name)).unwrap_or_else(|e| panic!("{name}: {e}")),
+        })
+        .collect()
+}
+
+/// A scratch folder with the companion files the seeds refer to.
+fn scratch() -> tempfile::TempDir {
+    let dir = tempfile::tempdir().expect("tempdir");
+    std::fs::copy(
+        fixture("shapes/two-materials.bin"),
+        dir.path().join("two-materials.bin"),
+    )
+    .expect("copy");
+    std::fs::write(
+        dir.path().join("materials.mtl"),
+        "newmtl red\nKd 1 0 0\nnewmtl blue\nKd 0 0 1\n",
+    )
+    .expect("write");
+    dir
+}
+
+/// What one execution checks: loading never panics, a loaded mesh bakes or is refused, and every
+/// baked asset decodes.
+/// True if the input was accepted (loaded and baked).
+fn load_and_bake(path: &Path, bytes: &[u8]) -> bool {
+    let limits = limits();
+    let Ok(loaded) = load::load_bytes(path, bytes, &limits) else {
+        return false;
+    };
+    let options = BakeOptions::DEFAULT.with_limits(limits);
+    let Ok(baked) = bake(loaded.mesh, "fuzz", &options) else {
+        return false;
+    };
+    let encoded = baked.asset.encode_to_vec();
+    if let Err(e) = Asset::decode(&encoded) {
+        panic!("a baked asset does not decode: {e}");
+    }
+    true
+}
+
+/// Every decoded asset re-encodes to one that decodes to the same asset. True if it decoded.
+fn decode_round_trip(_: &Path, bytes: &[u8]) -> bool {
+    let decoded = Asset::decode(bytes);
+    let accepted = decoded.is_ok();
+    if let Ok(mut asset) = decoded {
+        let mut again = Asset::decode(&asset.encode_to_vec()).expect("a re-encoded asset decodes");
+        // The section table is the file's layout (padding may differ); the content must not.
+        asset.header.sections.clear();
+        again.header.sections.clear();
+        assert_eq!(again, asset, "re-encoding changed the asset");
+    }
+    accepted
+}
+
+/// The input being checked, for the watchdog to save if it never returns.
+type Current = std::sync::Mutex<(u64, String, Vec<u8>)>;
+
+/// Runs `executions()` mutated inputs through `check`, reports speed, and on a panic (or an
+/// execution still running after [`WATCHDOG_SECONDS`]) saves the input and names it.
+fn run(
+    target: &'static str,
+    salt: u64,
+    seeds: Vec<Seed>,
+    mutate: fn(&mut Vec<u8>, &mut Rng),
+    check: fn(&Path, &[u8]) -> bool,
+) {
+    let current: std::sync::Arc<Current> = Default::default();
+    let (done, finished) = std::sync::mpsc::channel();
+    let worker = {
+        let current = current.clone();
+        std::thread::spawn(move || {
+            execute(target, salt, &seeds, mutate, check, &current);
+            let _ = done.send(());
+        })
+    };
+    match finished.recv_timeout(std::time::Duration::from_secs(WATCHDOG_SECONDS)) {
+        Ok(()) => {}
+        Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => {
+            let _ = worker.join(); // the worker panicked: its message names the input
+            panic!("fuzz {target}: a finding (see above)");
+        }
+        Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {
+            let (execution, name, bytes) = current.lock().map(|c| c.clone()).unwrap_or_default();
+            let saved = save(target, execution, &name, &bytes);
+            panic!(
+                "fuzz {target}: execution {execution} (seed file {name}) still running after {WATCHDOG_SECONDS} s; input saved to {}",
+                saved.display()
+            );
+        }
+    }
+}
+
+/// Far above any execution's time: only a hang reaches it.
+const WATCHDOG_SECONDS: u64 = 300;
+
+fn save(target: &str, execution: u64, name: &str, bytes: &[u8]) -> PathBuf {
+    let saved = std::env::temp_dir().join(format!("chamfer-fuzz-{target}-{execution}-{name}"));
+    let _ = std::fs::write(&saved, bytes);
+    saved
+}
+
+fn execute(
+    target: &str,
+    salt: u64,
+    seeds: &[Seed],
+    mutate: fn(&mut Vec<u8>, &mut Rng),
+    check: fn(&Path, &[u8]) -> bool,
+    current: &Current,
+) {
+    let dir = scratch();
+    let mut rng = Rng::new(salt);
+    let total = executions();
+    let start = Instant::now();
+    let mut accepted = 0u64;
+    for execution in 0..total {
+        let seed = &seeds[execution as usize % seeds.len()];
+        let mut bytes = seed.bytes.clone();
+        for _ in 0..1 + rng.below(4) {
+            mutate(&mut bytes, &mut rng);
+        }
+        if let Ok(mut c) = current.lock() {
+            *c = (execution, seed.name.clone(), bytes.clone());
+        }
+        let path = dir.path().join(&seed.name);
+        let outcome = catch_unwind(AssertUnwindSafe(|| check(&path, &bytes)));
+        accepted += u64::from(outcome.as_ref().is_ok_and(|&a| a));
+        if outcome.is_err() {
+            let saved = save(target, execution, &seed.name, &bytes);
+            panic!(
+                "fuzz {target}: execution {execution} (seed file {}) panicked; input saved to {}",
+                seed.name,
+                saved.display()
+            );
+        }
+    }
+    let seconds = start.elapsed().as_secs_f64();
+    eprintln!(
+        "fuzz {target}: {total} executions ({accepted} accepted) in {seconds:.2} s = {:.0} executions/s, no findings",
+        total as f64 / seconds
+    );
+}
+
+#[test]
+fn fuzz_obj() {
+    let seeds = seeds(&[
+        "shapes/cube.obj",
+        "shapes/cone-16.obj",
+        "shapes/nonmanifold-fan.obj",
+        "shapes/plane-4x4.obj",
+        "broken/index-out-of-range.obj",
+        "broken/all-degenerate.obj",
+    ]);
+    run(
+        "obj",
+        1,
+        seeds,
+        |b, r| {
+            if r.below(4) == 0 {
+                mutate_bytes(b, r)
+            } else {
+                mutate_text(b, r, OBJ_LINES)
+            }
+        },
+        load_and_bake,
+    );
+}
+
+#[test]
+fn fuzz_ply() {
+    let seeds = seeds(&[
+        "shapes/cube-marked-ascii.ply",
+        "shapes/cube-marked-le.ply",
+        "shapes/cube-marked-be.ply",
+        "broken/truncated.ply",
+    ]);
+    run("ply", 2, seeds, mutate_ply, load_and_bake);
+}
+
+#[test]
+fn fuzz_gltf() {
+    let seeds = seeds(&[
+        "shapes/cube-edge-visibility.gltf",
+        "shapes/cube-marked-extras.gltf",
+        "shapes/cube-outline.gltf",
+        "shapes/cube-quantized.gltf",
+        "shapes/two-materials.gltf",
+        "shapes/two-materials-external.gltf",
+        "broken/bad-index.gltf",
+    ]);
+    run("gltf", 3, seeds, mutate_gltf, load_and_bake);
+}
+
+#[test]
+fn fuzz_glb() {
+    let seeds = seeds(&[
+        "shapes/cube-marked-extras.glb",
+        "shapes/two-materials.glb",
+        "broken/truncated.glb",
+    ]);
+    run("glb", 4, seeds, mutate_glb, load_and_bake);
+}
+
+#[test]
+fn fuzz_asset_decode() {
+    let seeds: Vec<Seed> = [
+        "shapes/cube.obj",
+        "shapes/cube-marked-le.ply",
+        "shapes/two-materials.glb",
+    ]
+    .iter()
+    .map(|name| {
+        let options = BakeOptions::DEFAULT.with_radius(chamfer_preprocess::Radius::Relative(0.01));
+        let path = fixture(name);
+        let bytes = std::fs::read(&path).expect("read");
+        let baked = bake_bytes(&path, &bytes, &options).expect("seed bakes");
+        Seed {
+            name: format!("{name}.chamfer").replace('/', "-"),
+            bytes: baked.asset.encode_to_vec(),
+        }
+    })
+    .collect();
+    run("asset", 5, seeds, mutate_asset, decode_round_trip);
+}
