@@ -397,6 +397,84 @@ fn render_refuses_bad_input_and_options_and_keeps_the_old_picture() {
         2,
         "temporary files left"
     );
+    // An unknown technique is a usage error (exit 2), with the names that exist.
+    let run = chamfer(&[
+        "render",
+        "-o",
+        path_str(&png),
+        path_str(&cube),
+        "--technique",
+        "no-such",
+    ]);
+    let stderr = text(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("--technique") && stderr.contains("mcguire-hughes"),
+        "{stderr}"
+    );
+    assert_eq!(std::fs::read(&png).expect("png"), b"previous picture");
+}
+
+#[test]
+fn render_draws_every_technique_its_help_lists() {
+    let run = chamfer(&["render", "--help"]);
+    let help = text(&run.stdout);
+    let names: Vec<&str> = help
+        .lines()
+        .find_map(|l| l.trim().strip_prefix("[possible values: joined"))
+        .map(|rest| rest.trim_end_matches(']').split(", ").skip(1).collect())
+        .expect("the technique list in --help");
+    assert!(names.len() >= 20, "{names:?}");
+    let dir = tempfile::tempdir().expect("tempdir");
+    for name in std::iter::once("joined").chain(names) {
+        let png = dir.path().join(format!("{name}.png"));
+        let run = chamfer(&[
+            "render",
+            path_str(&fixture("shapes/cube.obj")),
+            "-o",
+            path_str(&png),
+            "--width",
+            "64",
+            "--height",
+            "48",
+            "--technique",
+            name,
+        ]);
+        assert!(run.status.success(), "{name}: {}", text(&run.stderr));
+        let bytes = std::fs::read(&png).expect("png");
+        assert_eq!(&bytes[1..4], b"PNG", "{name}");
+    }
+}
+
+#[test]
+fn a_picture_the_device_cannot_hold_is_an_error_not_a_panic() {
+    // 16384² with 4 samples needs a 4 GiB colour texture for MSAA alone: the software adapter
+    // refuses it (and a device that accepts it renders it). Either way, no panic.
+    let dir = tempfile::tempdir().expect("tempdir");
+    let png = dir.path().join("huge.png");
+    let run = chamfer(&[
+        "render",
+        path_str(&fixture("shapes/cube.obj")),
+        "-o",
+        path_str(&png),
+        "--width",
+        "16384",
+        "--height",
+        "16384",
+    ]);
+    let stderr = text(&run.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    match run.status.code() {
+        Some(0) => assert!(png.exists()),
+        Some(1) => {
+            assert!(
+                stderr.contains("cube.obj") && stderr.contains("GPU"),
+                "{stderr}"
+            );
+            assert!(!png.exists());
+        }
+        other => panic!("exit {other:?}: {stderr}"),
+    }
 }
 
 /// Runs `command`, killing it and failing the test if it has not exited within 30 s.
