@@ -60,9 +60,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         gpu.info.name, gpu.info.backend, size[0], size[1]
     );
     println!(
-        "| mesh | triangles | edges | technique | frame ms | over mesh-only | GPU bytes per edge (asset + extras + per frame) |"
+        "| mesh | triangles | edges | technique | frame ms | over mesh-only | post pass alone ms | GPU bytes per edge (asset + extras + per frame) | per-frame MB |"
     );
-    println!("|---|---:|---:|---|---:|---:|---:|");
+    println!("|---|---:|---:|---|---:|---:|---:|---:|---:|");
     for mesh in &meshes {
         let asset =
             chamfer_preprocess::bake_file(mesh, &chamfer_preprocess::BakeOptions::DEFAULT)?.asset;
@@ -120,37 +120,69 @@ fn bench(
         gpu.submit(encoder)?;
         Ok(start.elapsed().as_secs_f64() * 1e3)
     };
+    // The post-process's own pass, alone: a frame that only records `finish` over the picture the
+    // last frame left (what must not grow with the mesh).
+    let finish_only = |technique: Technique,
+                       edges: &mut EdgeRenderer|
+     -> Result<f64, Box<dyn std::error::Error>> {
+        let style = EdgeStyle {
+            technique,
+            ..EdgeStyle::default()
+        };
+        let mut dropped = gpu.encoder();
+        let prepared = edges.prepare(&gpu.queue, &mut dropped, &camera, &style)?;
+        let start = Instant::now();
+        let mut encoder = gpu.encoder();
+        prepared.finish(&mut encoder, &target.views())?;
+        gpu.submit(encoder)?;
+        Ok(start.elapsed().as_secs_f64() * 1e3)
+    };
     let mut base = Vec::new();
     let mut times = vec![Vec::new(); renderers.len()];
+    let mut post = vec![Vec::new(); renderers.len()];
     for round in 0..frames + 2 {
         let m = mesh_only(&mesh)?;
-        let row: Vec<f64> = renderers
-            .iter_mut()
-            .map(|(t, r)| with(&mesh, *t, r))
-            .collect::<Result<_, _>>()?;
+        let mut row = Vec::new();
+        let mut post_row = Vec::new();
+        for (t, r) in renderers.iter_mut() {
+            row.push(with(&mesh, *t, r)?);
+            post_row.push(if t.is_post_process() {
+                Some(finish_only(*t, r)?)
+            } else {
+                None
+            });
+        }
         if round >= 2 {
             base.push(m);
             for (list, t) in times.iter_mut().zip(row) {
                 list.push(t);
+            }
+            for (list, t) in post.iter_mut().zip(post_row) {
+                list.extend(t);
             }
         }
     }
     let m = median(base);
     let edges = u64::from(uploaded.edge_count()).max(1);
     println!(
-        "| {name} | {} | {} | mesh only | {m:.1} | | {:.1} |",
+        "| {name} | {} | {} | mesh only | {m:.1} | | | {:.1} | |",
         asset.triangle_count(),
         asset.edge_count(),
         uploaded.gpu_bytes() as f64 / edges as f64 - extras_per_edge(&uploaded, techniques, edges)
     );
     let core =
         uploaded.gpu_bytes() - uploaded.extras_bytes(chamfer_runtime::render::AssetExtras::ALL);
-    for ((technique, renderer), list) in renderers.iter().zip(times) {
+    for (((technique, renderer), list), post) in renderers.iter().zip(times).zip(post) {
         let t = median(list);
+        let post = if post.is_empty() {
+            String::new()
+        } else {
+            format!("{:.1}", median(post))
+        };
         let extras = uploaded.extras_bytes(technique.needs());
         let per_edge = (core + extras + renderer.gpu_bytes()) as f64 / edges as f64;
         println!(
-            "| {name} | {} | {} | {} | {t:.1} | {:+.0}% | {per_edge:.1} ({:.1} + {:.1} + {:.1}) |",
+            "| {name} | {} | {} | {} | {t:.1} | {:+.0}% | {post} | {per_edge:.1} ({:.1} + {:.1} + {:.1}) | {:.1} |",
             asset.triangle_count(),
             asset.edge_count(),
             technique.name(),
@@ -158,6 +190,7 @@ fn bench(
             core as f64 / edges as f64,
             extras as f64 / edges as f64,
             renderer.gpu_bytes() as f64 / edges as f64,
+            renderer.gpu_bytes() as f64 / 1e6,
         );
     }
     Ok(())
