@@ -1,5 +1,15 @@
-// Turns the number of drawn edges into the workgroup counts of the next-index join pass: one
-// thread per drawn edge end, WORKGROUP per workgroup, at most MAX_GROUPS workgroups per dimension.
+// The frame's bookkeeping passes over the draw lists: `reset` before the first instance, `args` after
+// each instance's classification (the workgroup counts of its join pass: one thread per drawn edge
+// end, WORKGROUP per workgroup, at most MAX_GROUPS per dimension), `finish` after the last (the
+// lists' counts clamped to their capacity, and what was wanted). Included after common.wgsl, for the
+// frame uniform.
+
+struct DrawArgs {
+    vertex_count: u32,
+    instance_count: atomic<u32>,
+    first_vertex: u32,
+    first_instance: u32,
+}
 
 struct Cap {
     end: u32,
@@ -10,20 +20,45 @@ struct Cap {
 }
 
 struct Out {
-    edges: array<u32, 4>,
-    caps: array<u32, 4>,
-    _pad: array<u32, 4>,
+    edges: DrawArgs,
+    caps: DrawArgs,
+    needed: u32,
+    _pad: array<u32, 3>,
     cap_list: array<Cap>,
 }
 
-@group(0) @binding(0) var<storage, read> counts: Out;
-@group(0) @binding(1) var<storage, read_write> dispatch: array<u32, 4>;
+@group(0) @binding(8) var<storage, read_write> out: Out;
+@group(0) @binding(14) var<storage, read_write> starts: array<u32>;
+@group(0) @binding(16) var<storage, read_write> dispatch: array<u32, 4>;
+
+@compute @workgroup_size(1)
+fn reset() {
+    out.edges.vertex_count = 6u;
+    atomicStore(&out.edges.instance_count, 0u);
+    out.edges.first_vertex = 0u;
+    out.edges.first_instance = 0u;
+    out.caps.vertex_count = 6u;
+    atomicStore(&out.caps.instance_count, 0u);
+    out.caps.first_vertex = 0u;
+    out.caps.first_instance = 0u;
+}
 
 @compute @workgroup_size(1)
 fn args() {
-    let groups = (2u * counts.edges[1] + WORKGROUP - 1u) / WORKGROUP;
+    let filled = min(atomicLoad(&out.edges.instance_count), frame.capacity) - starts[frame.instance];
+    let groups = (2u * filled + WORKGROUP - 1u) / WORKGROUP;
     let x = min(groups, MAX_GROUPS);
     dispatch[0] = x;
     dispatch[1] = select(0u, (groups + x - 1u) / max(x, 1u), x > 0u);
     dispatch[2] = 1u;
+}
+
+// The lists are bounded; never let the draws read past them, and say how much was wanted.
+@compute @workgroup_size(1)
+fn finish() {
+    let wanted = atomicLoad(&out.edges.instance_count);
+    out.needed = wanted;
+    atomicStore(&out.edges.instance_count, min(wanted, frame.capacity));
+    let caps = atomicLoad(&out.caps.instance_count);
+    atomicStore(&out.caps.instance_count, min(caps, frame.cap_capacity));
 }

@@ -30,7 +30,7 @@ fn cap_vertex_main(
     );
     // One pixel of margin so the sector's rim is never cut by the square.
     v.position = from_pixels(end.p + corner * (cap.radius + 1.0), end.depth, end.w);
-    v.color = frame.colors[cap.color];
+    v.color = drawn_color(cap.color);
     v.center = vec3<f32>(end.p, cap.radius);
     v.sector = vec4<f32>(unpack2x16snorm(cap.from_dir), unpack2x16snorm(cap.to_dir));
     return v;

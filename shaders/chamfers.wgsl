@@ -3,8 +3,9 @@
 
 @compute @workgroup_size(WORKGROUP)
 fn chamfer_records(@builtin(global_invocation_id) id: vec3<u32>) {
-    let slot = thread_index(id);
-    if slot >= atomicLoad(&out.edges.instance_count) {
+    let first = first_slot();
+    let slot = first + thread_index(id);
+    if slot >= slots_filled() {
         return;
     }
     let item = drawn[slot];
@@ -34,6 +35,7 @@ fn chamfer_records(@builtin(global_invocation_id) id: vec3<u32>) {
         vec4<f32>(n2, dot(across, n1 + n2) / (1.0 + dot(n1, n2))),
         vec4<f32>(across, distance),
         vec4<f32>(middle, radius),
+        vec4<f32>(to_viewer, 0.0),
     );
     chamfers[slot] = record;
 

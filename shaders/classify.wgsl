@@ -1,16 +1,10 @@
 // Per frame, one thread per edge: which edges to draw (thesis §6.1, §10.4), appended to a compact
 // list whose length is the instance count of the indirect draw.
 
+// Before an instance's classification: its slots start at the count so far.
 @compute @workgroup_size(1)
-fn reset() {
-    out.edges.vertex_count = 6u;
-    atomicStore(&out.edges.instance_count, 0u);
-    out.edges.first_vertex = 0u;
-    out.edges.first_instance = 0u;
-    out.caps.vertex_count = 6u;
-    atomicStore(&out.caps.instance_count, 0u);
-    out.caps.first_vertex = 0u;
-    out.caps.first_instance = 0u;
+fn mark() {
+    starts[frame.instance] = slots_filled();
 }
 
 @compute @workgroup_size(WORKGROUP)
@@ -35,16 +29,14 @@ fn classify(
         return;
     }
     let s = edge_screen(e, word);
-    word |= select(0u, ON_SCREEN, s.visible) | (s.clipped << CLIPPED_SHIFT);
+    word |= select(0u, ON_SCREEN, s.visible) | (s.clipped << CLIPPED_SHIFT)
+        | (frame.instance << INSTANCE_SHIFT);
     let slot = atomicAdd(&out.edges.instance_count, 1u);
+    if slot >= frame.capacity {
+        // Past the lists: not drawn this frame; `finish` reports how many were wanted.
+        return;
+    }
     drawn[slot] = vec2<u32>(e, word);
     screen[slot] = to_record(s);
     state[e] = slot + 1u;
-}
-
-// The cap list is bounded; never let the draw read past it.
-@compute @workgroup_size(1)
-fn finish() {
-    let caps = atomicLoad(&out.caps.instance_count);
-    atomicStore(&out.caps.instance_count, min(caps, frame.cap_capacity));
 }

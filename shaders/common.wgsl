@@ -40,8 +40,10 @@ struct Frame {
     // The mesh's index width and triangle count, for the techniques that pull triangles.
     indices_u16: u32,
     triangle_count: u32,
-    _pad0: u32,
-    _pad1: u32,
+    // This instance's number among the frame's drawn instances.
+    instance: u32,
+    // Slots of the frame's drawn-edge lists (joined technique).
+    capacity: u32,
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;

@@ -13,6 +13,9 @@
 // Per edge, the planes of its two faces (normal, offset) oriented consistently, so one dot product
 // with the homogeneous eye says which way a face looks. Computed when the asset is uploaded.
 @group(0) @binding(9) var<storage, read> planes: array<vec4<f32>>;
+// Per drawn instance, its first slot: instances are classified and joined one after the other, so
+// an instance's drawn edges are the slots from its start to the count.
+@group(0) @binding(14) var<storage, read_write> starts: array<u32>;
 
 struct DrawArgs {
     vertex_count: u32,
@@ -34,8 +37,20 @@ struct Cap {
 struct Out {
     edges: DrawArgs,
     caps: DrawArgs,
-    _pad: array<u32, 4>,
+    // Edges the frame wanted to draw, past the lists' capacity or not (the host grows the lists).
+    needed: u32,
+    _pad: array<u32, 3>,
     cap_list: array<Cap>,
+}
+
+// Slots filled so far, at most the capacity.
+fn slots_filled() -> u32 {
+    return min(atomicLoad(&out.edges.instance_count), frame.capacity);
+}
+
+// This instance's first slot.
+fn first_slot() -> u32 {
+    return starts[frame.instance];
 }
 
 fn ring(i: u32) -> u32 {

@@ -19,7 +19,15 @@ struct Cap {
 struct Out {
     edges: array<u32, 4>,
     caps: array<u32, 4>,
-    _pad: array<u32, 4>,
+    needed: u32,
+    _pad: array<u32, 3>,
     cap_list: array<Cap>,
+}
+
+// Per drawn instance, its five class colours (the drawn word's instance bits pick the five).
+@group(0) @binding(15) var<storage, read> instance_colors: array<vec4<f32>>;
+
+fn drawn_color(word: u32) -> vec4<f32> {
+    return instance_colors[(word >> INSTANCE_SHIFT) * 5u + (word & 0xffu)];
 }
 

@@ -39,7 +39,7 @@ fn edge_vertex_main(
         w = s.w.y;
     }
     v.position = from_pixels(p + n * extent, depth, w);
-    v.color = frame.colors[item.y & 0xffu];
+    v.color = drawn_color(item.y);
     v.ends = vec4<f32>(s.s0, s.s1);
     let j0 = joins[2u * slot];
     let j1 = joins[2u * slot + 1u];
@@ -74,7 +74,7 @@ fn edge_fragment(v: EdgeVarying) -> @location(0) vec4<f32> {
 fn highlight_pixel(record: ChamferRecord, across_px: f32) -> vec4<f32> {
     let arc = arc_of(record.n1.xyz, record.n2.xyz);
     let middle = record.middle.xyz;
-    let to_viewer = to_viewer_at(middle);
+    let to_viewer = record.viewer.xyz;
     let visible = visible_range(arc, to_viewer);
     if visible.x >= visible.y {
         discard;

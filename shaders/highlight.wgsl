@@ -20,6 +20,8 @@ struct ChamferRecord {
     across: vec4<f32>,
     // The edge's middle; `w`: the radius in mesh units.
     middle: vec4<f32>,
+    // Towards the viewer from the middle, unit: the draw pass cannot know the instance's eye.
+    viewer: vec4<f32>,
 }
 
 struct Lighting {

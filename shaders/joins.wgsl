@@ -27,8 +27,10 @@ fn end_at(index: u32) -> End {
     let k = index & 1u;
     // Classify writes `state` only for the edges it draws, so an entry may be left from an earlier
     // frame: it counts only if its slot is in this frame's list and holds this edge.
+    // Instances of one asset run one after another over the asset's one `state`, so the slot must
+    // also be this instance's.
     let state_word = state[e];
-    if state_word == 0u || state_word > atomicLoad(&out.edges.instance_count) {
+    if state_word == 0u || state_word - 1u < first_slot() || state_word > slots_filled() {
         return end;
     }
     end.slot = state_word - 1u;
@@ -40,7 +42,8 @@ fn end_at(index: u32) -> End {
     if (word & DRAWN_HIGHLIGHT) != 0u {
         return end;
     }
-    end.color = word & 0xffu;
+    // Where drawn_color finds it: the instance's five colours, then the class.
+    end.color = word & (0xffu | ~((1u << INSTANCE_SHIFT) - 1u));
     let s = from_record(screen[end.slot], word);
     if !s.visible || (s.clipped & (1u << k)) != 0u {
         return end;
@@ -147,13 +150,15 @@ fn joins_next(
     @builtin(global_invocation_id) id: vec3<u32>,
 ) {
     let t = thread_index(id);
-    if t >= 2u * atomicLoad(&out.edges.instance_count) {
+    let first = first_slot();
+    if t >= 2u * (slots_filled() - first) {
         return;
     }
-    let start = 2u * drawn[t >> 1u].x + (t & 1u);
+    let index = 2u * first + t;
+    let start = 2u * drawn[index >> 1u].x + (index & 1u);
     let me = end_at(start);
     if !me.ok {
-        joins[t] = vec2<u32>(0u);
+        joins[index] = vec2<u32>(0u);
         return;
     }
     var found = no_neighbours();
@@ -171,8 +176,9 @@ fn clear_joins(
     @builtin(global_invocation_id) id: vec3<u32>,
 ) {
     let t = thread_index(id);
-    if t < 2u * atomicLoad(&out.edges.instance_count) {
-        joins[t] = vec2<u32>(0u);
+    let first = first_slot();
+    if t < 2u * (slots_filled() - first) {
+        joins[2u * first + t] = vec2<u32>(0u);
     }
 }
 

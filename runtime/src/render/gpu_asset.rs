@@ -42,6 +42,8 @@ pub struct GpuAsset {
     pub(crate) face_planes: wgpu::Buffer,
     /// What [`AssetExtras`] the upload derived.
     pub(crate) extras: AssetExtras,
+    /// This upload's identity, shared by its clones: renderers keep per-asset state by it.
+    pub(crate) key: std::sync::Arc<()>,
     /// [`AssetExtras::VERTEX_NORMALS`]: `vec4<f32>` per topology vertex.
     pub(crate) vertex_normals: Option<wgpu::Buffer>,
     /// [`AssetExtras::VERTEX_NORMALS`]: the topology vertex (`u32`) of each render vertex.
@@ -207,6 +209,7 @@ impl GpuAsset {
                 storage,
             ),
             extras: AssetExtras::NONE,
+            key: std::sync::Arc::new(()),
             vertex_normals: None,
             render_to_topology: None,
             fin_corners: None,

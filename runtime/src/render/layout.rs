@@ -40,7 +40,12 @@ pub(crate) mod drawn {
     pub(crate) const CLIPPED_SHIFT: u32 = 11;
     /// A chamfer edge drawn as its lit rounded strip (seed 000): no joins, no caps.
     pub(crate) const HIGHLIGHT: u32 = 1 << 13;
+    /// The rest of the word: the drawn instance's number.
+    pub(crate) const INSTANCE_SHIFT: u32 = 14;
 }
+
+/// Drawn instances a frame can number (the bits the drawn word has left).
+pub(crate) const MAX_INSTANCES: u32 = 1 << (32 - drawn::INSTANCE_SHIFT);
 
 /// Every constant the shaders share with Rust, by its WGSL name.
 pub(crate) fn constants() -> Vec<(&'static str, u32)> {
@@ -64,6 +69,7 @@ pub(crate) fn constants() -> Vec<(&'static str, u32)> {
         ("ON_SCREEN", drawn::ON_SCREEN),
         ("CLIPPED_SHIFT", drawn::CLIPPED_SHIFT),
         ("DRAWN_HIGHLIGHT", drawn::HIGHLIGHT),
+        ("INSTANCE_SHIFT", drawn::INSTANCE_SHIFT),
         ("WORKGROUP", WORKGROUP),
         ("MAX_GROUPS", MAX_GROUPS),
         ("MAX_RING", MAX_RING),
@@ -112,8 +118,8 @@ pub(crate) struct Frame {
     pub(crate) params: [f32; 4],
     pub(crate) indices_u16: u32,
     pub(crate) triangle_count: u32,
-    pub(crate) _pad0: u32,
-    pub(crate) _pad1: u32,
+    pub(crate) instance: u32,
+    pub(crate) capacity: u32,
 }
 
 /// `Post` in `shaders/post.wgsl`: the uniform of the post-processes.
@@ -166,7 +172,8 @@ pub(crate) struct DrawArgs {
 pub(crate) struct Out {
     pub(crate) edges: DrawArgs,
     pub(crate) caps: DrawArgs,
-    pub(crate) _pad: [u32; 4],
+    pub(crate) needed: u32,
+    pub(crate) _pad: [u32; 3],
 }
 
 /// `Cap` in `shaders/compute.wgsl`: a round join.
@@ -197,6 +204,7 @@ pub(crate) struct ChamferRecord {
     pub(crate) n2: [f32; 4],
     pub(crate) across: [f32; 4],
     pub(crate) middle: [f32; 4],
+    pub(crate) viewer: [f32; 4],
 }
 
 /// Bytes per slot of the drawn list: `vec2<u32>` (edge, word).
@@ -257,8 +265,8 @@ pub(crate) fn layouts() -> Vec<Layout> {
                 params,
                 indices_u16,
                 triangle_count,
-                _pad0,
-                _pad1,
+                instance,
+                capacity,
             ]
         ),
         layout!("Lighting", Lighting, [light, color, material]),
@@ -283,8 +291,12 @@ pub(crate) fn layouts() -> Vec<Layout> {
             [vertex_count, instance_count, first_vertex, first_instance]
         ),
         layout!("Cap", Cap, [end, color, radius, from_dir, to_dir]),
-        layout!("Out", Out, [edges, caps, _pad]),
+        layout!("Out", Out, [edges, caps, needed, _pad]),
         layout!("ScreenRecord", ScreenRecord, [ends, depth_w, extents]),
-        layout!("ChamferRecord", ChamferRecord, [n1, n2, across, middle]),
+        layout!(
+            "ChamferRecord",
+            ChamferRecord,
+            [n1, n2, across, middle, viewer]
+        ),
     ]
 }

@@ -68,7 +68,9 @@ pub use lighting::{Highlight, Light};
 pub use mesh::{MeshLight, MeshRenderer, MeshStyle};
 pub use offscreen::{Image, Offscreen, OffscreenTarget};
 pub use pipelines::Pipelines;
-pub use renderer::{DrawCounts, EdgeRenderer, FrameViews, Prepared};
+pub use renderer::{
+    DrawCounts, EdgeRenderer, FrameViews, Instance, Prepared, SceneRenderer, SceneStats,
+};
 pub use style::{CapMethod, EdgeClasses, EdgeColors, EdgeStyle};
 pub use target::Target;
 pub use technique::{HardwareContour, HybridDepth, ImageSpace, Operator, Technique};

@@ -22,7 +22,7 @@ pub(crate) fn classify() -> String {
 
 /// Workgroup counts of the next-index join pass.
 pub(crate) fn args() -> String {
-    assemble(&[wgsl::ARGS])
+    assemble(&[wgsl::COMMON, wgsl::ARGS])
 }
 
 /// Joins and caps, by next-index walk or cap buffer.

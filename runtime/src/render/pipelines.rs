@@ -287,6 +287,8 @@ pub(crate) enum Access {
     Write,
     /// A uniform buffer.
     Uniform,
+    /// A uniform buffer of per-instance blocks, bound at a dynamic offset.
+    Instance,
 }
 
 impl Access {
@@ -294,14 +296,14 @@ impl Access {
         let ty = match self {
             Self::Read => wgpu::BufferBindingType::Storage { read_only: true },
             Self::Write => wgpu::BufferBindingType::Storage { read_only: false },
-            Self::Uniform => wgpu::BufferBindingType::Uniform,
+            Self::Uniform | Self::Instance => wgpu::BufferBindingType::Uniform,
         };
         wgpu::BindGroupLayoutEntry {
             binding,
             visibility,
             ty: wgpu::BindingType::Buffer {
                 ty,
-                has_dynamic_offset: false,
+                has_dynamic_offset: self == Self::Instance,
                 min_binding_size: None,
             },
             count: None,
@@ -330,12 +332,21 @@ impl BindingSet {
         let entries: Vec<wgpu::BindGroupEntry> = self
             .entries
             .iter()
-            .filter_map(|&(binding, _)| {
+            .filter_map(|&(binding, access)| {
                 let (_, buffer) = buffers.iter().find(|(b, _)| *b == binding)?;
-                Some(wgpu::BindGroupEntry {
-                    binding,
-                    resource: buffer.as_entire_binding(),
-                })
+                let resource = if access == Access::Instance {
+                    // One block, placed by the dynamic offset.
+                    wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer,
+                        offset: 0,
+                        size: std::num::NonZeroU64::new(
+                            std::mem::size_of::<super::layout::Frame>() as u64,
+                        ),
+                    })
+                } else {
+                    buffer.as_entire_binding()
+                };
+                Some(wgpu::BindGroupEntry { binding, resource })
             })
             .collect();
         debug_assert_eq!(entries.len(), self.entries.len(), "{}", self.label);

@@ -1,30 +1,78 @@
-//! Per frame: [`EdgeRenderer`] holds one asset's per-frame state for the technique its style names,
-//! and [`EdgeRenderer::prepare`] hands back the [`Prepared`] frame that alone can draw it.
+//! Per frame: [`SceneRenderer`] draws any number of [`Instance`]s of any number of assets with the
+//! technique its style names; [`EdgeRenderer`] is the one-asset case. [`SceneRenderer::prepare`]
+//! hands back the [`Prepared`] frame that alone can draw it.
 //!
 //! The order of a frame is in the types: `prepare` records the frame's compute work into the encoder
 //! it is given (so it happens before any pass that draws), and only the `Prepared` value it returns
 //! can `render` into a pass or `finish` after it. A frame whose encoder is dropped unsubmitted leaves
 //! nothing behind: every frame writes all it reads.
+//!
+//! Instances share everything but one uniform block each: the assets' sections and the pipelines
+//! are never copied, and the per-frame lists are sized by the edges drawn, not by instances × edges.
+//! An instance whose bounding box lies outside the view costs no edge work at all; each instance's
+//! contours are found with the camera in its own model space, so any affine transform works,
+//! non-uniform scales and mirrors included.
 
-use super::techniques::{self, FrameContext, TechniqueFrame};
-use super::{Camera, EdgeStyle, GpuAsset, Pipelines, RenderError, Technique};
+use glam::{Mat4, Vec3};
 
-/// Draws one [`GpuAsset`]'s edges with the pipelines of a [`Pipelines`] cache. Create one per asset
-/// you draw (it holds that asset's per-frame state); the pipelines and the asset's buffers are shared.
-#[derive(Debug)]
-pub struct EdgeRenderer {
-    pipelines: Pipelines,
-    asset: GpuAsset,
-    frame: Option<(Technique, Box<dyn TechniqueFrame>)>,
+use super::layout::MAX_INSTANCES;
+use super::techniques::{self, Drawn, FrameContext, TechniqueFrame};
+use super::{Camera, EdgeColors, EdgeStyle, GpuAsset, Pipelines, RenderError, Technique};
+
+/// One drawn copy of an asset: where it is and, optionally, its own colours.
+#[derive(Clone, Copy, Debug)]
+pub struct Instance<'a> {
+    /// The asset (its buffers are shared by all its instances).
+    pub asset: &'a GpuAsset,
+    /// Model to world: the scene camera's `model_view` takes world to view.
+    pub transform: Mat4,
+    /// This instance's class colours; `None`: the style's.
+    pub colors: Option<EdgeColors>,
 }
 
-/// What the last computed frame drew, read back from the GPU (see [`EdgeRenderer::read_counts`]).
+impl<'a> Instance<'a> {
+    /// `asset` at the origin, in the style's colours.
+    pub fn new(asset: &'a GpuAsset) -> Self {
+        Self {
+            asset,
+            transform: Mat4::IDENTITY,
+            colors: None,
+        }
+    }
+
+    /// The same instance at `transform`.
+    pub fn with_transform(self, transform: Mat4) -> Self {
+        Self { transform, ..self }
+    }
+
+    /// The same instance in `colors`.
+    pub fn with_colors(self, colors: EdgeColors) -> Self {
+        Self {
+            colors: Some(colors),
+            ..self
+        }
+    }
+}
+
+/// What the last [`SceneRenderer::prepare`] did with its instances.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SceneStats {
+    /// Instances given.
+    pub instances: u32,
+    /// Instances outside the view, skipped before any edge work.
+    pub culled: u32,
+}
+
+/// What the last computed frame drew, read back from the GPU (see [`SceneRenderer::read_counts`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct DrawCounts {
     /// Edges that passed classification.
     pub edges: u32,
     /// Caps the joins emitted.
     pub caps: u32,
+    /// Edges the frame wanted to draw; more than `edges` when the lists were full (they grow for
+    /// later frames).
+    pub wanted: u32,
 }
 
 /// The application's finished attachments, for the techniques that work after its pass
@@ -38,14 +86,181 @@ pub struct FrameViews<'a> {
     pub depth: &'a wgpu::TextureView,
 }
 
+/// Draws instances of assets with the pipelines of a [`Pipelines`] cache. It holds the per-frame
+/// state of the technique in use (uniform blocks, lists); the assets' buffers are shared.
+#[derive(Debug)]
+pub struct SceneRenderer {
+    pipelines: Pipelines,
+    frame: Option<(Technique, Box<dyn TechniqueFrame>)>,
+    first_slots: u64,
+    stats: SceneStats,
+}
+
+impl SceneRenderer {
+    /// A renderer; allocates nothing until the first [`prepare`](Self::prepare), which sizes the
+    /// state for the technique in use and the instances drawn.
+    pub fn new(pipelines: &Pipelines) -> Self {
+        Self::with_first_slots(pipelines, 0)
+    }
+
+    /// A renderer whose edge lists ([`Technique::Joined`]) start with at least `slots` slots; by
+    /// default they hold every edge of the first frame's instances up to 65 536, then an eighth of
+    /// them, and grow when a frame wants more (that frame drops what does not fit).
+    pub fn with_first_slots(pipelines: &Pipelines, slots: u64) -> Self {
+        Self {
+            pipelines: pipelines.clone(),
+            frame: None,
+            first_slots: slots,
+            stats: SceneStats::default(),
+        }
+    }
+
+    /// Sets this frame's camera, instances and style, and records the frame's compute work into
+    /// `encoder` (submit it before, or with, the pass that draws). Returns the frame to draw.
+    ///
+    /// Fails if the style's technique needs what the target or an asset lacks, if a list does not
+    /// fit the device, or past 262 143 instances in view (typed [`RenderError`]s; nothing is
+    /// recorded then).
+    pub fn prepare(
+        &mut self,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        camera: &Camera,
+        instances: &[Instance<'_>],
+        style: &EdgeStyle,
+    ) -> Result<Prepared<'_>, RenderError> {
+        let view_projection = camera.view_projection();
+        let drawn: Vec<Drawn<'_>> = instances
+            .iter()
+            .filter(|i| in_view(view_projection * i.transform, i.asset.bounds()))
+            .map(|i| Drawn {
+                asset: i.asset,
+                camera: Camera {
+                    model_view: camera.model_view * i.transform,
+                    ..*camera
+                },
+                colors: i.colors.unwrap_or(style.colors),
+            })
+            .collect();
+        if drawn.len() > MAX_INSTANCES as usize - 1 {
+            return Err(RenderError::Unsupported {
+                technique: style.technique.name(),
+                why: format!(
+                    "{} instances in view; a frame numbers at most {}",
+                    drawn.len(),
+                    MAX_INSTANCES - 1
+                ),
+            });
+        }
+        self.stats = SceneStats {
+            instances: instances.len() as u32,
+            culled: (instances.len() - drawn.len()) as u32,
+        };
+        // A frame serves every parameter of its technique that needs the same per-asset data.
+        let same_kind = self.frame.as_ref().is_some_and(|(t, _)| {
+            std::mem::discriminant(t) == std::mem::discriminant(&style.technique)
+                && t.needs() == style.technique.needs()
+        });
+        if !same_kind {
+            // Free the old technique's state before making the new one.
+            self.frame = None;
+            let frame = match style.technique {
+                Technique::Joined if self.first_slots > 0 => Box::new(
+                    techniques::joined::Frame::with_capacity(&self.pipelines, self.first_slots)?,
+                ),
+                technique => techniques::new_frame(&self.pipelines, &technique)?,
+            };
+            self.frame = Some((style.technique, frame));
+        }
+        let Some((technique, frame)) = self.frame.as_mut() else {
+            return Err(RenderError::Unsupported {
+                technique: style.technique.name(),
+                why: "its frame state could not be made".into(),
+            });
+        };
+        *technique = style.technique;
+        let cx = FrameContext {
+            pipelines: &self.pipelines,
+            queue,
+            camera,
+            style,
+            instances: &drawn,
+        };
+        frame.prepare(&cx, encoder)?;
+        Ok(Prepared { frame: &**frame })
+    }
+
+    /// What the last `prepare` did with its instances.
+    pub fn stats(&self) -> SceneStats {
+        self.stats
+    }
+
+    /// Reads back how many edges and caps the last submitted frame produced. Blocks until the GPU
+    /// is idle: for statistics, tests and benchmarks, not for every frame.
+    ///
+    /// Fails with [`RenderError::Unsupported`] before any frame, or for techniques that do not
+    /// count what they draw (they classify in the vertex shader, with nothing to read back).
+    pub fn read_counts(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+    ) -> Result<DrawCounts, RenderError> {
+        let Some((technique, frame)) = &self.frame else {
+            return Err(RenderError::Unsupported {
+                technique: "SceneRenderer::read_counts",
+                why: "no frame was prepared yet".into(),
+            });
+        };
+        frame.read_counts(device, queue).unwrap_or_else(|| {
+            Err(RenderError::Unsupported {
+                technique: technique.name(),
+                why: "it does not count its edges".into(),
+            })
+        })
+    }
+
+    /// GPU bytes of this renderer's per-frame state (the assets' buffers are counted by
+    /// [`GpuAsset::gpu_bytes`]).
+    pub fn gpu_bytes(&self) -> u64 {
+        self.frame.as_ref().map_or(0, |(_, f)| f.gpu_bytes())
+    }
+}
+
+/// True unless the box `bounds`, through `mvp`, lies wholly outside one plane of the clip volume.
+fn in_view(mvp: Mat4, bounds: [[f32; 3]; 2]) -> bool {
+    let [lo, hi] = bounds.map(Vec3::from);
+    let corners: [glam::Vec4; 8] = std::array::from_fn(|i| {
+        let p = Vec3::new(
+            if i & 1 == 0 { lo.x } else { hi.x },
+            if i & 2 == 0 { lo.y } else { hi.y },
+            if i & 4 == 0 { lo.z } else { hi.z },
+        );
+        mvp * p.extend(1.0)
+    });
+    let outside = |test: fn(glam::Vec4) -> bool| corners.iter().all(|&c| test(c));
+    !(outside(|c| c.x < -c.w)
+        || outside(|c| c.x > c.w)
+        || outside(|c| c.y < -c.w)
+        || outside(|c| c.y > c.w)
+        || outside(|c| c.z < 0.0)
+        || outside(|c| c.z > c.w))
+}
+
+/// Draws one [`GpuAsset`]'s edges: a [`SceneRenderer`] with the asset as its one instance. Create one
+/// per asset you draw; the pipelines and the asset's buffers are shared.
+#[derive(Debug)]
+pub struct EdgeRenderer {
+    scene: SceneRenderer,
+    asset: GpuAsset,
+}
+
 impl EdgeRenderer {
     /// A renderer for `asset`; allocates nothing until the first [`prepare`](Self::prepare), which
     /// sizes the state for the technique in use.
     pub fn new(pipelines: &Pipelines, asset: &GpuAsset) -> Self {
         Self {
-            pipelines: pipelines.clone(),
+            scene: SceneRenderer::new(pipelines),
             asset: asset.clone(),
-            frame: None,
         }
     }
 
@@ -61,63 +276,22 @@ impl EdgeRenderer {
         camera: &Camera,
         style: &EdgeStyle,
     ) -> Result<Prepared<'_>, RenderError> {
-        // A frame serves every parameter of its technique that needs the same per-asset data.
-        let same_kind = self.frame.as_ref().is_some_and(|(t, _)| {
-            std::mem::discriminant(t) == std::mem::discriminant(&style.technique)
-                && t.needs() == style.technique.needs()
-        });
-        if !same_kind {
-            // Free the old technique's state before making the new one.
-            self.frame = None;
-            let frame = techniques::new_frame(&self.pipelines, &self.asset, &style.technique)?;
-            self.frame = Some((style.technique, frame));
-        }
-        let Some((technique, frame)) = self.frame.as_mut() else {
-            return Err(RenderError::Unsupported {
-                technique: style.technique.name(),
-                why: "its frame state could not be made".into(),
-            });
-        };
-        *technique = style.technique;
-        let cx = FrameContext {
-            pipelines: &self.pipelines,
-            queue,
-            asset: &self.asset,
-            camera,
-            style,
-        };
-        frame.prepare(&cx, encoder)?;
-        Ok(Prepared { frame: &**frame })
+        let instance = [Instance::new(&self.asset)];
+        self.scene.prepare(queue, encoder, camera, &instance, style)
     }
 
-    /// Reads back how many edges and caps the last submitted frame produced. Blocks until the GPU
-    /// is idle: for statistics, tests and benchmarks, not for every frame.
-    ///
-    /// Fails with [`RenderError::Unsupported`] before any frame, or for techniques that do not
-    /// count what they draw (they classify in the vertex shader, with nothing to read back).
+    /// See [`SceneRenderer::read_counts`].
     pub fn read_counts(
         &self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
     ) -> Result<DrawCounts, RenderError> {
-        let Some((technique, frame)) = &self.frame else {
-            return Err(RenderError::Unsupported {
-                technique: "EdgeRenderer::read_counts",
-                why: "no frame was prepared yet".into(),
-            });
-        };
-        frame.read_counts(device, queue).unwrap_or_else(|| {
-            Err(RenderError::Unsupported {
-                technique: technique.name(),
-                why: "it does not count its edges".into(),
-            })
-        })
+        self.scene.read_counts(device, queue)
     }
 
-    /// GPU bytes of this renderer's per-frame state (the asset's buffers are counted by
-    /// [`GpuAsset::gpu_bytes`]).
+    /// GPU bytes of this renderer's per-frame state.
     pub fn gpu_bytes(&self) -> u64 {
-        self.frame.as_ref().map_or(0, |(_, f)| f.gpu_bytes())
+        self.scene.gpu_bytes()
     }
 }
 

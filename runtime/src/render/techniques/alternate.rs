@@ -11,9 +11,9 @@
 
 use std::sync::Arc;
 
-use super::mcguire_hughes::SET;
-use super::{FrameContext, Pulled, TechniqueFrame, extra, pulled_pipeline};
-use crate::render::{GpuAsset, Pipelines as Cache, RenderError, Technique, modules};
+use super::mcguire_hughes::{SET, buffers};
+use super::{FrameContext, Pulled, TechniqueFrame, pulled_pipeline};
+use crate::render::{Pipelines as Cache, RenderError, Technique, modules};
 
 /// The one pipeline, per device and target.
 #[derive(Debug)]
@@ -61,42 +61,19 @@ fn shape(technique: &Technique) -> u32 {
     }
 }
 
-/// One asset's frame.
+/// A frame.
 #[derive(Debug)]
 pub(crate) struct Frame {
     pipelines: Arc<Pipelines>,
     pulled: Pulled,
-    edge_count: u32,
     house: bool,
 }
 
 impl Frame {
-    pub(crate) fn new(
-        cache: &Cache,
-        asset: &GpuAsset,
-        technique: &Technique,
-    ) -> Result<Self, RenderError> {
-        let pipelines = cache.alternate()?;
-        let normals = extra(
-            &asset.vertex_normals,
-            technique,
-            "AssetExtras::VERTEX_NORMALS",
-        )?;
-        let pulled = Pulled::new(
-            cache,
-            &pipelines.layout,
-            &SET,
-            &[
-                (1, &asset.topology_positions),
-                (2, &asset.edge_vertices),
-                (3, &asset.edge_attributes),
-                (4, normals),
-            ],
-        );
+    pub(crate) fn new(cache: &Cache) -> Result<Self, RenderError> {
         Ok(Self {
-            pipelines,
-            pulled,
-            edge_count: asset.edge_count,
+            pipelines: cache.alternate()?,
+            pulled: Pulled::new(cache, "alternate edges"),
             house: false,
         })
     }
@@ -108,22 +85,26 @@ impl TechniqueFrame for Frame {
         cx: &FrameContext<'_>,
         _encoder: &mut wgpu::CommandEncoder,
     ) -> Result<(), RenderError> {
-        let uniform = super::frame_uniform(cx, shape(&cx.style.technique));
-        self.house = cx.style.technique == Technique::House;
-        self.pulled.write(cx.queue, &uniform);
-        Ok(())
+        let technique = cx.style.technique;
+        self.house = technique == Technique::House;
+        let shape = shape(&technique);
+        self.pulled.prepare(
+            cx,
+            &self.pipelines.layout,
+            &SET,
+            |d, i| super::frame_uniform(cx, d, i, shape),
+            |asset| buffers(asset, &technique),
+        )
     }
 
     fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
-        pass.set_bind_group(0, &self.pulled.group, &[]);
-        pass.set_pipeline(&self.pipelines.shapes);
-        let indices = if self.house {
-            &self.pipelines.house
-        } else {
-            &self.pipelines.hex_plug
-        };
-        pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint16);
-        pass.draw_indexed(0..12, 0, 0..self.edge_count);
+        let p = &self.pipelines;
+        let indices = if self.house { &p.house } else { &p.hex_plug };
+        self.pulled.each(pass, |pass, asset| {
+            pass.set_pipeline(&p.shapes);
+            pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint16);
+            pass.draw_indexed(0..12, 0, 0..asset.edge_count);
+        });
     }
 
     fn gpu_bytes(&self) -> u64 {

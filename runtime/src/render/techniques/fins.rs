@@ -7,13 +7,13 @@ use std::sync::Arc;
 
 use super::{FrameContext, Pulled, TechniqueFrame, extra, pulled_pipeline};
 use crate::render::pipelines::{Access, BindingSet};
-use crate::render::{GpuAsset, Pipelines as Cache, RenderError, Technique, modules};
+use crate::render::{Pipelines as Cache, RenderError, Technique, modules};
 
 const SET: BindingSet = BindingSet {
     label: "fins",
     stages: wgpu::ShaderStages::VERTEX_FRAGMENT,
     entries: &[
-        (0, Access::Uniform),
+        (0, Access::Instance),
         (1, Access::Read),
         (2, Access::Read),
         (3, Access::Read),
@@ -45,38 +45,18 @@ impl Pipelines {
     }
 }
 
-/// One asset's frame.
+/// A frame.
 #[derive(Debug)]
 pub(crate) struct Frame {
     pipelines: Arc<Pipelines>,
     pulled: Pulled,
-    edge_count: u32,
 }
 
 impl Frame {
-    pub(crate) fn new(
-        cache: &Cache,
-        asset: &GpuAsset,
-        technique: &Technique,
-    ) -> Result<Self, RenderError> {
-        let pipelines = cache.fins()?;
-        let corners = extra(&asset.fin_corners, technique, "AssetExtras::FIN_CORNERS")?;
-        let pulled = Pulled::new(
-            cache,
-            &pipelines.layout,
-            &SET,
-            &[
-                (1, &asset.topology_positions),
-                (2, &asset.edge_vertices),
-                (3, &asset.edge_attributes),
-                (5, &asset.render_normals),
-                (6, corners),
-            ],
-        );
+    pub(crate) fn new(cache: &Cache) -> Result<Self, RenderError> {
         Ok(Self {
-            pipelines,
-            pulled,
-            edge_count: asset.edge_count,
+            pipelines: cache.fins()?,
+            pulled: Pulled::new(cache, "fins"),
         })
     }
 }
@@ -87,29 +67,48 @@ impl TechniqueFrame for Frame {
         cx: &FrameContext<'_>,
         _encoder: &mut wgpu::CommandEncoder,
     ) -> Result<(), RenderError> {
+        let technique = cx.style.technique;
         let Technique::Fins {
             world_thickness,
             z_bias,
-        } = cx.style.technique
+        } = technique
         else {
             return Err(super::mismatch(cx));
         };
-        let [lo, hi] = cx.asset.bounds().map(glam::Vec3::from);
         let finite = |v: f32| if v.is_finite() { v } else { 0.0 };
-        let mut uniform = super::frame_uniform(cx, 0);
-        uniform.params = match world_thickness {
-            Some(t) => [finite(t), 0.0, 0.0, 0.0],
-            None => [cx.style.width(), 1.0, 0.0, 0.0],
-        };
-        uniform.params[2] = finite(z_bias.unwrap_or(2e-3 * (hi - lo).length()));
-        self.pulled.write(cx.queue, &uniform);
-        Ok(())
+        self.pulled.prepare(
+            cx,
+            &self.pipelines.layout,
+            &SET,
+            |d, i| {
+                let [lo, hi] = d.asset.bounds().map(glam::Vec3::from);
+                let mut uniform = super::frame_uniform(cx, d, i, 0);
+                uniform.params = match world_thickness {
+                    Some(t) => [finite(t), 0.0, 0.0, 0.0],
+                    None => [cx.style.width(), 1.0, 0.0, 0.0],
+                };
+                uniform.params[2] = finite(z_bias.unwrap_or(2e-3 * (hi - lo).length()));
+                uniform
+            },
+            |asset| {
+                let corners = extra(&asset.fin_corners, &technique, "AssetExtras::FIN_CORNERS")?;
+                Ok(vec![
+                    (1, asset.topology_positions.clone()),
+                    (2, asset.edge_vertices.clone()),
+                    (3, asset.edge_attributes.clone()),
+                    (5, asset.render_normals.clone()),
+                    (6, corners),
+                ])
+            },
+        )
     }
 
     fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
-        pass.set_bind_group(0, &self.pulled.group, &[]);
-        pass.set_pipeline(&self.pipelines.fins);
-        pass.draw(0..12, 0..self.edge_count);
+        let pipeline = &self.pipelines.fins;
+        self.pulled.each(pass, |pass, asset| {
+            pass.set_pipeline(pipeline);
+            pass.draw(0..12, 0..asset.edge_count);
+        });
     }
 
     fn gpu_bytes(&self) -> u64 {

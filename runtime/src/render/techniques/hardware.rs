@@ -9,17 +9,15 @@
 use std::sync::Arc;
 
 use super::surface_angle::mesh_buffers;
-use super::{FrameContext, Pulled, TechniqueFrame};
+use super::{FrameContext, PerAsset, Pulled, TechniqueFrame};
 use crate::render::pipelines::{Access, BindingSet, RenderPipeline};
 use crate::render::target::checked;
-use crate::render::{
-    GpuAsset, HardwareContour, Pipelines as Cache, RenderError, Technique, modules,
-};
+use crate::render::{HardwareContour, Pipelines as Cache, RenderError, Technique, modules};
 
 const SET: BindingSet = BindingSet {
     label: "hardware contours",
     stages: wgpu::ShaderStages::VERTEX_FRAGMENT,
-    entries: &[(0, Access::Uniform), (5, Access::Read), (7, Access::Read)],
+    entries: &[(0, Access::Instance), (5, Access::Read), (7, Access::Read)],
 };
 
 /// The format of the back faces' depth (Raskar's second depth buffer).
@@ -81,7 +79,16 @@ impl Pipelines {
                 .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                     label: Some("raskar valleys"),
                     entries: &[
-                        buffer_entry(0, wgpu::BufferBindingType::Uniform),
+                        wgpu::BindGroupLayoutEntry {
+                            binding: 0,
+                            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+                            ty: wgpu::BindingType::Buffer {
+                                ty: wgpu::BufferBindingType::Uniform,
+                                has_dynamic_offset: true,
+                                min_binding_size: None,
+                            },
+                            count: None,
+                        },
                         buffer_entry(5, wgpu::BufferBindingType::Storage { read_only: true }),
                         buffer_entry(7, wgpu::BufferBindingType::Storage { read_only: true }),
                         wgpu::BindGroupLayoutEntry {
@@ -302,25 +309,23 @@ fn buffer_entry(binding: u32, ty: wgpu::BufferBindingType) -> wgpu::BindGroupLay
 struct BackDepth {
     size: [u32; 2],
     view: wgpu::TextureView,
-    group: wgpu::BindGroup,
 }
 
-/// One asset's frame.
+/// A frame.
 #[derive(Debug)]
 pub(crate) struct Frame {
     pipelines: Arc<Pipelines>,
     pulled: Pulled,
-    asset: GpuAsset,
     method: HardwareContour,
     back_depth: Option<BackDepth>,
+    /// Per asset, its valley group over the back faces' depth (remade each frame: few assets).
+    valley_groups: PerAsset<wgpu::BindGroup>,
+    /// Per instance, its valley group and block.
+    valleys: Vec<(usize, u32)>,
 }
 
 impl Frame {
-    pub(crate) fn new(
-        cache: &Cache,
-        asset: &GpuAsset,
-        method: HardwareContour,
-    ) -> Result<Self, RenderError> {
+    pub(crate) fn new(cache: &Cache, method: HardwareContour) -> Result<Self, RenderError> {
         let pipelines = cache.hardware()?;
         if method.needs_stencil() && pipelines.stencil.is_none() {
             return Err(RenderError::TargetLacks {
@@ -328,18 +333,13 @@ impl Frame {
                 needs: "a depth format with a stencil aspect",
             });
         }
-        let pulled = Pulled::new(
-            cache,
-            &pipelines.layout,
-            &SET,
-            &[(5, &asset.render_positions), (7, &asset.mesh_indices)],
-        );
         Ok(Self {
             pipelines,
-            pulled,
-            asset: asset.clone(),
+            pulled: Pulled::new(cache, "hardware contours"),
             method,
             back_depth: None,
+            valley_groups: PerAsset::default(),
+            valleys: Vec::new(),
         })
     }
 
@@ -366,30 +366,10 @@ impl Frame {
                 view_formats: &[],
             })
         })?;
-        let view = texture.create_view(&Default::default());
-        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("raskar valleys"),
-            layout: &self.pipelines.valley_layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: self.pulled.uniform().as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 5,
-                    resource: self.asset.render_positions.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 7,
-                    resource: self.asset.mesh_indices.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 9,
-                    resource: wgpu::BindingResource::TextureView(&view),
-                },
-            ],
+        self.back_depth = Some(BackDepth {
+            size,
+            view: texture.create_view(&Default::default()),
         });
-        self.back_depth = Some(BackDepth { size, view, group });
         Ok(())
     }
 }
@@ -404,9 +384,8 @@ impl TechniqueFrame for Frame {
             return Err(super::mismatch(cx));
         };
         self.method = method;
-        let mut uniform = super::frame_uniform(cx, 0);
         let bias = cx.style.bias_px();
-        uniform.params = match method {
+        let params = match method {
             HardwareContour::RossignacVanEmmerik => [0.0, bias, 0.0, 0.0],
             HardwareContour::GoochWireframe => [1.0, 0.0, 0.0, 0.0],
             HardwareContour::OffsetBackFaces => [0.0, bias, 0.0, 0.0],
@@ -420,14 +399,63 @@ impl TechniqueFrame for Frame {
             }
             _ => [0.0; 4],
         };
-        self.pulled.write(cx.queue, &uniform);
+        self.pulled.prepare(
+            cx,
+            &self.pipelines.layout,
+            &SET,
+            |d, i| {
+                let mut uniform = super::frame_uniform(cx, d, i, 0);
+                uniform.params = params;
+                uniform
+            },
+            |asset| {
+                Ok(vec![
+                    (5, asset.render_positions.clone()),
+                    (7, asset.mesh_indices.clone()),
+                ])
+            },
+        )?;
+        self.valley_groups.clear();
+        self.valleys.clear();
         if let HardwareContour::Raskar { .. } = method {
             let size = cx.camera.viewport.map(|v| v.max(1));
-            let far = cx.pipelines.target().far_depth();
             self.ensure_back_depth(cx.pipelines, size)?;
             let Some(back) = &self.back_depth else {
                 return Err(super::mismatch(cx));
             };
+            for (i, drawn) in cx.instances.iter().enumerate() {
+                let blocks = &self.pulled.blocks;
+                let layout = &self.pipelines.valley_layout;
+                let group = self.valley_groups.index(drawn.asset, |asset| {
+                    Ok(cx
+                        .pipelines
+                        .device()
+                        .create_bind_group(&wgpu::BindGroupDescriptor {
+                            label: Some("raskar valleys"),
+                            layout,
+                            entries: &[
+                                wgpu::BindGroupEntry {
+                                    binding: 0,
+                                    resource: blocks.binding(),
+                                },
+                                wgpu::BindGroupEntry {
+                                    binding: 5,
+                                    resource: asset.render_positions.as_entire_binding(),
+                                },
+                                wgpu::BindGroupEntry {
+                                    binding: 7,
+                                    resource: asset.mesh_indices.as_entire_binding(),
+                                },
+                                wgpu::BindGroupEntry {
+                                    binding: 9,
+                                    resource: wgpu::BindingResource::TextureView(&back.view),
+                                },
+                            ],
+                        }))
+                })?;
+                self.valleys.push((group, blocks.offset(i)));
+            }
+            let far = cx.pipelines.target().far_depth();
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("back faces' depth"),
                 color_attachments: &[],
@@ -443,77 +471,100 @@ impl TechniqueFrame for Frame {
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            pass.set_bind_group(0, &self.pulled.group, &[]);
             pass.set_pipeline(&self.pipelines.back_depth);
-            pass.set_vertex_buffer(0, self.asset.render_positions.slice(..));
-            pass.set_index_buffer(self.asset.mesh_indices.slice(..), self.asset.index_format);
-            pass.draw_indexed(0..self.asset.index_count, 0, 0..1);
+            self.pulled.each(&mut pass, |pass, asset| {
+                pass.set_vertex_buffer(0, asset.render_positions.slice(..));
+                pass.set_index_buffer(asset.mesh_indices.slice(..), asset.index_format);
+                pass.draw_indexed(0..asset.index_count, 0, 0..1);
+            });
         }
         Ok(())
     }
 
     fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
         let p = &self.pipelines;
-        let triangles = self.asset.index_count / 3;
-        pass.set_bind_group(0, &self.pulled.group, &[]);
         match self.method {
-            HardwareContour::RossignacVanEmmerik => {
+            HardwareContour::RossignacVanEmmerik => self.pulled.each(pass, |pass, asset| {
                 pass.set_pipeline(&p.depth_only);
-                pass.set_vertex_buffer(0, self.asset.render_positions.slice(..));
-                pass.set_index_buffer(self.asset.mesh_indices.slice(..), self.asset.index_format);
-                pass.draw_indexed(0..self.asset.index_count, 0, 0..1);
+                pass.set_vertex_buffer(0, asset.render_positions.slice(..));
+                pass.set_index_buffer(asset.mesh_indices.slice(..), asset.index_format);
+                pass.draw_indexed(0..asset.index_count, 0, 0..1);
                 pass.set_pipeline(&p.wire);
-                pass.draw(0..18, 0..triangles);
-            }
-            HardwareContour::GoochWireframe => {
+                pass.draw(0..18, 0..asset.index_count / 3);
+            }),
+            HardwareContour::GoochWireframe => self.pulled.each(pass, |pass, asset| {
                 pass.set_pipeline(&p.wire);
-                pass.draw(0..18, 0..triangles);
-            }
+                pass.draw(0..18, 0..asset.index_count / 3);
+            }),
             HardwareContour::BackFaces | HardwareContour::OffsetBackFaces => {
-                pass.set_pipeline(&p.back);
-                pass.draw(0..3, 0..triangles);
+                self.pulled.each(pass, |pass, asset| {
+                    pass.set_pipeline(&p.back);
+                    pass.draw(0..3, 0..asset.index_count / 3);
+                })
             }
-            HardwareContour::FattenedBackFaces => {
+            HardwareContour::FattenedBackFaces => self.pulled.each(pass, |pass, asset| {
                 pass.set_pipeline(&p.fat);
-                pass.draw(0..18, 0..triangles);
-            }
+                pass.draw(0..18, 0..asset.index_count / 3);
+            }),
             HardwareContour::StencilShifted => {
                 if let Some(s) = &p.stencil {
+                    // The stencil of every instance, then one cover: the method outlines the
+                    // union of what it draws.
                     pass.set_stencil_reference(0);
-                    pass.set_pipeline(&s.clear);
-                    pass.draw(0..3, 0..1);
-                    pass.set_pipeline(&s.shifted);
-                    // Four renders of the mesh, one per shift (instance / triangles).
-                    for k in 0..4 {
-                        pass.draw(0..3, k * triangles..(k + 1) * triangles);
+                    let mut first = true;
+                    self.pulled.each(pass, |pass, asset| {
+                        if std::mem::take(&mut first) {
+                            pass.set_pipeline(&s.clear);
+                            pass.draw(0..3, 0..1);
+                        }
+                        let triangles = asset.index_count / 3;
+                        pass.set_pipeline(&s.shifted);
+                        // Four renders of the mesh, one per shift (instance / triangles).
+                        for k in 0..4 {
+                            pass.draw(0..3, k * triangles..(k + 1) * triangles);
+                        }
+                    });
+                    if !first {
+                        pass.set_stencil_reference(2);
+                        pass.set_pipeline(&s.shifted_cover);
+                        pass.draw(0..3, 0..1);
+                        pass.set_stencil_reference(0);
                     }
-                    pass.set_stencil_reference(2);
-                    pass.set_pipeline(&s.shifted_cover);
-                    pass.draw(0..3, 0..1);
-                    pass.set_stencil_reference(0);
                 }
             }
             HardwareContour::InvertedStencil => {
                 if let Some(s) = &p.stencil {
                     pass.set_stencil_reference(0);
-                    pass.set_pipeline(&s.clear);
-                    pass.draw(0..3, 0..1);
-                    pass.set_pipeline(&s.lines);
-                    pass.draw(0..6, 0..triangles);
-                    pass.set_stencil_reference(1);
-                    pass.set_pipeline(&s.lines_cover);
-                    pass.draw(0..3, 0..1);
-                    pass.set_stencil_reference(0);
+                    let mut first = true;
+                    self.pulled.each(pass, |pass, asset| {
+                        if std::mem::take(&mut first) {
+                            pass.set_pipeline(&s.clear);
+                            pass.draw(0..3, 0..1);
+                        }
+                        pass.set_pipeline(&s.lines);
+                        pass.draw(0..6, 0..asset.index_count / 3);
+                    });
+                    if !first {
+                        pass.set_stencil_reference(1);
+                        pass.set_pipeline(&s.lines_cover);
+                        pass.draw(0..3, 0..1);
+                        pass.set_stencil_reference(0);
+                    }
                 }
             }
             HardwareContour::Raskar { .. } => {
-                pass.set_pipeline(&p.fat);
-                pass.draw(0..18, 0..triangles);
-                pass.set_pipeline(&p.ridges);
-                pass.draw(0..18, 0..triangles);
-                if let Some(back) = &self.back_depth {
-                    // Instances past the triangle count are the valley quads.
-                    pass.set_bind_group(0, &back.group, &[]);
+                self.pulled.each(pass, |pass, asset| {
+                    let triangles = asset.index_count / 3;
+                    pass.set_pipeline(&p.fat);
+                    pass.draw(0..18, 0..triangles);
+                    pass.set_pipeline(&p.ridges);
+                    pass.draw(0..18, 0..triangles);
+                });
+                // Instances past the triangle count are the valley quads.
+                for &(group, offset) in &self.valleys {
+                    let (asset, bind_group) = self.valley_groups.get(group);
+                    let triangles = asset.index_count / 3;
+                    pass.set_bind_group(0, bind_group, &[offset]);
                     pass.set_pipeline(&p.valleys);
                     pass.draw(0..18, triangles..2 * triangles);
                 }

@@ -6,16 +6,15 @@
 use std::sync::Arc;
 
 use super::post::{self, Blend, Own};
-use super::{FrameContext, TechniqueFrame};
+use super::{Blocks, FrameContext, TechniqueFrame};
+use crate::render::layout::Post;
 use crate::render::pipelines::{Access, BindingSet};
-use crate::render::{
-    FrameViews, GpuAsset, HybridDepth, Pipelines as Cache, RenderError, Technique, modules,
-};
+use crate::render::{FrameViews, HybridDepth, Pipelines as Cache, RenderError, Technique, modules};
 
 const MASK_SET: BindingSet = BindingSet {
     label: "hybrid mask",
     stages: wgpu::ShaderStages::VERTEX_FRAGMENT,
-    entries: &[(0, Access::Uniform)],
+    entries: &[(0, Access::Instance)],
 };
 const MASK: wgpu::TextureFormat = wgpu::TextureFormat::R8Unorm;
 
@@ -58,30 +57,30 @@ impl Pipelines {
     }
 }
 
-/// One asset's frame: the uniform, and the object mask while it is used.
+/// A frame: the uniform, and the object mask while it is used.
 #[derive(Debug)]
 pub(crate) struct Frame {
     pipelines: Arc<Pipelines>,
     cache: Cache,
     uniform: wgpu::Buffer,
-    mask_group: wgpu::BindGroup,
-    asset: GpuAsset,
+    /// Per instance, the mask pass's matrix.
+    blocks: Blocks,
+    mask_group: Option<wgpu::BindGroup>,
     mask: Option<Own>,
     /// Fills the mask binding when there is no mask (the shader reads it only with one).
     placeholder: Own,
 }
 
 impl Frame {
-    pub(crate) fn new(cache: &Cache, asset: &GpuAsset) -> Result<Self, RenderError> {
+    pub(crate) fn new(cache: &Cache) -> Result<Self, RenderError> {
         let pipelines = cache.hybrid()?;
         let uniform = post::uniform_buffer(cache, "hybrid");
-        let mask_group = MASK_SET.group(cache.device(), &pipelines.mask_layout, &[(0, &uniform)]);
         Ok(Self {
             pipelines,
             cache: cache.clone(),
             uniform,
-            mask_group,
-            asset: asset.clone(),
+            blocks: Blocks::new(cache, "hybrid mask", std::mem::size_of::<Post>()),
+            mask_group: None,
             mask: None,
             placeholder: Own::new(cache, "hybrid mask placeholder", [1, 1], MASK, false)?,
         })
@@ -123,14 +122,15 @@ impl TechniqueFrame for Frame {
             if self.mask.as_ref().is_none_or(|m| m.size != size) {
                 self.mask = Some(Own::new(cx.pipelines, "hybrid mask", size, MASK, false)?);
             }
+            let meshes = post::instance_blocks(cx, &mut self.blocks, &mut self.mask_group);
+            let group = post::block_group(
+                cx.pipelines,
+                &self.pipelines.mask_layout,
+                &self.blocks,
+                &mut self.mask_group,
+            );
             if let Some(mask) = &self.mask {
-                mask.draw_mesh(
-                    cx.pipelines,
-                    encoder,
-                    &self.pipelines.mask,
-                    &self.mask_group,
-                    &self.asset,
-                );
+                mask.draw_meshes(cx.pipelines, encoder, &self.pipelines.mask, group, &meshes);
             }
         } else {
             self.mask = None;

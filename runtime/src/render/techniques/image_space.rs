@@ -6,16 +6,15 @@
 use std::sync::Arc;
 
 use super::post::{self, Blend, Own};
-use super::{FrameContext, TechniqueFrame};
+use super::{Blocks, FrameContext, TechniqueFrame};
+use crate::render::layout::Post;
 use crate::render::pipelines::{Access, BindingSet};
-use crate::render::{
-    FrameViews, GpuAsset, Operator, Pipelines as Cache, RenderError, Technique, modules,
-};
+use crate::render::{FrameViews, Operator, Pipelines as Cache, RenderError, Technique, modules};
 
 const NORMAL_SET: BindingSet = BindingSet {
     label: "normal buffer",
     stages: wgpu::ShaderStages::VERTEX_FRAGMENT,
-    entries: &[(0, Access::Uniform)],
+    entries: &[(0, Access::Instance)],
 };
 const NORMALS: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
@@ -58,30 +57,29 @@ impl Pipelines {
     }
 }
 
-/// One asset's frame: the uniform and the normal buffer.
+/// A frame: the uniform and the normal buffer.
 #[derive(Debug)]
 pub(crate) struct Frame {
     pipelines: Arc<Pipelines>,
     cache: Cache,
     uniform: wgpu::Buffer,
-    normal_group: wgpu::BindGroup,
-    asset: GpuAsset,
+    /// Per instance, the normal pass's matrix.
+    blocks: Blocks,
+    normal_group: Option<wgpu::BindGroup>,
     normals: Own,
 }
 
 impl Frame {
-    pub(crate) fn new(cache: &Cache, asset: &GpuAsset) -> Result<Self, RenderError> {
+    pub(crate) fn new(cache: &Cache) -> Result<Self, RenderError> {
         let pipelines = cache.image_space()?;
         let uniform = post::uniform_buffer(cache, "image-space edges");
-        let normal_group =
-            NORMAL_SET.group(cache.device(), &pipelines.normal_layout, &[(0, &uniform)]);
         Ok(Self {
             normals: Own::new(cache, "normal buffer", [1, 1], NORMALS, true)?,
             pipelines,
             cache: cache.clone(),
             uniform,
-            normal_group,
-            asset: asset.clone(),
+            blocks: Blocks::new(cache, "normal buffer", std::mem::size_of::<Post>()),
+            normal_group: None,
         })
     }
 }
@@ -115,12 +113,19 @@ impl TechniqueFrame for Frame {
         if self.normals.size != size {
             self.normals = Own::new(cx.pipelines, "normal buffer", size, NORMALS, true)?;
         }
-        self.normals.draw_mesh(
+        let meshes = post::instance_blocks(cx, &mut self.blocks, &mut self.normal_group);
+        let group = post::block_group(
+            cx.pipelines,
+            &self.pipelines.normal_layout,
+            &self.blocks,
+            &mut self.normal_group,
+        );
+        self.normals.draw_meshes(
             cx.pipelines,
             encoder,
             &self.pipelines.normals,
-            &self.normal_group,
-            &self.asset,
+            group,
+            &meshes,
         );
         Ok(())
     }

@@ -7,12 +7,12 @@ use std::sync::Arc;
 use super::surface_angle::mesh_buffers;
 use super::{FrameContext, Pulled, TechniqueFrame, extra};
 use crate::render::pipelines::{Access, BindingSet, RenderPipeline};
-use crate::render::{GpuAsset, Pipelines as Cache, RenderError, Technique, modules};
+use crate::render::{Pipelines as Cache, RenderError, Technique, modules};
 
 const SET: BindingSet = BindingSet {
     label: "inverted hull",
     stages: wgpu::ShaderStages::VERTEX_FRAGMENT,
-    entries: &[(0, Access::Uniform), (4, Access::Read), (6, Access::Read)],
+    entries: &[(0, Access::Instance), (4, Access::Read), (6, Access::Read)],
 };
 
 /// The pipeline, per device and target.
@@ -48,29 +48,18 @@ impl Pipelines {
     }
 }
 
-/// One asset's frame.
+/// A frame.
 #[derive(Debug)]
 pub(crate) struct Frame {
     pipelines: Arc<Pipelines>,
     pulled: Pulled,
-    asset: GpuAsset,
 }
 
 impl Frame {
-    pub(crate) fn new(
-        cache: &Cache,
-        asset: &GpuAsset,
-        technique: &Technique,
-    ) -> Result<Self, RenderError> {
-        let pipelines = cache.inverted_hull()?;
-        let needs = "AssetExtras::VERTEX_NORMALS";
-        let normals = extra(&asset.vertex_normals, technique, needs)?;
-        let map = extra(&asset.render_to_topology, technique, needs)?;
-        let pulled = Pulled::new(cache, &pipelines.layout, &SET, &[(4, normals), (6, map)]);
+    pub(crate) fn new(cache: &Cache) -> Result<Self, RenderError> {
         Ok(Self {
-            pipelines,
-            pulled,
-            asset: asset.clone(),
+            pipelines: cache.inverted_hull()?,
+            pulled: Pulled::new(cache, "inverted hull"),
         })
     }
 }
@@ -81,19 +70,35 @@ impl TechniqueFrame for Frame {
         cx: &FrameContext<'_>,
         _encoder: &mut wgpu::CommandEncoder,
     ) -> Result<(), RenderError> {
-        let Technique::InvertedHull { smooth_normals } = cx.style.technique else {
+        let technique = cx.style.technique;
+        let Technique::InvertedHull { smooth_normals } = technique else {
             return Err(super::mismatch(cx));
         };
-        let mut uniform = super::frame_uniform(cx, 0);
-        uniform.params[0] = f32::from(u8::from(smooth_normals));
-        self.pulled.write(cx.queue, &uniform);
-        Ok(())
+        self.pulled.prepare(
+            cx,
+            &self.pipelines.layout,
+            &SET,
+            |d, i| {
+                let mut uniform = super::frame_uniform(cx, d, i, 0);
+                uniform.params[0] = f32::from(u8::from(smooth_normals));
+                uniform
+            },
+            |asset| {
+                let needs = "AssetExtras::VERTEX_NORMALS";
+                Ok(vec![
+                    (4, extra(&asset.vertex_normals, &technique, needs)?),
+                    (6, extra(&asset.render_to_topology, &technique, needs)?),
+                ])
+            },
+        )
     }
 
     fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
-        pass.set_bind_group(0, &self.pulled.group, &[]);
-        pass.set_pipeline(&self.pipelines.hull);
-        super::draw_mesh(pass, &self.asset);
+        let pipeline = &self.pipelines.hull;
+        self.pulled.each(pass, |pass, asset| {
+            pass.set_pipeline(pipeline);
+            super::draw_mesh(pass, asset);
+        });
     }
 
     fn gpu_bytes(&self) -> u64 {

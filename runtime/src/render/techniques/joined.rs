@@ -14,14 +14,14 @@ use std::sync::Arc;
 
 use glam::Vec3;
 
-use super::{FrameContext, TechniqueFrame};
+use super::{Blocks, FrameContext, PerAsset, TechniqueFrame};
 use crate::render::layout::{self, ChamferRecord, DRAWN_BYTES, JOIN_BYTES_PER_END, ScreenRecord};
 use crate::render::lighting::Light;
 use crate::render::pipelines::{Access, BindingSet, RenderPipeline, workgroups};
 use crate::render::target::checked;
-use crate::render::{CapMethod, DrawCounts, GpuAsset, RenderError, modules};
+use crate::render::{CapMethod, DrawCounts, Pipelines as Cache, RenderError, modules};
 
-use Access::{Read, Uniform, Write};
+use Access::{Instance, Read, Uniform, Write};
 
 const COMPUTE: wgpu::ShaderStages = wgpu::ShaderStages::COMPUTE;
 
@@ -31,7 +31,8 @@ const CLASSIFY: BindingSet = BindingSet {
     label: "classify",
     stages: COMPUTE,
     entries: &[
-        (0, Uniform),
+        (0, Instance),
+        (14, Write),
         (1, Read),
         (2, Read),
         (3, Read),
@@ -46,7 +47,8 @@ const JOINS: BindingSet = BindingSet {
     label: "joins",
     stages: COMPUTE,
     entries: &[
-        (0, Uniform),
+        (0, Instance),
+        (14, Write),
         (4, Read),
         (5, Write),
         (6, Write),
@@ -59,7 +61,7 @@ const RECORDS: BindingSet = BindingSet {
     label: "chamfer records",
     stages: COMPUTE,
     entries: &[
-        (0, Uniform),
+        (0, Instance),
         (1, Read),
         (2, Read),
         (3, Read),
@@ -68,18 +70,20 @@ const RECORDS: BindingSet = BindingSet {
         (9, Read),
         (10, Write),
         (11, Write),
+        (14, Write),
     ],
 };
 const ARGS: BindingSet = BindingSet {
-    label: "edge args",
+    label: "edge lists",
     stages: COMPUTE,
-    entries: &[(0, Read), (1, Write)],
+    entries: &[(0, Instance), (8, Write), (14, Write), (16, Write)],
 };
 const DRAW: BindingSet = BindingSet {
     label: "edge draw",
     stages: wgpu::ShaderStages::VERTEX_FRAGMENT,
     entries: &[
-        (0, Uniform),
+        (0, Instance),
+        (15, Read),
         (6, Read),
         (7, Read),
         (8, Read),
@@ -102,6 +106,7 @@ pub(crate) struct Pipelines {
     args_layout: wgpu::BindGroupLayout,
     draw_layout: wgpu::BindGroupLayout,
     reset: wgpu::ComputePipeline,
+    mark: wgpu::ComputePipeline,
     classify: wgpu::ComputePipeline,
     finish: wgpu::ComputePipeline,
     args: wgpu::ComputePipeline,
@@ -114,7 +119,7 @@ pub(crate) struct Pipelines {
 }
 
 impl Pipelines {
-    pub(crate) fn new(cache: &crate::render::Pipelines) -> Result<Self, RenderError> {
+    pub(crate) fn new(cache: &Cache) -> Result<Self, RenderError> {
         let layouts = [CLASSIFY, JOINS, RECORDS, ARGS, DRAW].map(|set| cache.layout(&set));
         let [
             classify_layout,
@@ -157,9 +162,10 @@ impl Pipelines {
             "cap_fragment",
         )?;
         Ok(Self {
-            reset: cache.compute_pipeline(&classify_layout, &classify, "reset")?,
+            reset: cache.compute_pipeline(&args_layout, &args, "reset")?,
+            mark: cache.compute_pipeline(&classify_layout, &classify, "mark")?,
             classify: cache.compute_pipeline(&classify_layout, &classify, "classify")?,
-            finish: cache.compute_pipeline(&classify_layout, &classify, "finish")?,
+            finish: cache.compute_pipeline(&args_layout, &args, "finish")?,
             args: cache.compute_pipeline(&args_layout, &args, "args")?,
             joins_next: cache.compute_pipeline(&joins_layout, &joins, "joins_next")?,
             joins_heads: cache.compute_pipeline(&joins_layout, &joins, "joins_heads")?,
@@ -180,41 +186,35 @@ impl Pipelines {
     }
 }
 
-/// One asset's per-frame lists and uniforms.
+/// The slots a frame starts with: every edge of every instance up to this many, then a share.
+const FIRST_SLOTS: u64 = 1 << 16;
+
+/// The frame's lists: drawn edges, their joins, screen and chamfer records, the cap list, each
+/// instance's first slot and colours. Sized by slots (what can be drawn), not by edges.
 #[derive(Debug)]
-pub(crate) struct Frame {
-    pipelines: Arc<Pipelines>,
-    frame: wgpu::Buffer,
+struct Lists {
+    capacity: u32,
+    instances: u32,
+    chamfers: bool,
+    drawn: wgpu::Buffer,
+    joins: wgpu::Buffer,
     out: wgpu::Buffer,
     dispatch: wgpu::Buffer,
-    cos_power: wgpu::Buffer,
-    lighting: wgpu::Buffer,
-    classify_group: wgpu::BindGroup,
-    joins_group: wgpu::BindGroup,
-    records_group: wgpu::BindGroup,
-    args_group: wgpu::BindGroup,
-    draw_group: wgpu::BindGroup,
-    /// The exponent the cos-power row holds now.
-    row_exponent: Option<f32>,
-    highlight: bool,
-    caps: CapMethod,
-    edge_count: u32,
-    head_count: u32,
+    screen: wgpu::Buffer,
+    chamfer_records: wgpu::Buffer,
+    starts: wgpu::Buffer,
+    colors: wgpu::Buffer,
     bytes: u64,
 }
 
-impl Frame {
-    /// Allocates the lists for `asset`.
-    ///
-    /// Fails with [`RenderError::TooLarge`] if a list exceeds the device's binding limit.
-    pub(crate) fn new(
-        cache: &crate::render::Pipelines,
-        asset: &GpuAsset,
+impl Lists {
+    fn new(
+        cache: &Cache,
+        capacity: u32,
+        instances: u32,
+        chamfers: bool,
     ) -> Result<Self, RenderError> {
-        let pipelines = cache.joined()?;
         let device = cache.device();
-        let edges = u64::from(asset.edge_count);
-        let cap_capacity = edges + 64;
         let limit = device.limits().max_storage_buffer_binding_size;
         let mut bytes = 0;
         let mut storage = |what: &'static str, size: u64, usage: wgpu::BufferUsages| {
@@ -237,85 +237,267 @@ impl Frame {
             })
         };
         let none = wgpu::BufferUsages::empty();
-        let record = |size: usize| size as u64;
-        let state = storage("edge state", 4 * edges, none)?;
-        let drawn = storage("drawn edges", DRAWN_BYTES * edges, none)?;
-        let joins = storage("joins", 2 * JOIN_BYTES_PER_END * edges, none)?;
+        let slots = u64::from(capacity);
+        let size = |t: usize| t as u64;
         let indirect = wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_SRC;
-        let out_bytes = record(std::mem::size_of::<layout::Out>())
-            + record(std::mem::size_of::<layout::Cap>()) * cap_capacity;
-        let out = storage("edge draw lists", out_bytes, indirect)?;
-        let dispatch = storage("joins dispatch", 16, indirect)?;
-        let screen = storage(
-            "screen quads",
-            record(std::mem::size_of::<ScreenRecord>()) * edges,
-            none,
-        )?;
-        // Highlight records, only where the asset has chamfer edges to highlight.
-        let chamfer_slots = if asset.has_chamfers { edges } else { 0 };
-        let chamfers = storage(
-            "chamfer records",
-            record(std::mem::size_of::<ChamferRecord>()) * chamfer_slots,
-            none,
-        )?;
-        let cos_power = storage(
-            "cos power row",
-            4 * (crate::highlight::table::SAMPLES as u64 + 1),
-            wgpu::BufferUsages::COPY_DST,
-        )?;
-        let uniform = |label, size: usize| {
+        let out_bytes = size(std::mem::size_of::<layout::Out>())
+            + size(std::mem::size_of::<layout::Cap>()) * (slots + 64);
+        Ok(Self {
+            drawn: storage("drawn edges", DRAWN_BYTES * slots, none)?,
+            joins: storage("joins", 2 * JOIN_BYTES_PER_END * slots, none)?,
+            out: storage("edge draw lists", out_bytes, indirect)?,
+            dispatch: storage("joins dispatch", 16, indirect)?,
+            screen: storage(
+                "screen quads",
+                size(std::mem::size_of::<ScreenRecord>()) * slots,
+                none,
+            )?,
+            // Highlight records only while a style asks for the highlight.
+            chamfer_records: storage(
+                "chamfer records",
+                size(std::mem::size_of::<ChamferRecord>()) * if chamfers { slots } else { 1 },
+                none,
+            )?,
+            starts: storage("instance starts", 4 * u64::from(instances), none)?,
+            colors: storage(
+                "instance colours",
+                80 * u64::from(instances),
+                wgpu::BufferUsages::COPY_DST,
+            )?,
+            capacity,
+            instances,
+            chamfers,
+            bytes,
+        })
+    }
+}
+
+/// Per asset: the edge state (slot + 1 per edge, shared by the asset's instances in turn) and the
+/// compute groups over it, the asset's sections and the lists.
+#[derive(Debug)]
+struct AssetGroups {
+    state: wgpu::Buffer,
+    classify: wgpu::BindGroup,
+    joins: wgpu::BindGroup,
+    records: wgpu::BindGroup,
+}
+
+/// The readback of how many slots a frame wanted, without ever waiting: copied at the end of one
+/// frame's compute, mapped at the next prepare, read at a later one.
+#[derive(Debug)]
+struct Needed {
+    staging: wgpu::Buffer,
+    state: Arc<std::sync::atomic::AtomicU8>,
+}
+
+const IDLE: u8 = 0;
+const COPIED: u8 = 1;
+const MAPPING: u8 = 2;
+const MAPPED: u8 = 3;
+
+impl Needed {
+    fn new(cache: &Cache) -> Self {
+        Self {
+            staging: cache.device().create_buffer(&wgpu::BufferDescriptor {
+                label: Some("needed slots readback"),
+                size: std::mem::size_of::<layout::Out>() as u64,
+                usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+                mapped_at_creation: false,
+            }),
+            state: Arc::new(std::sync::atomic::AtomicU8::new(IDLE)),
+        }
+    }
+
+    /// Moves the readback along; returns the slots an earlier frame wanted, once known.
+    fn poll(&self, device: &wgpu::Device) -> Option<u32> {
+        use std::sync::atomic::Ordering;
+        match self.state.load(Ordering::Acquire) {
+            COPIED => {
+                // The frame that copied has been submitted by now (or dropped: then stale zeros).
+                self.state.store(MAPPING, Ordering::Release);
+                let state = self.state.clone();
+                self.staging
+                    .map_async(wgpu::MapMode::Read, .., move |result| {
+                        state.store(
+                            if result.is_ok() { MAPPED } else { IDLE },
+                            Ordering::Release,
+                        );
+                    });
+                let _ = device.poll(wgpu::PollType::Poll);
+                None
+            }
+            MAPPING => {
+                let _ = device.poll(wgpu::PollType::Poll);
+                None
+            }
+            MAPPED => {
+                let needed = self.staging.get_mapped_range(..).ok().map(|bytes| {
+                    let words: &[u32] = bytemuck::cast_slice(&bytes);
+                    words[8]
+                });
+                self.staging.unmap();
+                self.state.store(IDLE, Ordering::Release);
+                needed
+            }
+            _ => None,
+        }
+    }
+
+    /// Records the copy of this frame's counts, if no readback is under way.
+    fn copy(&self, encoder: &mut wgpu::CommandEncoder, out: &wgpu::Buffer) {
+        use std::sync::atomic::Ordering;
+        if self.state.load(Ordering::Acquire) == IDLE {
+            encoder.copy_buffer_to_buffer(out, 0, &self.staging, 0, self.staging.size());
+            self.state.store(COPIED, Ordering::Release);
+        }
+    }
+}
+
+/// A frame's state: the lists, one block per instance, per-asset groups, and what each instance runs.
+#[derive(Debug)]
+pub(crate) struct Frame {
+    pipelines: Arc<Pipelines>,
+    cache: Cache,
+    blocks: Blocks,
+    lists: Option<Lists>,
+    assets: PerAsset<AssetGroups>,
+    args_group: Option<wgpu::BindGroup>,
+    draw_group: Option<wgpu::BindGroup>,
+    cos_power: wgpu::Buffer,
+    lighting: wgpu::Buffer,
+    needed: Needed,
+    /// Per drawn instance: its asset's groups, its block, its edges and capped vertices.
+    runs: Vec<(usize, u32, u32, u32)>,
+    /// The exponent the cos-power row holds now.
+    row_exponent: Option<f32>,
+    highlight: bool,
+    caps: CapMethod,
+    /// The slots the next lists must have, at least.
+    wanted_slots: u64,
+}
+
+impl Frame {
+    pub(crate) fn new(cache: &Cache) -> Result<Self, RenderError> {
+        Self::with_capacity(cache, 0)
+    }
+
+    /// A frame whose lists start with at least `slots` slots (0: sized from the first frame).
+    pub(crate) fn with_capacity(cache: &Cache, slots: u64) -> Result<Self, RenderError> {
+        let device = cache.device();
+        let uniform = |label, size: usize, usage| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
                 size: size as u64,
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                usage: usage | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             })
         };
-        let frame = uniform("edge frame", std::mem::size_of::<layout::Frame>());
-        let lighting = uniform(
-            "highlight lighting",
-            std::mem::size_of::<layout::Lighting>(),
-        );
-        bytes +=
-            (std::mem::size_of::<layout::Frame>() + std::mem::size_of::<layout::Lighting>()) as u64;
-
-        let buffers: [(u32, &wgpu::Buffer); 14] = [
-            (0, &frame),
-            (1, &asset.topology_positions),
-            (2, &asset.edge_vertices),
-            (3, &asset.edge_attributes),
-            (4, &asset.rings),
-            (5, &state),
-            (6, &drawn),
-            (7, &joins),
-            (8, &out),
-            (9, &asset.face_planes),
-            (10, &screen),
-            (11, &chamfers),
-            (12, &cos_power),
-            (13, &lighting),
-        ];
-        let group = |set: BindingSet, layout| set.group(device, layout, &buffers);
-        let args_group = ARGS.group(device, &pipelines.args_layout, &[(0, &out), (1, &dispatch)]);
         Ok(Self {
-            classify_group: group(CLASSIFY, &pipelines.classify_layout),
-            joins_group: group(JOINS, &pipelines.joins_layout),
-            records_group: group(RECORDS, &pipelines.records_layout),
-            draw_group: group(DRAW, &pipelines.draw_layout),
-            args_group,
-            pipelines,
-            frame,
-            out,
-            dispatch,
-            cos_power,
-            lighting,
+            pipelines: cache.joined()?,
+            cache: cache.clone(),
+            blocks: Blocks::new(cache, "edge frame", std::mem::size_of::<layout::Frame>()),
+            lists: None,
+            assets: PerAsset::default(),
+            args_group: None,
+            draw_group: None,
+            cos_power: uniform(
+                "cos power row",
+                4 * (crate::highlight::table::SAMPLES + 1),
+                wgpu::BufferUsages::STORAGE,
+            ),
+            lighting: uniform(
+                "highlight lighting",
+                std::mem::size_of::<layout::Lighting>(),
+                wgpu::BufferUsages::UNIFORM,
+            ),
+            needed: Needed::new(cache),
+            runs: Vec::new(),
             row_exponent: None,
             highlight: false,
             caps: CapMethod::NextIndex,
-            edge_count: asset.edge_count,
-            head_count: asset.head_count,
-            bytes,
+            wanted_slots: slots,
         })
+    }
+
+    /// Writes the highlight's row and lighting for `style`.
+    fn prepare_highlight(&mut self, cx: &FrameContext<'_>) {
+        let Some(highlight) = &cx.style.highlight else {
+            self.highlight = false;
+            return;
+        };
+        self.highlight = true;
+        let material = highlight.material;
+        let exponent = material.shininess.clamp(1.0, 128.0) + 1.0;
+        if self.row_exponent != Some(exponent) {
+            let row = crate::highlight::table::CosPowerRow::new(exponent);
+            cx.queue
+                .write_buffer(&self.cos_power, 0, bytemuck::cast_slice(row.values()));
+            self.row_exponent = Some(exponent);
+        }
+        let light = match highlight.light {
+            Light::Directional(d) => {
+                let d = Vec3::from(d).normalize_or(Vec3::Z);
+                [d.x, d.y, d.z, 0.0]
+            }
+            Light::Point([x, y, z]) => [x, y, z, 1.0],
+        };
+        // K by the first instance (for one asset: the camera's distance to its centre).
+        let k = highlight.k.unwrap_or_else(|| {
+            cx.instances.first().map_or(1.0, |d| {
+                d.camera.eye().truncate().distance(d.asset.center())
+            })
+        });
+        let [r, g, b] = highlight.color;
+        let lighting = layout::Lighting {
+            light,
+            color: [r, g, b, k],
+            material: [
+                material.diffuse,
+                material.specular,
+                exponent - 1.0,
+                highlight.ambient.clamp(0.0, 1.0),
+            ],
+        };
+        cx.queue
+            .write_buffer(&self.lighting, 0, bytemuck::bytes_of(&lighting));
+    }
+
+    /// The lists for this frame, made or remade when they are too small.
+    fn ensure_lists(&mut self, cx: &FrameContext<'_>) -> Result<(), RenderError> {
+        let instances = (cx.instances.len() as u32).max(1);
+        // Highlight records only where an asset has chamfer edges to highlight.
+        let chamfers = self.highlight && cx.instances.iter().any(|d| d.asset.has_chamfers);
+        let upper: u64 = cx
+            .instances
+            .iter()
+            .map(|d| u64::from(d.asset.edge_count))
+            .sum();
+        // Every edge up to FIRST_SLOTS, then an eighth; grown from what frames want.
+        let first = upper.min(FIRST_SLOTS.max(upper / 8));
+        let wanted = self.wanted_slots.max(first).max(64);
+        // The largest per-slot list must fit one storage binding.
+        let per_slot = if chamfers {
+            std::mem::size_of::<ChamferRecord>()
+        } else {
+            std::mem::size_of::<ScreenRecord>()
+        } as u64;
+        let limit = self.cache.device().limits().max_storage_buffer_binding_size / per_slot;
+        let enough = self.lists.as_ref().is_some_and(|l| {
+            u64::from(l.capacity) >= wanted.min(limit)
+                && l.instances >= instances
+                && (l.chamfers || !chamfers)
+        });
+        if enough {
+            return Ok(());
+        }
+        let capacity = wanted.min(limit) as u32;
+        let instances = instances.next_power_of_two();
+        self.lists = None;
+        self.lists = Some(Lists::new(&self.cache, capacity, instances, chamfers)?);
+        self.assets.clear();
+        self.args_group = None;
+        self.draw_group = None;
+        Ok(())
     }
 }
 
@@ -325,64 +507,150 @@ impl TechniqueFrame for Frame {
         cx: &FrameContext<'_>,
         encoder: &mut wgpu::CommandEncoder,
     ) -> Result<(), RenderError> {
-        let (camera, style, asset) = (cx.camera, cx.style, cx.asset);
-        let mut uniform = super::frame_uniform(cx, 0);
-        uniform.cap_capacity = (u64::from(asset.edge_count) + 64).min(u64::from(u32::MAX)) as u32;
-        self.highlight = false;
-        if let Some(highlight) = &style.highlight {
-            self.highlight = true;
-            let material = highlight.material;
-            let exponent = material.shininess.clamp(1.0, 128.0) + 1.0;
-            if self.row_exponent != Some(exponent) {
-                let row = crate::highlight::table::CosPowerRow::new(exponent);
-                cx.queue
-                    .write_buffer(&self.cos_power, 0, bytemuck::cast_slice(row.values()));
-                self.row_exponent = Some(exponent);
-            }
-            let light = match highlight.light {
-                Light::Directional(d) => {
-                    let d = Vec3::from(d).normalize_or(Vec3::Z);
-                    [d.x, d.y, d.z, 0.0]
-                }
-                Light::Point([x, y, z]) => [x, y, z, 1.0],
-            };
-            let k = highlight
-                .k
-                .unwrap_or_else(|| camera.eye().truncate().distance(asset.center()));
-            let [r, g, b] = highlight.color;
-            let lighting = layout::Lighting {
-                light,
-                color: [r, g, b, k],
-                material: [
-                    material.diffuse,
-                    material.specular,
-                    exponent - 1.0,
-                    highlight.ambient.clamp(0.0, 1.0),
-                ],
-            };
-            cx.queue
-                .write_buffer(&self.lighting, 0, bytemuck::bytes_of(&lighting));
+        let device = cx.pipelines.device().clone();
+        if let Some(needed) = self.needed.poll(&device)
+            && let Some(lists) = &self.lists
+            && needed > lists.capacity
+        {
+            // An earlier frame wanted more slots than the lists have: a quarter more next time.
+            self.wanted_slots = u64::from(needed) + u64::from(needed) / 4;
         }
-        uniform.highlight = u32::from(self.highlight);
-        self.caps = if asset.has_rings {
-            style.caps
+        self.prepare_highlight(cx);
+        self.ensure_lists(cx)?;
+        let Some(lists) = &self.lists else {
+            return Err(super::mismatch(cx));
+        };
+        let caps = cx.style.caps;
+        let mut frames: Vec<layout::Frame> = cx
+            .instances
+            .iter()
+            .enumerate()
+            .map(|(i, d)| {
+                let mut uniform = super::frame_uniform(cx, d, i, 0);
+                uniform.capacity = lists.capacity;
+                uniform.cap_capacity = lists.capacity + 64;
+                uniform.highlight = u32::from(self.highlight);
+                uniform
+            })
+            .collect();
+        if frames.is_empty() {
+            // The bookkeeping passes still run (the draws must find empty lists).
+            let mut uniform: layout::Frame = bytemuck::Zeroable::zeroed();
+            uniform.capacity = lists.capacity;
+            uniform.cap_capacity = lists.capacity + 64;
+            frames.push(uniform);
+        }
+        if self.blocks.write(cx.pipelines, cx.queue, &frames) {
+            self.assets.clear();
+            self.args_group = None;
+            self.draw_group = None;
+        }
+        let colors: Vec<[f32; 4]> = cx.instances.iter().flat_map(|d| d.colors.array()).collect();
+        if !colors.is_empty() {
+            cx.queue
+                .write_buffer(&lists.colors, 0, bytemuck::cast_slice(&colors));
+        }
+        let pipelines = self.pipelines.clone();
+        let group =
+            |set: &BindingSet, layout: &wgpu::BindGroupLayout, buffers: &[(u32, &wgpu::Buffer)]| {
+                set.group(&device, layout, buffers)
+            };
+        let blocks = self.blocks.buffer().clone();
+        if self.args_group.is_none() {
+            self.args_group = Some(group(
+                &ARGS,
+                &pipelines.args_layout,
+                &[
+                    (0, &blocks),
+                    (8, &lists.out),
+                    (14, &lists.starts),
+                    (16, &lists.dispatch),
+                ],
+            ));
+        }
+        if self.draw_group.is_none() {
+            self.draw_group = Some(group(
+                &DRAW,
+                &pipelines.draw_layout,
+                &[
+                    (0, &blocks),
+                    (6, &lists.drawn),
+                    (7, &lists.joins),
+                    (8, &lists.out),
+                    (10, &lists.screen),
+                    (11, &lists.chamfer_records),
+                    (12, &self.cos_power),
+                    (13, &self.lighting),
+                    (15, &lists.colors),
+                ],
+            ));
+        }
+        self.assets.retain(cx.instances);
+        self.runs.clear();
+        for (i, drawn) in cx.instances.iter().enumerate() {
+            let made = self.assets.index(drawn.asset, |asset| {
+                let state = checked(&device, "edge state", || {
+                    device.create_buffer(&wgpu::BufferDescriptor {
+                        label: Some("edge state"),
+                        size: (4 * u64::from(asset.edge_count)).max(64),
+                        usage: wgpu::BufferUsages::STORAGE,
+                        mapped_at_creation: false,
+                    })
+                })?;
+                let buffers: [(u32, &wgpu::Buffer); 14] = [
+                    (0, &blocks),
+                    (1, &asset.topology_positions),
+                    (2, &asset.edge_vertices),
+                    (3, &asset.edge_attributes),
+                    (4, &asset.rings),
+                    (5, &state),
+                    (6, &lists.drawn),
+                    (7, &lists.joins),
+                    (8, &lists.out),
+                    (9, &asset.face_planes),
+                    (10, &lists.screen),
+                    (11, &lists.chamfer_records),
+                    (14, &lists.starts),
+                    (13, &self.lighting),
+                ];
+                Ok(AssetGroups {
+                    classify: group(&CLASSIFY, &pipelines.classify_layout, &buffers),
+                    joins: group(&JOINS, &pipelines.joins_layout, &buffers),
+                    records: group(&RECORDS, &pipelines.records_layout, &buffers),
+                    state,
+                })
+            })?;
+            self.runs.push((
+                made,
+                self.blocks.offset(i),
+                drawn.asset.edge_count,
+                drawn.asset.head_count,
+            ));
+        }
+        // Without rings there is nothing to join by.
+        self.caps = if cx.instances.iter().all(|d| d.asset.has_rings) {
+            caps
         } else {
             CapMethod::None
         };
-        cx.queue
-            .write_buffer(&self.frame, 0, bytemuck::bytes_of(&uniform));
         self.record(encoder);
+        if let Some(lists) = &self.lists {
+            self.needed.copy(encoder, &lists.out);
+        }
         Ok(())
     }
 
     fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
+        let (Some(lists), Some(draw_group)) = (&self.lists, &self.draw_group) else {
+            return;
+        };
         let pipelines = &self.pipelines;
-        pass.set_bind_group(0, &self.draw_group, &[]);
+        pass.set_bind_group(0, draw_group, &[0]);
         pass.set_pipeline(&pipelines.edges);
-        pass.draw_indirect(&self.out, 0);
+        pass.draw_indirect(&lists.out, 0);
         if self.caps != CapMethod::None {
             pass.set_pipeline(&pipelines.caps);
-            pass.draw_indirect(&self.out, CAP_DRAW_OFFSET);
+            pass.draw_indirect(&lists.out, CAP_DRAW_OFFSET);
         }
     }
 
@@ -391,8 +659,10 @@ impl TechniqueFrame for Frame {
         device: &wgpu::Device,
         queue: &wgpu::Queue,
     ) -> Option<Result<DrawCounts, RenderError>> {
+        let lists = self.lists.as_ref()?;
         let read = || {
-            let words = crate::render::offscreen::read_buffer(device, queue, &self.out, 32)?;
+            let size = std::mem::size_of::<layout::Out>() as u64;
+            let words = crate::render::offscreen::read_buffer(device, queue, &lists.out, size)?;
             let words: &[u32] = bytemuck::cast_slice(&words);
             Ok(DrawCounts {
                 edges: words[1],
@@ -401,68 +671,74 @@ impl TechniqueFrame for Frame {
                 } else {
                     words[5]
                 },
+                wanted: words[8],
             })
         };
         Some(read())
     }
 
     fn gpu_bytes(&self) -> u64 {
-        self.bytes
+        let lists = self.lists.as_ref().map_or(0, |l| l.bytes);
+        let state: u64 = self.assets.iter().map(|a| a.state.size()).sum();
+        lists + state + self.blocks.gpu_bytes() + self.cos_power.size() + self.lighting.size()
     }
 }
 
 impl Frame {
-    /// Records this frame's classification and joins.
+    /// Records the frame's classification and joins: instance after instance, then the clamp.
     fn record(&self, encoder: &mut wgpu::CommandEncoder) {
+        let (Some(args_group), Some(lists)) = (&self.args_group, &self.lists) else {
+            return;
+        };
+        let dispatch = &lists.dispatch;
         let pipelines = &self.pipelines;
         let joins = self.caps != CapMethod::None || self.highlight;
-        {
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("chamfer classify"),
-                timestamp_writes: None,
-            });
-            let [x, y] = workgroups(self.edge_count);
-            pass.set_bind_group(0, &self.classify_group, &[]);
-            pass.set_pipeline(&pipelines.reset);
-            pass.dispatch_workgroups(1, 1, 1);
-            pass.set_pipeline(&pipelines.classify);
-            pass.dispatch_workgroups(x, y, 1);
-            if joins {
-                pass.set_bind_group(0, &self.args_group, &[]);
-                pass.set_pipeline(&pipelines.args);
-                pass.dispatch_workgroups(1, 1, 1);
-            }
-        }
-        if !joins {
-            return;
-        }
-        // A new pass: the dispatch arguments written above are read as an indirect buffer here.
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("chamfer joins"),
+            label: Some("chamfer edges"),
             timestamp_writes: None,
         });
-        if self.highlight {
-            // One thread per drawn edge end: twice as many as records need; the rest return.
-            pass.set_bind_group(0, &self.records_group, &[]);
-            pass.set_pipeline(&pipelines.chamfer_records);
-            pass.dispatch_workgroups_indirect(&self.dispatch, 0);
-        }
-        pass.set_bind_group(0, &self.joins_group, &[]);
-        match self.caps {
-            CapMethod::NextIndex => {
-                pass.set_pipeline(&pipelines.joins_next);
-                pass.dispatch_workgroups_indirect(&self.dispatch, 0);
+        pass.set_bind_group(0, args_group, &[0]);
+        pass.set_pipeline(&pipelines.reset);
+        pass.dispatch_workgroups(1, 1, 1);
+        for &(asset, offset, edge_count, head_count) in &self.runs {
+            let (_, groups) = self.assets.get(asset);
+            pass.set_bind_group(0, &groups.classify, &[offset]);
+            pass.set_pipeline(&pipelines.mark);
+            pass.dispatch_workgroups(1, 1, 1);
+            let [x, y] = workgroups(edge_count);
+            pass.set_pipeline(&pipelines.classify);
+            pass.dispatch_workgroups(x, y, 1);
+            if !joins {
+                continue;
             }
-            CapMethod::CapBuffer => {
-                pass.set_pipeline(&pipelines.clear_joins);
-                pass.dispatch_workgroups_indirect(&self.dispatch, 0);
-                pass.set_pipeline(&pipelines.joins_heads);
-                let [x, y] = workgroups(self.head_count);
-                pass.dispatch_workgroups(x, y, 1);
+            // The join dispatch is sized by what this instance drew (each dispatch is its own
+            // usage scope, so the arguments written here are read as indirect ones below).
+            pass.set_bind_group(0, args_group, &[offset]);
+            pass.set_pipeline(&pipelines.args);
+            pass.dispatch_workgroups(1, 1, 1);
+            if self.highlight {
+                // One thread per drawn edge end: twice as many as records need; the rest return.
+                pass.set_bind_group(0, &groups.records, &[offset]);
+                pass.set_pipeline(&pipelines.chamfer_records);
+                pass.dispatch_workgroups_indirect(dispatch, 0);
             }
-            CapMethod::None => {}
+            pass.set_bind_group(0, &groups.joins, &[offset]);
+            match self.caps {
+                CapMethod::NextIndex => {
+                    pass.set_pipeline(&pipelines.joins_next);
+                    pass.dispatch_workgroups_indirect(dispatch, 0);
+                }
+                CapMethod::CapBuffer => {
+                    pass.set_pipeline(&pipelines.clear_joins);
+                    pass.dispatch_workgroups_indirect(dispatch, 0);
+                    pass.set_pipeline(&pipelines.joins_heads);
+                    let [x, y] = workgroups(head_count);
+                    pass.dispatch_workgroups(x, y, 1);
+                }
+                CapMethod::None => {}
+            }
         }
-        pass.set_bind_group(0, &self.classify_group, &[]);
+        pass.set_bind_group(0, args_group, &[0]);
         pass.set_pipeline(&pipelines.finish);
         pass.dispatch_workgroups(1, 1, 1);
     }

@@ -4,8 +4,8 @@
 //! The 2004 method stored four duplicated edge vertices per edge and classified the edge in the
 //! vertex shader of each; wgpu lets the vertex shader pull the asset's own sections instead, so the
 //! duplication is of work, not memory: per frame every edge runs the classification at each of the
-//! quad's six vertices and each cap pass's three (§8.5 "high duplication of work"), and nothing is
-//! compacted. Per-frame memory: one uniform.
+//! quad's four vertices and each cap pass's three (§8.5 "high duplication of work"), and nothing is
+//! compacted. Per-frame memory: one uniform block per instance.
 
 use std::sync::Arc;
 
@@ -17,13 +17,31 @@ pub(crate) const SET: BindingSet = BindingSet {
     label: "vertex-classified edges",
     stages: wgpu::ShaderStages::VERTEX_FRAGMENT,
     entries: &[
-        (0, Access::Uniform),
+        (0, Access::Instance),
         (1, Access::Read),
         (2, Access::Read),
         (3, Access::Read),
         (4, Access::Read),
     ],
 };
+
+/// The asset buffers of [`SET`].
+pub(crate) fn buffers(
+    asset: &GpuAsset,
+    technique: &Technique,
+) -> Result<Vec<(u32, wgpu::Buffer)>, RenderError> {
+    let normals = extra(
+        &asset.vertex_normals,
+        technique,
+        "AssetExtras::VERTEX_NORMALS",
+    )?;
+    Ok(vec![
+        (1, asset.topology_positions.clone()),
+        (2, asset.edge_vertices.clone()),
+        (3, asset.edge_attributes.clone()),
+        (4, normals),
+    ])
+}
 
 /// The edge pass and the two cap passes, per device and target.
 #[derive(Debug)]
@@ -53,38 +71,19 @@ impl Pipelines {
     }
 }
 
-/// One asset's frame: the uniform and the group over the asset's sections.
+/// A frame: the instances' blocks and the groups over their assets.
 #[derive(Debug)]
 pub(crate) struct Frame {
     pipelines: Arc<Pipelines>,
     pulled: Pulled,
-    edge_count: u32,
     caps: bool,
 }
 
 impl Frame {
-    pub(crate) fn new(cache: &Cache, asset: &GpuAsset) -> Result<Self, RenderError> {
-        let pipelines = cache.mcguire_hughes()?;
-        let normals = extra(
-            &asset.vertex_normals,
-            &Technique::McGuireHughes,
-            "AssetExtras::VERTEX_NORMALS",
-        )?;
-        let pulled = Pulled::new(
-            cache,
-            &pipelines.layout,
-            &SET,
-            &[
-                (1, &asset.topology_positions),
-                (2, &asset.edge_vertices),
-                (3, &asset.edge_attributes),
-                (4, normals),
-            ],
-        );
+    pub(crate) fn new(cache: &Cache) -> Result<Self, RenderError> {
         Ok(Self {
-            pipelines,
-            pulled,
-            edge_count: asset.edge_count,
+            pipelines: cache.mcguire_hughes()?,
+            pulled: Pulled::new(cache, "mcguire-hughes"),
             caps: true,
         })
     }
@@ -96,22 +95,32 @@ impl TechniqueFrame for Frame {
         cx: &FrameContext<'_>,
         _encoder: &mut wgpu::CommandEncoder,
     ) -> Result<(), RenderError> {
-        self.pulled.write(cx.queue, &super::frame_uniform(cx, 0));
         self.caps = cx.style.caps != CapMethod::None;
-        Ok(())
+        let technique = cx.style.technique;
+        self.pulled.prepare(
+            cx,
+            &self.pipelines.layout,
+            &SET,
+            |d, i| super::frame_uniform(cx, d, i, 0),
+            |asset| buffers(asset, &technique),
+        )
     }
 
     fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
-        pass.set_bind_group(0, &self.pulled.group, &[]);
-        pass.set_pipeline(&self.pipelines.edges);
-        pass.set_index_buffer(self.pipelines.quad.slice(..), wgpu::IndexFormat::Uint16);
-        pass.draw_indexed(0..6, 0, 0..self.edge_count);
-        if self.caps {
-            pass.set_pipeline(&self.pipelines.cap0);
-            pass.draw(0..3, 0..self.edge_count);
-            pass.set_pipeline(&self.pipelines.cap1);
-            pass.draw(0..3, 0..self.edge_count);
-        }
+        let p = &self.pipelines;
+        let caps = self.caps;
+        self.pulled.each(pass, |pass, asset| {
+            let edges = asset.edge_count;
+            pass.set_pipeline(&p.edges);
+            pass.set_index_buffer(p.quad.slice(..), wgpu::IndexFormat::Uint16);
+            pass.draw_indexed(0..6, 0, 0..edges);
+            if caps {
+                pass.set_pipeline(&p.cap0);
+                pass.draw(0..3, 0..edges);
+                pass.set_pipeline(&p.cap1);
+                pass.draw(0..3, 0..edges);
+            }
+        });
     }
 
     fn gpu_bytes(&self) -> u64 {

@@ -1,6 +1,9 @@
 //! One module per edge technique. Each has its per-device pipelines (kept in [`Pipelines`]) and its
-//! per-frame state, a [`TechniqueFrame`] that an [`EdgeRenderer`](super::EdgeRenderer) owns for the
-//! technique its style names.
+//! per-frame state, a [`TechniqueFrame`] that a [`SceneRenderer`](super::SceneRenderer) owns for the
+//! technique its style names. A frame draws any number of instances of any number of assets: what
+//! is per instance (the camera in the instance's model space, its colours) is a block of a dynamic
+//! uniform buffer ([`Blocks`]), what is per asset (bind groups over its sections) is kept per asset
+//! ([`PerAsset`]), and the pipelines are the device's.
 
 pub(crate) mod alternate;
 pub(crate) mod fins;
@@ -14,46 +17,57 @@ pub(crate) mod post;
 pub(crate) mod surface_angle;
 pub(crate) mod wireframe;
 
+use std::sync::Arc;
+
+use super::layout::Frame;
+use super::pipelines::BindingSet;
 use super::{
-    Camera, DrawCounts, EdgeStyle, FrameViews, GpuAsset, Pipelines, RenderError, Technique,
+    Camera, DrawCounts, EdgeColors, EdgeStyle, FrameViews, GpuAsset, Pipelines, RenderError,
+    Technique,
 };
 
-/// The per-frame state of `technique` for `asset`.
+/// The per-frame state of `technique`.
 pub(crate) fn new_frame(
     pipelines: &Pipelines,
-    asset: &GpuAsset,
     technique: &Technique,
 ) -> Result<Box<dyn TechniqueFrame>, RenderError> {
     Ok(match technique {
-        Technique::Joined => Box::new(joined::Frame::new(pipelines, asset)?),
-        Technique::McGuireHughes => Box::new(mcguire_hughes::Frame::new(pipelines, asset)?),
+        Technique::Joined => Box::new(joined::Frame::new(pipelines)?),
+        Technique::McGuireHughes => Box::new(mcguire_hughes::Frame::new(pipelines)?),
         Technique::HalfHex | Technique::Plug | Technique::HalfHexPlug | Technique::House => {
-            Box::new(alternate::Frame::new(pipelines, asset, technique)?)
+            Box::new(alternate::Frame::new(pipelines)?)
         }
-        Technique::Fins { .. } => Box::new(fins::Frame::new(pipelines, asset, technique)?),
-        Technique::Wireframe { .. } => {
-            Box::new(wireframe::Frame::new(pipelines, asset, technique)?)
-        }
-        Technique::Hardware(method) => Box::new(hardware::Frame::new(pipelines, asset, *method)?),
-        Technique::SurfaceAngle { .. } => Box::new(surface_angle::Frame::new(pipelines, asset)?),
-        Technique::InvertedHull { .. } => {
-            Box::new(inverted_hull::Frame::new(pipelines, asset, technique)?)
-        }
-        Technique::Hybrid(_) => Box::new(hybrid::Frame::new(pipelines, asset)?),
-        Technique::ImageSpace(_) => Box::new(image_space::Frame::new(pipelines, asset)?),
+        Technique::Fins { .. } => Box::new(fins::Frame::new(pipelines)?),
+        Technique::Wireframe { .. } => Box::new(wireframe::Frame::new(pipelines)?),
+        Technique::Hardware(method) => Box::new(hardware::Frame::new(pipelines, *method)?),
+        Technique::SurfaceAngle { .. } => Box::new(surface_angle::Frame::new(pipelines)?),
+        Technique::InvertedHull { .. } => Box::new(inverted_hull::Frame::new(pipelines)?),
+        Technique::Hybrid(_) => Box::new(hybrid::Frame::new(pipelines)?),
+        Technique::ImageSpace(_) => Box::new(image_space::Frame::new(pipelines)?),
     })
+}
+
+/// One instance the frame draws: its asset, the camera as its model space sees it (the scene
+/// camera's model-view times the instance's transform) and its colours.
+#[derive(Clone, Debug)]
+pub(crate) struct Drawn<'a> {
+    pub(crate) asset: &'a GpuAsset,
+    pub(crate) camera: Camera,
+    pub(crate) colors: EdgeColors,
 }
 
 /// What a technique's frame is prepared from.
 pub(crate) struct FrameContext<'a> {
     pub(crate) pipelines: &'a Pipelines,
     pub(crate) queue: &'a wgpu::Queue,
-    pub(crate) asset: &'a GpuAsset,
+    /// The scene's camera (world space).
     pub(crate) camera: &'a Camera,
     pub(crate) style: &'a EdgeStyle,
+    /// The instances in view, in the order their blocks are numbered.
+    pub(crate) instances: &'a [Drawn<'a>],
 }
 
-/// Per-frame GPU state of one technique drawing one asset.
+/// Per-frame GPU state of one technique drawing a frame's instances.
 pub(crate) trait TechniqueFrame: std::fmt::Debug + Send + Sync {
     /// Writes this frame's uniforms and records its compute work (and any passes of its own) into
     /// `encoder`.
@@ -88,21 +102,26 @@ pub(crate) trait TechniqueFrame: std::fmt::Debug + Send + Sync {
     fn gpu_bytes(&self) -> u64;
 }
 
-/// The `Frame` uniform of the object-space edge passes for this frame; `technique` selects a
+/// The `Frame` uniform of the object-space edge passes for instance `index`; `technique` selects a
 /// technique's variant of a shared pass.
-pub(crate) fn frame_uniform(cx: &FrameContext<'_>, technique: u32) -> super::layout::Frame {
-    let (camera, style, asset) = (cx.camera, cx.style, cx.asset);
+pub(crate) fn frame_uniform(
+    cx: &FrameContext<'_>,
+    drawn: &Drawn<'_>,
+    index: usize,
+    technique: u32,
+) -> Frame {
+    let (camera, style, asset) = (&drawn.camera, cx.style, drawn.asset);
     let mvp = camera.view_projection();
     let depth_ref = if style.depth_scaled && !camera.is_orthographic() {
         (mvp * asset.center().extend(1.0)).w.max(1e-6)
     } else {
         0.0
     };
-    super::layout::Frame {
+    Frame {
         mvp: mvp.to_cols_array_2d(),
         eye: camera.eye().to_array(),
         proj_z: camera.projection.z_axis.to_array(),
-        colors: style.colors.array(),
+        colors: drawn.colors.array(),
         viewport: camera.viewport.map(|v| v.max(1) as f32),
         pixel_scale: camera.pixel_scale(),
         width: style.width(),
@@ -125,60 +144,247 @@ pub(crate) fn frame_uniform(cx: &FrameContext<'_>, technique: u32) -> super::lay
         params: [0.0; 4],
         indices_u16: u32::from(asset.index_format == wgpu::IndexFormat::Uint16),
         triangle_count: asset.index_count / 3,
-        _pad0: 0,
-        _pad1: 0,
+        instance: index as u32,
+        capacity: 0,
+    }
+}
+
+/// A dynamic uniform buffer of one block per instance, regrown when a frame has more instances.
+#[derive(Debug)]
+pub(crate) struct Blocks {
+    label: &'static str,
+    buffer: wgpu::Buffer,
+    /// Bytes of one block's contents.
+    size: u64,
+    /// Bytes from one block to the next (the device's dynamic-offset alignment).
+    stride: u64,
+    capacity: usize,
+}
+
+impl Blocks {
+    /// Blocks of `size` bytes.
+    pub(crate) fn new(cache: &Pipelines, label: &'static str, size: usize) -> Self {
+        let align = u64::from(cache.device().limits().min_uniform_buffer_offset_alignment).max(1);
+        let size = size as u64;
+        let stride = size.div_ceil(align) * align;
+        Self {
+            label,
+            buffer: Self::make(cache, label, stride, 1),
+            size,
+            stride,
+            capacity: 1,
+        }
+    }
+
+    fn make(cache: &Pipelines, label: &str, stride: u64, capacity: usize) -> wgpu::Buffer {
+        cache.device().create_buffer(&wgpu::BufferDescriptor {
+            label: Some(label),
+            size: stride * capacity as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        })
+    }
+
+    /// Writes `blocks` (each `size` bytes); true if the buffer had to be remade, so bind groups over
+    /// it must be remade too.
+    pub(crate) fn write<T: bytemuck::Pod>(
+        &mut self,
+        cache: &Pipelines,
+        queue: &wgpu::Queue,
+        blocks: &[T],
+    ) -> bool {
+        debug_assert_eq!(std::mem::size_of::<T>() as u64, self.size);
+        let grown = blocks.len() > self.capacity;
+        if grown {
+            self.capacity = blocks.len().next_power_of_two();
+            self.buffer = Self::make(cache, self.label, self.stride, self.capacity);
+        }
+        let mut bytes = vec![0u8; (self.stride as usize) * blocks.len()];
+        for (i, block) in blocks.iter().enumerate() {
+            let start = i * self.stride as usize;
+            bytes[start..start + self.size as usize].copy_from_slice(bytemuck::bytes_of(block));
+        }
+        if !bytes.is_empty() {
+            queue.write_buffer(&self.buffer, 0, &bytes);
+        }
+        grown
+    }
+
+    /// The dynamic offset of block `i`.
+    pub(crate) fn offset(&self, i: usize) -> u32 {
+        (self.stride * i as u64) as u32
+    }
+
+    /// The binding of one block (the offset is given when the group is set).
+    pub(crate) fn binding(&self) -> wgpu::BindingResource<'_> {
+        wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+            buffer: &self.buffer,
+            offset: 0,
+            size: std::num::NonZeroU64::new(self.size),
+        })
+    }
+
+    pub(crate) fn buffer(&self) -> &wgpu::Buffer {
+        &self.buffer
+    }
+
+    pub(crate) fn gpu_bytes(&self) -> u64 {
+        self.buffer.size()
+    }
+}
+
+/// Per-asset state of a frame (bind groups over the asset's buffers), made the first time an asset
+/// is drawn and dropped once a frame no longer draws it.
+#[derive(Debug)]
+pub(crate) struct PerAsset<T> {
+    entries: Vec<(Arc<()>, GpuAsset, T)>,
+}
+
+impl<T> Default for PerAsset<T> {
+    fn default() -> Self {
+        Self {
+            entries: Vec::new(),
+        }
+    }
+}
+
+impl<T> PerAsset<T> {
+    /// Forgets every asset (when what their state refers to was remade).
+    pub(crate) fn clear(&mut self) {
+        self.entries.clear();
+    }
+
+    /// Keeps only the assets among `instances`.
+    pub(crate) fn retain(&mut self, instances: &[Drawn<'_>]) {
+        self.entries
+            .retain(|(key, _, _)| instances.iter().any(|d| Arc::ptr_eq(key, &d.asset.key)));
+    }
+
+    /// The index of `asset`'s state, made by `make` the first time.
+    pub(crate) fn index(
+        &mut self,
+        asset: &GpuAsset,
+        make: impl FnOnce(&GpuAsset) -> Result<T, RenderError>,
+    ) -> Result<usize, RenderError> {
+        if let Some(i) = self
+            .entries
+            .iter()
+            .position(|(key, _, _)| Arc::ptr_eq(key, &asset.key))
+        {
+            return Ok(i);
+        }
+        let state = make(asset)?;
+        self.entries.push((asset.key.clone(), asset.clone(), state));
+        Ok(self.entries.len() - 1)
+    }
+
+    pub(crate) fn get(&self, i: usize) -> (&GpuAsset, &T) {
+        let (_, asset, state) = &self.entries[i];
+        (asset, state)
+    }
+
+    pub(crate) fn iter(&self) -> impl Iterator<Item = &T> {
+        self.entries.iter().map(|(_, _, t)| t)
     }
 }
 
 /// The per-frame state of a technique that pulls its geometry in the vertex shader from the
-/// asset's buffers: its frame uniform and one bind group over it and the asset.
+/// asset's buffers: one uniform block per instance and one bind group per asset over the block
+/// buffer (binding 0, dynamic) and the asset's buffers; `draws` lists, per instance, its asset's
+/// group and its block.
 #[derive(Debug)]
 pub(crate) struct Pulled {
-    uniform: wgpu::Buffer,
-    pub(crate) group: wgpu::BindGroup,
+    pub(crate) blocks: Blocks,
+    groups: PerAsset<wgpu::BindGroup>,
+    pub(crate) draws: Vec<(usize, u32)>,
 }
 
 impl Pulled {
-    /// The uniform (binding 0) and the group of `set` over it and `buffers`.
-    pub(crate) fn new(
-        pipelines: &Pipelines,
-        layout: &wgpu::BindGroupLayout,
-        set: &super::pipelines::BindingSet,
-        buffers: &[(u32, &wgpu::Buffer)],
-    ) -> Self {
-        let device = pipelines.device();
-        let uniform = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some(set.label),
-            size: std::mem::size_of::<super::layout::Frame>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let mut all = vec![(0, &uniform)];
-        all.extend_from_slice(buffers);
-        let group = set.group(device, layout, &all);
-        Self { uniform, group }
+    pub(crate) fn new(pipelines: &Pipelines, label: &'static str) -> Self {
+        Self {
+            blocks: Blocks::new(pipelines, label, std::mem::size_of::<Frame>()),
+            groups: PerAsset::default(),
+            draws: Vec::new(),
+        }
     }
 
-    pub(crate) fn write(&self, queue: &wgpu::Queue, frame: &super::layout::Frame) {
-        queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(frame));
+    /// Writes one `Frame` per instance (from `uniform`) and makes the group of each new asset with
+    /// `buffers`, the asset's buffers beside the blocks at binding 0.
+    pub(crate) fn prepare(
+        &mut self,
+        cx: &FrameContext<'_>,
+        layout: &wgpu::BindGroupLayout,
+        set: &BindingSet,
+        uniform: impl Fn(&Drawn<'_>, usize) -> Frame,
+        buffers: impl Fn(&GpuAsset) -> Result<Vec<(u32, wgpu::Buffer)>, RenderError>,
+    ) -> Result<(), RenderError> {
+        let frames: Vec<Frame> = cx
+            .instances
+            .iter()
+            .enumerate()
+            .map(|(i, d)| uniform(d, i))
+            .collect();
+        if self.blocks.write(cx.pipelines, cx.queue, &frames) {
+            self.groups.clear();
+        }
+        self.groups.retain(cx.instances);
+        self.draws.clear();
+        for (i, drawn) in cx.instances.iter().enumerate() {
+            let blocks = &self.blocks;
+            let group = self.groups.index(drawn.asset, |asset| {
+                let buffers = buffers(asset)?;
+                let mut entries = vec![wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: blocks.binding(),
+                }];
+                entries.extend(
+                    buffers
+                        .iter()
+                        .map(|(binding, buffer)| wgpu::BindGroupEntry {
+                            binding: *binding,
+                            resource: buffer.as_entire_binding(),
+                        }),
+                );
+                debug_assert_eq!(entries.len(), set.entries.len(), "{}", set.label);
+                Ok(cx
+                    .pipelines
+                    .device()
+                    .create_bind_group(&wgpu::BindGroupDescriptor {
+                        label: Some(set.label),
+                        layout,
+                        entries: &entries,
+                    }))
+            })?;
+            self.draws.push((group, self.blocks.offset(i)));
+        }
+        Ok(())
+    }
+
+    /// For each instance: sets its group and block on `pass` and calls `draw` with its asset.
+    pub(crate) fn each(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        mut draw: impl FnMut(&mut wgpu::RenderPass<'_>, &GpuAsset),
+    ) {
+        for &(group, offset) in &self.draws {
+            let (asset, bind_group) = self.groups.get(group);
+            pass.set_bind_group(0, bind_group, &[offset]);
+            draw(pass, asset);
+        }
     }
 
     pub(crate) fn gpu_bytes(&self) -> u64 {
-        self.uniform.size()
-    }
-
-    pub(crate) fn uniform(&self) -> &wgpu::Buffer {
-        &self.uniform
+        self.blocks.gpu_bytes()
     }
 }
 
 /// `buffer`, or the error that says the asset was uploaded without `extra`.
-pub(crate) fn extra<'a>(
-    buffer: &'a Option<wgpu::Buffer>,
+pub(crate) fn extra(
+    buffer: &Option<wgpu::Buffer>,
     technique: &Technique,
     needs: &'static str,
-) -> Result<&'a wgpu::Buffer, RenderError> {
-    buffer.as_ref().ok_or(RenderError::MissingAssetData {
+) -> Result<wgpu::Buffer, RenderError> {
+    buffer.clone().ok_or(RenderError::MissingAssetData {
         technique: technique.name(),
         needs,
     })

@@ -103,15 +103,20 @@ pub(crate) fn pipeline(
     )
 }
 
-/// The uniform of this frame.
+/// The uniform of this frame (its mesh pass: the first instance's).
 pub(crate) fn uniform(cx: &FrameContext<'_>, variant: u32) -> Post {
     let camera = cx.camera;
-    let mvp = camera.view_projection();
-    let depth_ref = if cx.style.depth_scaled {
-        let c = camera.model_view * cx.asset.center().extend(1.0);
-        (-c.z).max(1e-6)
-    } else {
-        0.0
+    let mvp = cx
+        .instances
+        .first()
+        .map_or(camera.view_projection(), |d| d.camera.view_projection());
+    // Depth-scaled steps are relative to the first instance's centre.
+    let depth_ref = match cx.instances.first() {
+        Some(d) if cx.style.depth_scaled => {
+            let c = d.camera.model_view * d.asset.center().extend(1.0);
+            (-c.z).max(1e-6)
+        }
+        _ => 0.0,
     };
     Post {
         inv_projection: camera.projection.inverse().to_cols_array_2d(),
@@ -134,9 +139,15 @@ pub(crate) fn far_distance(cx: &FrameContext<'_>) -> f32 {
     if far.is_finite() && far > 0.0 {
         return far;
     }
-    let [lo, hi] = cx.asset.bounds().map(glam::Vec3::from);
-    let centre = -(cx.camera.model_view * cx.asset.center().extend(1.0)).z;
-    2.0 * (centre + 0.5 * (hi - lo).length()).max(1e-3)
+    let farthest = cx
+        .instances
+        .iter()
+        .map(|d| {
+            let [lo, hi] = d.asset.bounds().map(glam::Vec3::from);
+            -(d.camera.model_view * d.asset.center().extend(1.0)).z + 0.5 * (hi - lo).length()
+        })
+        .fold(1e-3f32, f32::max);
+    2.0 * farthest
 }
 
 /// A texture of the frame's own, sized to the viewport, remade when the viewport changes.
@@ -199,14 +210,15 @@ impl Own {
         pixels * u64::from(per_pixel) + if self.depth.is_some() { 4 * pixels } else { 0 }
     }
 
-    /// Records a pass that clears the texture to zero and draws `asset` with `pipeline`.
-    pub(crate) fn draw_mesh(
+    /// Records a pass that clears the texture to zero and draws each of `meshes` (an asset and
+    /// its block's dynamic offset in `group`) with `pipeline`.
+    pub(crate) fn draw_meshes(
         &self,
         cache: &Cache,
         encoder: &mut wgpu::CommandEncoder,
         pipeline: &wgpu::RenderPipeline,
         group: &wgpu::BindGroup,
-        asset: &GpuAsset,
+        meshes: &[(u32, GpuAsset)],
     ) {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("post-process buffer"),
@@ -234,8 +246,10 @@ impl Own {
             multiview_mask: None,
         });
         pass.set_pipeline(pipeline);
-        pass.set_bind_group(0, group, &[]);
-        super::draw_mesh(&mut pass, asset);
+        for (offset, asset) in meshes {
+            pass.set_bind_group(0, group, &[*offset]);
+            super::draw_mesh(&mut pass, asset);
+        }
     }
 }
 
@@ -346,5 +360,52 @@ pub(crate) fn uniform_buffer(cache: &Cache, label: &str) -> wgpu::Buffer {
         size: std::mem::size_of::<Post>() as u64,
         usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
+    })
+}
+
+/// One [`Post`] block per instance (its mesh pass's matrix), written to `blocks`; forgets `group`
+/// if the blocks were remade. Returns each instance's dynamic offset and asset.
+pub(crate) fn instance_blocks(
+    cx: &FrameContext<'_>,
+    blocks: &mut super::Blocks,
+    group: &mut Option<wgpu::BindGroup>,
+) -> Vec<(u32, GpuAsset)> {
+    let posts: Vec<Post> = cx
+        .instances
+        .iter()
+        .map(|d| {
+            let mut post = uniform(cx, 0);
+            post.mvp = d.camera.view_projection().to_cols_array_2d();
+            post
+        })
+        .collect();
+    if blocks.write(cx.pipelines, cx.queue, &posts) {
+        *group = None;
+    }
+    cx.instances
+        .iter()
+        .enumerate()
+        .map(|(i, d)| (blocks.offset(i), d.asset.clone()))
+        .collect()
+}
+
+/// The bind group of a mesh pass over `blocks` (binding 0, dynamic), made once.
+pub(crate) fn block_group<'g>(
+    cache: &Cache,
+    layout: &wgpu::BindGroupLayout,
+    blocks: &super::Blocks,
+    group: &'g mut Option<wgpu::BindGroup>,
+) -> &'g wgpu::BindGroup {
+    group.get_or_insert_with(|| {
+        cache
+            .device()
+            .create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("post-process mesh pass"),
+                layout,
+                entries: &[wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: blocks.binding(),
+                }],
+            })
     })
 }

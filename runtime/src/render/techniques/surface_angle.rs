@@ -6,12 +6,12 @@ use std::sync::Arc;
 
 use super::{FrameContext, Pulled, TechniqueFrame};
 use crate::render::pipelines::{Access, BindingSet, RenderPipeline};
-use crate::render::{GpuAsset, Pipelines as Cache, RenderError, Technique, modules};
+use crate::render::{Pipelines as Cache, RenderError, Technique, modules};
 
 const SET: BindingSet = BindingSet {
     label: "surface angle",
     stages: wgpu::ShaderStages::VERTEX_FRAGMENT,
-    entries: &[(0, Access::Uniform)],
+    entries: &[(0, Access::Instance)],
 };
 
 /// The position and normal vertex buffers of the mesh pass.
@@ -58,22 +58,18 @@ impl Pipelines {
     }
 }
 
-/// One asset's frame.
+/// A frame.
 #[derive(Debug)]
 pub(crate) struct Frame {
     pipelines: Arc<Pipelines>,
     pulled: Pulled,
-    asset: GpuAsset,
 }
 
 impl Frame {
-    pub(crate) fn new(cache: &Cache, asset: &GpuAsset) -> Result<Self, RenderError> {
-        let pipelines = cache.surface_angle()?;
-        let pulled = Pulled::new(cache, &pipelines.layout, &SET, &[]);
+    pub(crate) fn new(cache: &Cache) -> Result<Self, RenderError> {
         Ok(Self {
-            pipelines,
-            pulled,
-            asset: asset.clone(),
+            pipelines: cache.surface_angle()?,
+            pulled: Pulled::new(cache, "surface angle"),
         })
     }
 }
@@ -87,20 +83,30 @@ impl TechniqueFrame for Frame {
         let Technique::SurfaceAngle { threshold } = cx.style.technique else {
             return Err(super::mismatch(cx));
         };
-        let mut uniform = super::frame_uniform(cx, 0);
-        uniform.params[0] = if threshold.is_finite() {
+        let threshold = if threshold.is_finite() {
             threshold.clamp(0.0, 1.0)
         } else {
             0.0
         };
-        self.pulled.write(cx.queue, &uniform);
-        Ok(())
+        self.pulled.prepare(
+            cx,
+            &self.pipelines.layout,
+            &SET,
+            |d, i| {
+                let mut uniform = super::frame_uniform(cx, d, i, 0);
+                uniform.params[0] = threshold;
+                uniform
+            },
+            |_| Ok(Vec::new()),
+        )
     }
 
     fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
-        pass.set_bind_group(0, &self.pulled.group, &[]);
-        pass.set_pipeline(&self.pipelines.angle);
-        super::draw_mesh(pass, &self.asset);
+        let pipeline = &self.pipelines.angle;
+        self.pulled.each(pass, |pass, asset| {
+            pass.set_pipeline(pipeline);
+            super::draw_mesh(pass, asset);
+        });
     }
 
     fn gpu_bytes(&self) -> u64 {

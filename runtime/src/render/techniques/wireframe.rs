@@ -7,13 +7,13 @@ use std::sync::Arc;
 
 use super::{FrameContext, Pulled, TechniqueFrame, extra, pulled_pipeline};
 use crate::render::pipelines::{Access, BindingSet};
-use crate::render::{GpuAsset, Pipelines as Cache, RenderError, Technique, modules};
+use crate::render::{Pipelines as Cache, RenderError, Technique, modules};
 
 const SET: BindingSet = BindingSet {
     label: "wireframe",
     stages: wgpu::ShaderStages::VERTEX_FRAGMENT,
     entries: &[
-        (0, Access::Uniform),
+        (0, Access::Instance),
         (5, Access::Read),
         (7, Access::Read),
         (8, Access::Read),
@@ -43,52 +43,18 @@ impl Pipelines {
     }
 }
 
-/// One asset's frame.
+/// A frame.
 #[derive(Debug)]
 pub(crate) struct Frame {
     pipelines: Arc<Pipelines>,
     pulled: Pulled,
-    triangle_count: u32,
 }
 
 impl Frame {
-    pub(crate) fn new(
-        cache: &Cache,
-        asset: &GpuAsset,
-        technique: &Technique,
-    ) -> Result<Self, RenderError> {
-        let pipelines = cache.wireframe()?;
-        let feature_only = matches!(
-            technique,
-            Technique::Wireframe {
-                feature_only: true,
-                ..
-            }
-        );
-        // The masks are read only in feature-only mode; otherwise any buffer fills the binding.
-        let masks = if feature_only {
-            extra(
-                &asset.triangle_edges,
-                technique,
-                "AssetExtras::TRIANGLE_EDGES",
-            )?
-        } else {
-            asset.triangle_edges.as_ref().unwrap_or(&asset.mesh_indices)
-        };
-        let pulled = Pulled::new(
-            cache,
-            &pipelines.layout,
-            &SET,
-            &[
-                (5, &asset.render_positions),
-                (7, &asset.mesh_indices),
-                (8, masks),
-            ],
-        );
+    pub(crate) fn new(cache: &Cache) -> Result<Self, RenderError> {
         Ok(Self {
-            pipelines,
-            pulled,
-            triangle_count: asset.index_count / 3,
+            pipelines: cache.wireframe()?,
+            pulled: Pulled::new(cache, "wireframe"),
         })
     }
 }
@@ -99,29 +65,60 @@ impl TechniqueFrame for Frame {
         cx: &FrameContext<'_>,
         _encoder: &mut wgpu::CommandEncoder,
     ) -> Result<(), RenderError> {
+        let technique = cx.style.technique;
         let Technique::Wireframe {
             feature_only,
             smooth,
             naive_threshold,
-        } = cx.style.technique
+        } = technique
         else {
             return Err(super::mismatch(cx));
         };
-        let mut uniform = super::frame_uniform(cx, 0);
-        uniform.params = [
+        let params = [
             f32::from(u8::from(naive_threshold.is_some())),
             f32::from(u8::from(smooth)),
             f32::from(u8::from(feature_only)),
             naive_threshold.unwrap_or(0.0),
         ];
-        self.pulled.write(cx.queue, &uniform);
-        Ok(())
+        self.pulled.prepare(
+            cx,
+            &self.pipelines.layout,
+            &SET,
+            |d, i| {
+                let mut uniform = super::frame_uniform(cx, d, i, 0);
+                uniform.params = params;
+                uniform
+            },
+            |asset| {
+                // The masks are read only in feature-only mode; otherwise any buffer fills the
+                // binding.
+                let masks = if feature_only {
+                    extra(
+                        &asset.triangle_edges,
+                        &technique,
+                        "AssetExtras::TRIANGLE_EDGES",
+                    )?
+                } else {
+                    asset
+                        .triangle_edges
+                        .clone()
+                        .unwrap_or_else(|| asset.mesh_indices.clone())
+                };
+                Ok(vec![
+                    (5, asset.render_positions.clone()),
+                    (7, asset.mesh_indices.clone()),
+                    (8, masks),
+                ])
+            },
+        )
     }
 
     fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
-        pass.set_bind_group(0, &self.pulled.group, &[]);
-        pass.set_pipeline(&self.pipelines.wire);
-        pass.draw(0..3, 0..self.triangle_count);
+        let pipeline = &self.pipelines.wire;
+        self.pulled.each(pass, |pass, asset| {
+            pass.set_pipeline(pipeline);
+            pass.draw(0..3, 0..asset.index_count / 3);
+        });
     }
 
     fn gpu_bytes(&self) -> u64 {
