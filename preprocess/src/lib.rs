@@ -20,6 +20,7 @@ pub mod classify;
 mod corners;
 pub mod degenerate;
 mod error;
+pub mod intersections;
 pub mod load;
 pub mod mesh;
 pub mod normals;

@@ -18,6 +18,9 @@ pub struct BakeOptions {
     pub radius: Radius,
     /// Also give [`radius`](Self::radius) to valley creases. Default false.
     pub radius_valleys: bool,
+    /// Also find intersection edges, where triangles cut through each other (thesis §2.2), and
+    /// store them in the asset. Default false.
+    pub intersections: bool,
 }
 
 /// The chamfer radius rule.
@@ -52,6 +55,7 @@ impl BakeOptions {
         crease_deg: 30.0,
         radius: Radius::None,
         radius_valleys: false,
+        intersections: false,
     };
 
     /// Sets [`weld_epsilon`](Self::weld_epsilon).
@@ -84,6 +88,14 @@ impl BakeOptions {
     pub fn with_radius_valleys(self, radius_valleys: bool) -> Self {
         Self {
             radius_valleys,
+            ..self
+        }
+    }
+
+    /// Sets [`intersections`](Self::intersections).
+    pub fn with_intersections(self, intersections: bool) -> Self {
+        Self {
+            intersections,
             ..self
         }
     }
@@ -151,6 +163,7 @@ impl BakeOptions {
                 },
             ),
             ("radius_valleys".into(), self.radius_valleys.to_string()),
+            ("intersections".into(), self.intersections.to_string()),
         ]
     }
 }

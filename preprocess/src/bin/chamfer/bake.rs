@@ -19,7 +19,8 @@ use crate::memory::peak_rss_bytes;
   chamfer bake model.obj -o model.chamfer
   chamfer bake assets/*.glb -o baked/            (many inputs: OUT is a directory)
   chamfer bake scan.ply.gz -o scan.chamfer --weld-epsilon 1e-5 --crease-deg 40
-  chamfer bake part.obj -o part.chamfer --timings")]
+  chamfer bake part.obj -o part.chamfer --timings
+  chamfer bake assembly.glb -o assembly.chamfer --intersections")]
 pub struct BakeArgs {
     /// Mesh files: .obj, .gltf, .glb, .ply or .ply.gz.
     #[arg(required = true)]
@@ -56,6 +57,10 @@ pub struct OptionArgs {
     /// Give valley creases the radius too.
     #[arg(long)]
     radius_valleys: bool,
+    /// Also find intersection edges, where triangles cut through each other (within one mesh and
+    /// between the objects, primitives and instances of the file), and store them in the asset.
+    #[arg(long)]
+    intersections: bool,
 }
 
 impl OptionArgs {
@@ -70,7 +75,8 @@ impl OptionArgs {
                 (None, Some(f)) => Radius::Relative(f),
                 (None, None) => Radius::None,
             })
-            .with_radius_valleys(self.radius_valleys);
+            .with_radius_valleys(self.radius_valleys)
+            .with_intersections(self.intersections);
         options.validate()?;
         Ok(options)
     }
@@ -180,6 +186,18 @@ fn report(input: &Path, output: &Path, baked: &Baked, write: Duration, timings: 
         stats.edges.coplanar_dropped,
         baked.asset.encoded_len(),
     );
+    if let Some(found) = &baked.intersections {
+        text += &format!(
+            "\n  intersections: {} segments in {} polylines ({} closed), length {:.6}; {} candidate pairs, {} coplanar, {} triangles skipped",
+            found.segments,
+            found.polylines,
+            found.closed_polylines,
+            found.length,
+            found.candidate_pairs,
+            found.coplanar_pairs,
+            found.skipped_triangles,
+        );
+    }
     for warning in &baked.warnings {
         text += &format!("\n  warning: {}: {warning}", input.display());
     }
@@ -188,12 +206,13 @@ fn report(input: &Path, output: &Path, baked: &Baked, write: Duration, timings: 
         let ms = |d: Duration| d.as_secs_f64() * 1e3;
         let triangles = stats.input_triangles as f64;
         text += &format!(
-            "\n  parse {:.1} ms | weld {:.1} | adjacency {:.1} | classify {:.1} | caps {:.1} | normals {:.1} | assemble {:.1} | write {:.1} ms\n  processing (all but parse): {:.1} ms = {:.2} M triangles/s; mesh {:.1} MB, peak RSS {}",
+            "\n  parse {:.1} ms | weld {:.1} | adjacency {:.1} | classify {:.1} | caps {:.1} | intersections {:.1} | normals {:.1} | assemble {:.1} | write {:.1} ms\n  processing (all but parse): {:.1} ms = {:.2} M triangles/s; mesh {:.1} MB, peak RSS {}",
             ms(t.parse),
             ms(t.weld),
             ms(t.adjacency),
             ms(t.classify),
             ms(t.caps),
+            ms(t.intersections),
             ms(t.normals),
             ms(t.assemble),
             ms(write),
