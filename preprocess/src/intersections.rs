@@ -43,6 +43,7 @@ use obvhs::bvh2::node::Bvh2Node;
 use rayon::prelude::*;
 
 use crate::degenerate::is_degenerate;
+use crate::polylines;
 
 /// The intersection curves of a mesh, as the asset stores them.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -559,75 +560,23 @@ fn weld(segments: Vec<[Vec3; 2]>) -> (Vec<Vec3>, Vec<[u32; 2]>) {
     (points, edges)
 }
 
-/// Chains segments into polylines: first the open ones, from every point where other than two
-/// segments meet, then the closed loops. Returns the oriented segments, the polyline starts and how
-/// many polylines are closed.
+/// The welded segments as chained polylines: oriented segments, the polyline starts and how many
+/// polylines are closed.
 fn chain(points: &[Vec3], edges: &[[u32; 2]]) -> (Vec<[[f32; 3]; 2]>, Vec<u32>, u64) {
-    let mut incident: Vec<Vec<u32>> = vec![Vec::new(); points.len()];
-    for (e, &[a, b]) in edges.iter().enumerate() {
-        incident[a as usize].push(e as u32);
-        incident[b as usize].push(e as u32);
-    }
-    let mut walker = Walker {
-        points,
-        edges,
-        incident: &incident,
-        used: vec![false; edges.len()],
-        segments: Vec::with_capacity(edges.len()),
-        starts: Vec::new(),
-    };
-    for point in 0..points.len() {
-        if incident[point].len() != 2 {
-            for &e in &incident[point] {
-                if !walker.used[e as usize] {
-                    walker.walk(point as u32, e);
-                }
-            }
-        }
-    }
+    let mut segments = Vec::with_capacity(edges.len());
+    let mut starts = Vec::new();
     let mut closed = 0;
-    for e in 0..edges.len() {
-        if !walker.used[e] && walker.walk(edges[e][0], e as u32) {
-            closed += 1;
-        }
+    for polyline in polylines::chain(points.len(), edges) {
+        starts.push(segments.len() as u32);
+        closed += u64::from(polyline.closed);
+        segments.extend(polyline.points.windows(2).map(|w| {
+            [
+                points[w[0] as usize].to_array(),
+                points[w[1] as usize].to_array(),
+            ]
+        }));
     }
-    (walker.segments, walker.starts, closed)
-}
-
-struct Walker<'a> {
-    points: &'a [Vec3],
-    edges: &'a [[u32; 2]],
-    incident: &'a [Vec<u32>],
-    used: Vec<bool>,
-    segments: Vec<[[f32; 3]; 2]>,
-    starts: Vec<u32>,
-}
-
-impl Walker<'_> {
-    /// Follows segments from `from` along `first` while the points pass exactly two segments on;
-    /// returns true if the walk came back to `from` (a closed loop).
-    fn walk(&mut self, from: u32, first: u32) -> bool {
-        self.starts.push(self.segments.len() as u32);
-        let (mut at, mut edge) = (from, first);
-        loop {
-            self.used[edge as usize] = true;
-            let [a, b] = self.edges[edge as usize];
-            let next = if a == at { b } else { a };
-            self.segments.push([
-                self.points[at as usize].to_array(),
-                self.points[next as usize].to_array(),
-            ]);
-            at = next;
-            let around = &self.incident[at as usize];
-            if around.len() != 2 {
-                return false;
-            }
-            match around.iter().find(|&&e| !self.used[e as usize]) {
-                Some(&e) => edge = e,
-                None => return at == from,
-            }
-        }
-    }
+    (segments, starts, closed)
 }
 
 #[cfg(test)]
