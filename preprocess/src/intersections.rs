@@ -116,6 +116,20 @@ pub fn find_intersections(positions: &[Vec3], triangles: &[[u32; 3]]) -> Interse
     }
 }
 
+/// The exact pair test alone, as [`find_intersections`] runs it on every candidate pair: where
+/// triangles `a` and `b` (vertex indices into `positions`) cross, if along a segment of non-zero
+/// length (end points in a fixed order). Pairs sharing an edge, coplanar pairs, pairs that only
+/// touch, and bad triangles give `None`.
+pub fn intersect_triangles(positions: &[Vec3], a: [u32; 3], b: [u32; 3]) -> Option<[Vec3; 2]> {
+    if !is_usable(a, positions) || !is_usable(b, positions) {
+        return None;
+    }
+    match intersect_pair(&Face::new(a, positions), &Face::new(b, positions)) {
+        Pair::Crossing(segment) => Some(segment),
+        _ => None,
+    }
+}
+
 fn is_usable(t: [u32; 3], positions: &[Vec3]) -> bool {
     t.iter()
         .all(|&i| positions.get(i as usize).is_some_and(|p| p.is_finite()))
