@@ -2,7 +2,9 @@
 //! normals at creases and write the compact `.chamfer` asset that `chamfer-runtime` draws.
 //!
 //! One module per step, each with one public entry and its contract:
-//! [`load`] → [`weld`] → [`degenerate`] → [`adjacency`] → [`classify`] → [`radii`] → [`caps`] → [`normals`] → the asset.
+//! [`load`] → [`weld`] → [`degenerate`] → [`adjacency`] → [`classify`] → [`radii`] → [`caps`] →
+//! [`intersections`] (optional) → [`normals`] → the asset. [`draw`] makes hidden-line drawings (SVG) of
+//! an asset.
 //!
 //! ```no_run
 //! use chamfer_preprocess::{bake_file, BakeOptions};
