@@ -10,7 +10,7 @@
 //! where all pairs is feasible. Draw: `hidden_lines` plus the SVG (the `chamfer draw` default camera,
 //! 1024 x 768) of the baked asset. Times are medians.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::{Duration, Instant};
 
 use chamfer_preprocess::draw::svg::{SvgOptions, write_svg};
@@ -150,7 +150,7 @@ fn median(runs: usize, mut f: impl FnMut() -> Duration) -> Duration {
     times[times.len() / 2]
 }
 
-fn load_mesh(path: &PathBuf) -> Result<Mesh, Box<dyn std::error::Error>> {
+fn load_mesh(path: &Path) -> Result<Mesh, Box<dyn std::error::Error>> {
     Ok(load::load(path)?.mesh)
 }
 

@@ -26,18 +26,18 @@ pub(crate) fn chain(point_count: usize, segments: &[[u32; 2]]) -> Vec<Chain> {
         used: vec![false; segments.len()],
     };
     let mut chains = Vec::new();
-    for point in 0..point_count {
-        if incident[point].len() != 2 {
-            for &s in &incident[point] {
+    for (point, around) in incident.iter().enumerate() {
+        if around.len() != 2 {
+            for &s in around {
                 if !walker.used[s as usize] {
                     chains.push(walker.walk(point as u32, s));
                 }
             }
         }
     }
-    for s in 0..segments.len() {
+    for (s, segment) in segments.iter().enumerate() {
         if !walker.used[s] {
-            chains.push(walker.walk(segments[s][0], s as u32));
+            chains.push(walker.walk(segment[0], s as u32));
         }
     }
     chains
