@@ -720,6 +720,54 @@ mod tests {
     }
 
     #[test]
+    fn the_filtered_side_test_agrees_with_exact_orient3d_near_the_plane() {
+        // Points on (or a few ulps off) a triangle's plane, where the f64 filter must hand over.
+        let mut seed = 0x9e37_79b9_u32;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 17;
+            seed ^= seed << 5;
+            f64::from(seed) / f64::from(u32::MAX) * 2.0 - 1.0
+        };
+        let exact_sign = |t: &[Vec3; 3], q: Vec3| {
+            let c = |p: Vec3| robust::Coord3D {
+                x: f64::from(p.x),
+                y: f64::from(p.y),
+                z: f64::from(p.z),
+            };
+            let d = -robust::orient3d(c(t[0]), c(t[1]), c(t[2]), c(q));
+            (d > 0.0) as i8 - (d < 0.0) as i8
+        };
+        let (mut on_plane, mut handed_over) = (0, 0);
+        for round in 0..20_000 {
+            // Integer coordinates times a power of two: the point a + i (b - a) + j (c - a) is then
+            // exactly on the plane (the exact path), and a nudge of a few ulps puts it just off it.
+            let scale = 2f32.powi((next() * 20.0) as i32);
+            let int = |r: f64| (r * 1000.0).round() as f32 * scale;
+            let t: [Vec3; 3] =
+                std::array::from_fn(|_| Vec3::new(int(next()), int(next()), int(next())));
+            let (i, j) = ((next() * 4.0).round() as f32, (next() * 4.0).round() as f32);
+            let mut q = t[0] + (t[1] - t[0]) * i + (t[2] - t[0]) * j;
+            if round % 2 == 1 {
+                let k = (next().abs() * 2.99) as usize;
+                let nudge = (next() * 3.0) as i32;
+                q[k] = f32::from_bits((q[k].to_bits() as i32 + nudge) as u32);
+            }
+            let plane = Plane::new(&t);
+            let filtered = plane.side(&t, q);
+            assert_eq!(filtered, exact_sign(&t, q), "{t:?} {q:?}");
+            on_plane += usize::from(filtered == 0);
+            let w = q.as_dvec3() - plane.origin;
+            handed_over +=
+                usize::from(plane.normal.dot(w).abs() <= 2e-15 * w.abs().dot(plane.magnitude));
+        }
+        assert!(
+            on_plane > 1000 && handed_over > 1000,
+            "{on_plane} {handed_over}"
+        );
+    }
+
+    #[test]
     fn ends_a_rounding_apart_are_welded_into_one_polyline() {
         let a = Vec3::new(0.3, 0.7, 0.1);
         let nudged = Vec3::new(f32::from_bits(a.x.to_bits() + 2), a.y, a.z);
