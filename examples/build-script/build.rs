@@ -2,7 +2,8 @@
 
 fn main() -> Result<(), chamfer_preprocess::Error> {
     let options = chamfer_preprocess::BakeOptions::DEFAULT
-        .with_radius(chamfer_preprocess::Radius::Relative(0.01));
+        .with_radius(chamfer_preprocess::Radius::Relative(0.01))
+        .with_intersections(true);
     chamfer_preprocess::build::bake_dir("assets", &options)?;
     Ok(())
 }

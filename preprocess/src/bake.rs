@@ -1,5 +1,5 @@
-//! The bake pipeline: validate → weld → drop degenerate triangles → adjacency → classify → split
-//! normals → assemble the asset. Each step's time is recorded for `chamfer bake --timings`.
+//! The bake pipeline: validate → weld → drop degenerate triangles → adjacency → classify → caps →
+//! intersections (optional) → split normals → assemble the asset. Each step's time is recorded for `chamfer bake --timings`.
 
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -10,7 +10,8 @@ use glam::Vec3;
 use crate::corners::VertexCorners;
 use crate::mesh::{Mark, Mesh, MeshError};
 use crate::{
-    BakeOptions, Error, adjacency, caps, classify, degenerate, load, normals, radii, weld,
+    BakeOptions, Error, adjacency, caps, classify, degenerate, intersections, load, normals, radii,
+    weld,
 };
 
 /// A baked asset and what it took.
@@ -24,6 +25,8 @@ pub struct Baked {
     pub mesh_bytes: usize,
     /// What the loader skipped or ignored.
     pub warnings: Vec<String>,
+    /// What the intersection search saw, if [`BakeOptions::intersections`] asked for it.
+    pub intersections: Option<intersections::IntersectionStats>,
     /// The exact radius of each asset edge (the asset stores them as f16); empty when none has one.
     pub radii: Vec<f32>,
 }
@@ -43,6 +46,8 @@ pub struct Timings {
     pub caps: Duration,
     /// Splitting normals into render vertices.
     pub normals: Duration,
+    /// Finding intersection edges (zero unless asked for).
+    pub intersections: Duration,
     /// Packing the asset's sections.
     pub assemble: Duration,
 }
@@ -50,7 +55,13 @@ pub struct Timings {
 impl Timings {
     /// Everything but parsing.
     pub fn processing(&self) -> Duration {
-        self.weld + self.adjacency + self.classify + self.caps + self.normals + self.assemble
+        self.weld
+            + self.adjacency
+            + self.classify
+            + self.caps
+            + self.normals
+            + self.intersections
+            + self.assemble
     }
 }
 
@@ -173,12 +184,24 @@ pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Er
     let rings = caps::rings_around(&corners, &triangles, &edges, positions.len());
     lap(&mut timings.caps);
 
+    // Before the normals step, which consumes the triangles; over the welded positions, so
+    // neighbours are recognised by index.
+    let found = options
+        .intersections
+        .then(|| intersections::find_intersections(&positions, &triangles));
+    lap(&mut timings.intersections);
+
     let render = normals::split_normals_around(corners, &positions, &triangles, &edges);
     drop(triangles);
     lap(&mut timings.normals);
 
     let radii = edges.radii.clone();
-    let asset = assemble(source, options, stats, &positions, edges, rings, render);
+    let intersection_stats = found.as_ref().map(|f| f.stats);
+    let mut asset = assemble(source, options, stats, &positions, edges, rings, render);
+    if let Some(found) = found {
+        asset.intersection_segments = found.segments;
+        asset.intersection_starts = found.starts;
+    }
     lap(&mut timings.assemble);
     Ok(Baked {
         asset,
@@ -186,6 +209,7 @@ pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Er
         mesh_bytes,
         warnings: Vec::new(),
         radii,
+        intersections: intersection_stats,
     })
 }
 
@@ -259,5 +283,7 @@ fn assemble(
         edge_attributes,
         next_ends: Indices::with_bound(rings.next, 2 * edge_count),
         cap_heads: Indices::with_bound(rings.heads, 2 * edge_count),
+        intersection_segments: Vec::new(),
+        intersection_starts: Vec::new(),
     }
 }

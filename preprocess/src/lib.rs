@@ -2,7 +2,9 @@
 //! normals at creases and write the compact `.chamfer` asset that `chamfer-runtime` draws.
 //!
 //! One module per step, each with one public entry and its contract:
-//! [`load`] → [`weld`] → [`degenerate`] → [`adjacency`] → [`classify`] → [`radii`] → [`caps`] → [`normals`] → the asset.
+//! [`load`] → [`weld`] → [`degenerate`] → [`adjacency`] → [`classify`] → [`radii`] → [`caps`] →
+//! [`intersections`] (optional) → [`normals`] → the asset. [`draw`] makes hidden-line drawings (SVG) of
+//! an asset.
 //!
 //! ```no_run
 //! use chamfer_preprocess::{bake_file, BakeOptions};
@@ -19,12 +21,15 @@ pub mod caps;
 pub mod classify;
 mod corners;
 pub mod degenerate;
+pub mod draw;
 mod error;
+pub mod intersections;
 pub mod limits;
 pub mod load;
 pub mod mesh;
 pub mod normals;
 mod options;
+mod polylines;
 pub mod radii;
 pub mod weld;
 pub mod write;

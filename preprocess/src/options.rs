@@ -24,6 +24,9 @@ pub struct BakeOptions {
     /// Default [`Limits::DEFAULT`]. Limits never change an asset, only whether a file is refused,
     /// so they are not part of [`describe`](Self::describe).
     pub limits: Limits,
+    /// Also find intersection edges, where triangles cut through each other (thesis §2.2), and
+    /// store them in the asset. Default false.
+    pub intersections: bool,
 }
 
 /// The chamfer radius rule.
@@ -59,6 +62,7 @@ impl BakeOptions {
         radius: Radius::None,
         radius_valleys: false,
         limits: Limits::DEFAULT,
+        intersections: false,
     };
 
     /// Sets [`weld_epsilon`](Self::weld_epsilon).
@@ -98,6 +102,14 @@ impl BakeOptions {
     /// Sets [`limits`](Self::limits).
     pub fn with_limits(self, limits: Limits) -> Self {
         Self { limits, ..self }
+    }
+
+    /// Sets [`intersections`](Self::intersections).
+    pub fn with_intersections(self, intersections: bool) -> Self {
+        Self {
+            intersections,
+            ..self
+        }
     }
 
     /// Checks every field's range.
@@ -163,6 +175,7 @@ impl BakeOptions {
                 },
             ),
             ("radius_valleys".into(), self.radius_valleys.to_string()),
+            ("intersections".into(), self.intersections.to_string()),
         ]
     }
 }

@@ -745,3 +745,49 @@ fn limits_are_flags_and_documented_in_help() {
         assert!(help.contains(flag), "bake --help lacks {flag}");
     }
 }
+
+#[test]
+fn bake_intersections_then_inspect_json_shows_them() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("cubes.chamfer");
+    let input = fixture("shapes/two-cubes.obj");
+    let run = chamfer(&[
+        "bake",
+        path_str(&input),
+        "-o",
+        path_str(&out),
+        "--intersections",
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert!(
+        text(&run.stdout).contains("intersections: "),
+        "{}",
+        text(&run.stdout)
+    );
+    let run = chamfer(&["inspect", path_str(&out), "--json"]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&run.stdout).expect("valid JSON");
+    let i = &json["intersections"];
+    assert_eq!(i["polylines"], 1, "{json}");
+    assert_eq!(i["closed"], 1);
+    assert!(i["segments"].as_u64().is_some_and(|s| s >= 6));
+    assert!((i["length"].as_f64().unwrap_or(0.0) - 3.9).abs() < 1e-5);
+    assert_eq!(json["settings"]["intersections"], "true");
+    // Without the flag the object is there, empty; a version-1 asset reads the same way.
+    for asset in [None, Some(fixture("assets/cube-v1.chamfer"))] {
+        let path = match asset {
+            Some(p) => p,
+            None => {
+                let plain = dir.path().join("plain.chamfer");
+                let run = chamfer(&["bake", path_str(&input), "-o", path_str(&plain)]);
+                assert!(run.status.success(), "{}", text(&run.stderr));
+                plain
+            }
+        };
+        let run = chamfer(&["inspect", path_str(&path), "--json"]);
+        assert!(run.status.success(), "{}", text(&run.stderr));
+        let json: serde_json::Value = serde_json::from_slice(&run.stdout).expect("valid JSON");
+        assert_eq!(json["intersections"]["segments"], 0, "{json}");
+        assert_eq!(json["intersections"]["length"], 0.0);
+    }
+}

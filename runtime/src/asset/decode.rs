@@ -5,19 +5,27 @@ use super::{
     MAX_HEADER_BYTES, MAX_RING, SECTION_ALIGN, SectionKind, attribute_flags, envelope,
 };
 
+/// Bytes of one intersection segment: two `[f32; 3]` end points.
+const SEGMENT_BYTES: usize = 24;
+
 impl Asset {
     /// Decodes and validates an asset.
     ///
+    /// Reads format versions 1 and 2 (a version-1 file has no intersection edges).
     /// Rejects, with a typed error: bad magic, another format version, a header or section table
     /// that does not fit the file, sections whose lengths disagree with each other, indices out of
     /// range, non-finite floats, unknown flag bits, next-index rings that are not closed, cap heads
-    /// without rings and vertices
-    /// with more kept edge ends than [`MAX_RING`].
+    /// without rings, vertices with more kept edge ends than [`MAX_RING`] and intersection
+    /// polylines that are not chained.
     /// Allocates at most about twice the input's size. Never panics.
     pub fn decode(bytes: &[u8]) -> Result<Asset, DecodeError> {
-        let header = read_header(bytes)?;
-        let ranges = section_ranges(&header, bytes.len() as u64)?;
-        let section = |kind: SectionKind| &bytes[ranges[kind as usize - 1].clone()];
+        let (header, kinds) = read_header(bytes)?;
+        let ranges = section_ranges(&header, kinds, bytes.len() as u64)?;
+        // A section the file's version does not have is empty.
+        let section = |kind: SectionKind| match &ranges[kind as usize - 1] {
+            Some(range) => &bytes[range.clone()],
+            None => &[],
+        };
 
         let render_positions = read_vec3s(
             SectionKind::RenderPositions,
@@ -103,6 +111,12 @@ impl Asset {
             ));
         }
 
+        let intersection_segments = read_segments(section(SectionKind::IntersectionSegments))?;
+        let intersection_starts = read_u32s(
+            SectionKind::IntersectionPolylines,
+            section(SectionKind::IntersectionPolylines),
+        )?;
+
         let asset = Asset {
             header,
             render_positions,
@@ -113,15 +127,19 @@ impl Asset {
             edge_attributes,
             next_ends,
             cap_heads,
+            intersection_segments,
+            intersection_starts,
         };
         validate_attributes(&asset)?;
         validate_ring_lengths(&asset)?;
         validate_rings(&asset)?;
+        validate_intersections(&asset)?;
         Ok(asset)
     }
 }
 
-fn read_header(bytes: &[u8]) -> Result<Header, DecodeError> {
+/// The header and the section kinds of the file's version.
+fn read_header(bytes: &[u8]) -> Result<(Header, &'static [SectionKind]), DecodeError> {
     let available = bytes.len() as u64;
     let preamble = bytes.get(..16).ok_or(DecodeError::Truncated {
         what: "preamble",
@@ -140,12 +158,10 @@ fn read_header(bytes: &[u8]) -> Result<Header, DecodeError> {
         ])
     };
     let version = word(8);
-    if version != FORMAT_VERSION {
-        return Err(DecodeError::UnsupportedVersion {
-            found: version,
-            supported: FORMAT_VERSION,
-        });
-    }
+    let kinds = SectionKind::of_version(version).ok_or(DecodeError::UnsupportedVersion {
+        found: version,
+        supported: FORMAT_VERSION,
+    })?;
     let header_len = word(12);
     if header_len > MAX_HEADER_BYTES {
         return Err(DecodeError::BadHeader(format!(
@@ -173,21 +189,28 @@ fn read_header(bytes: &[u8]) -> Result<Header, DecodeError> {
             "bounds or radii not finite and non-negative".into(),
         ));
     }
-    Ok(header)
+    Ok((header, kinds))
 }
 
-/// The byte range of every section, indexed by `kind - 1`.
+/// The byte range of every section, indexed by `kind - 1`: one for each of `kinds` (the file's
+/// version's), `None` for the kinds of later versions.
 fn section_ranges(
     header: &Header,
+    kinds: &[SectionKind],
     file_len: u64,
-) -> Result<Vec<std::ops::Range<usize>>, DecodeError> {
+) -> Result<Vec<Option<std::ops::Range<usize>>>, DecodeError> {
     let header_end = 16 + envelope_len(header);
     let mut ranges = vec![None; SectionKind::ALL.len()];
     let mut previous_end = header_end;
     for entry in &header.sections {
-        let kind = SectionKind::from_u32(entry.kind).ok_or_else(|| {
-            DecodeError::BadSectionTable(format!("unknown section kind {}", entry.kind))
-        })?;
+        let kind = SectionKind::from_u32(entry.kind)
+            .filter(|k| kinds.contains(k))
+            .ok_or_else(|| {
+                DecodeError::BadSectionTable(format!(
+                    "unknown section kind {} for this format version",
+                    entry.kind
+                ))
+            })?;
         if entry.offset % SECTION_ALIGN as u64 != 0 {
             return Err(DecodeError::BadSectionTable(format!(
                 "{} starts at {}, not a multiple of {SECTION_ALIGN}",
@@ -229,14 +252,13 @@ fn section_ranges(
     if previous_end < file_len {
         return Err(DecodeError::TrailingBytes(file_len - previous_end));
     }
-    SectionKind::ALL
-        .iter()
-        .map(|&kind| {
-            ranges[kind as usize - 1]
-                .take()
-                .ok_or_else(|| DecodeError::BadSectionTable(format!("{} is missing", kind.name())))
-        })
-        .collect()
+    if let Some(kind) = kinds.iter().find(|k| ranges[**k as usize - 1].is_none()) {
+        return Err(DecodeError::BadSectionTable(format!(
+            "{} is missing",
+            kind.name()
+        )));
+    }
+    Ok(ranges)
 }
 
 /// The encoded length of a header that was just decoded (re-encoding is exact and cheap).
@@ -283,6 +305,18 @@ fn read_vec3s(kind: SectionKind, bytes: &[u8]) -> Result<Vec<[f32; 3]>, DecodeEr
         });
     }
     Ok(values)
+}
+
+fn read_segments(bytes: &[u8]) -> Result<Vec<[[f32; 3]; 2]>, DecodeError> {
+    let kind = SectionKind::IntersectionSegments;
+    if bytes.len() % SEGMENT_BYTES != 0 {
+        return Err(length_error(
+            kind,
+            format!("{} bytes is not a whole number of 2 × 3 × f32", bytes.len()),
+        ));
+    }
+    let points = read_vec3s(kind, bytes)?;
+    Ok(points.chunks_exact(2).map(|p| [p[0], p[1]]).collect())
 }
 
 /// Reads an index section whose values must be below `bound`, in groups of `group`.
@@ -392,6 +426,74 @@ fn validate_rings(asset: &Asset) -> Result<(), DecodeError> {
             return Err(invalid(format!(
                 "end {next} is the next of two ends (rings must be cycles)"
             )));
+        }
+    }
+    Ok(())
+}
+
+/// Polyline starts must begin at 0, increase strictly and stay below the segment count; within a
+/// polyline each segment must start exactly where the previous one ends, and no segment is a point.
+fn validate_intersections(asset: &Asset) -> Result<(), DecodeError> {
+    let segments = &asset.intersection_segments;
+    let starts = &asset.intersection_starts;
+    let kind = SectionKind::IntersectionPolylines;
+    if segments.is_empty() != starts.is_empty() {
+        return Err(length_error(
+            kind,
+            format!(
+                "{} polylines for {} segments (both or neither must be empty)",
+                starts.len(),
+                segments.len()
+            ),
+        ));
+    }
+    for (position, &start) in starts.iter().enumerate() {
+        let previous = if position == 0 {
+            None
+        } else {
+            Some(starts[position - 1])
+        };
+        let ok = match previous {
+            None => start == 0,
+            Some(p) => start > p && (start as usize) < segments.len(),
+        };
+        if !ok {
+            return Err(DecodeError::Invalid {
+                kind,
+                position: position as u64,
+                reason: format!(
+                    "polyline start {start} must be 0 for the first polyline and then increase, below {}",
+                    segments.len()
+                ),
+            });
+        }
+    }
+    let kind = SectionKind::IntersectionSegments;
+    let invalid = |position: usize, reason: &str| DecodeError::Invalid {
+        kind,
+        position: position as u64,
+        reason: reason.to_owned(),
+    };
+    let bits = |p: &[f32; 3]| p.map(f32::to_bits);
+    for (position, segment) in segments.iter().enumerate() {
+        if segment[0] == segment[1] {
+            return Err(invalid(position, "segment has zero length"));
+        }
+    }
+    // Every segment but the first of each polyline continues the one before it.
+    let mut polyline_starts = starts.iter().skip(1).peekable();
+    for position in 1..segments.len() {
+        if polyline_starts
+            .next_if(|&&s| s as usize == position)
+            .is_some()
+        {
+            continue;
+        }
+        if bits(&segments[position - 1][1]) != bits(&segments[position][0]) {
+            return Err(invalid(
+                position,
+                "segment does not start where the previous segment of its polyline ends",
+            ));
         }
     }
     Ok(())

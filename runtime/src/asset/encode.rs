@@ -16,9 +16,35 @@ impl Asset {
     /// The output depends only on the asset's contents, so equal assets encode to equal bytes.
     /// Fails only if `out` fails (or, impossibly for real assets, if the header exceeds 1 MiB).
     pub fn encode(&self, out: &mut impl Write) -> io::Result<()> {
-        let (header_bytes, sections) = self.layout()?;
+        self.encode_as(FORMAT_VERSION, &SectionKind::ALL, out)
+    }
+
+    /// Writes the asset in an older layout (tests of reading old files); the sections `kinds` lacks
+    /// must be empty.
+    #[cfg(test)]
+    pub(super) fn encode_version(&self, version: u32, out: &mut impl Write) -> io::Result<()> {
+        let kinds = SectionKind::of_version(version)
+            .ok_or_else(|| io::Error::other(format!("no format version {version}")))?;
+        if SectionKind::ALL
+            .iter()
+            .any(|k| !kinds.contains(k) && !self.section_bytes(*k).is_empty())
+        {
+            return Err(io::Error::other(format!(
+                "version {version} cannot hold this asset's sections"
+            )));
+        }
+        self.encode_as(version, kinds, out)
+    }
+
+    fn encode_as(
+        &self,
+        version: u32,
+        kinds: &[SectionKind],
+        out: &mut impl Write,
+    ) -> io::Result<()> {
+        let (header_bytes, sections) = self.layout(kinds)?;
         out.write_all(&MAGIC)?;
-        out.write_all(&FORMAT_VERSION.to_le_bytes())?;
+        out.write_all(&version.to_le_bytes())?;
         out.write_all(&(header_bytes.len() as u32).to_le_bytes())?;
         out.write_all(&header_bytes)?;
         let mut written = PREAMBLE_BYTES + header_bytes.len() as u64;
@@ -43,16 +69,16 @@ impl Asset {
 
     /// The size of the encoded asset in bytes.
     pub fn encoded_len(&self) -> u64 {
-        match self.layout() {
+        match self.layout(&SectionKind::ALL) {
             Ok((_, sections)) => sections.last().map_or(0, |s| s.offset + s.length),
             Err(_) => 0,
         }
     }
 
     /// The section table and the header bytes that describe it.
-    fn layout(&self) -> io::Result<(Vec<u8>, Vec<SectionEntry>)> {
+    fn layout(&self, kinds: &[SectionKind]) -> io::Result<(Vec<u8>, Vec<SectionEntry>)> {
         let mut header = self.header.clone();
-        header.sections = SectionKind::ALL
+        header.sections = kinds
             .iter()
             .map(|&kind| SectionEntry {
                 kind: kind as u32,

@@ -11,12 +11,12 @@ pub enum DecodeError {
     BadMagic,
     /// Written by a different format version.
     #[error(
-        "asset format version {found} is not supported (this build reads version {supported}); re-bake the source mesh"
+        "asset format version {found} is not supported (this build reads versions 1 to {supported}); re-bake the source mesh"
     )]
     UnsupportedVersion {
         /// Version in the file.
         found: u32,
-        /// Version this crate reads.
+        /// The newest version this crate reads (it reads every version from 1 up).
         supported: u32,
     },
     /// The file ends before something it announces.

@@ -1,6 +1,6 @@
 //! The `.chamfer` edge asset: what the bake writes and the runtime uploads.
 //!
-//! # Layout (format version 1)
+//! # Layout (format version 2)
 //!
 //! All numbers are little-endian.
 //!
@@ -25,6 +25,8 @@
 //! | [`SectionKind::EdgeAttributes`] | `u32` | E: low 16 bits [`EdgeFlags`], high 16 bits radius (f16) |
 //! | [`SectionKind::NextEnds`] | edge end < 2E | 2 × E, or empty |
 //! | [`SectionKind::CapHeads`] | edge end < 2E | one per capped vertex, or empty (always empty without `NextEnds`) |
+//! | [`SectionKind::IntersectionSegments`] | `[[f32; 3]; 2]` | S segments, or empty (since version 2) |
+//! | [`SectionKind::IntersectionPolylines`] | `u32` segment index < S | P polylines, or empty (since version 2) |
 //!
 //! An *index* section is `u16` when its values are bounded by 65 536 and `u32` otherwise
 //! ([`IndexWidth::for_bound`]); the width is implied by the counts, so it is never stored.
@@ -32,11 +34,20 @@
 //!
 //! For a boundary edge `v3 == v0` (thesis §6.2); [`EdgeFlags::BOUNDARY`] says the same explicitly.
 //!
+//! *Intersection edges* (thesis §2.2: where surfaces cut through each other, not along any mesh edge)
+//! are stored apart from the mesh edges, as positions rather than indices: each segment is its two
+//! end points, and the segments of one polyline follow each other, the end of one bit-identical to the
+//! start of the next. [`SectionKind::IntersectionPolylines`] holds the index of each polyline's first
+//! segment (strictly increasing from 0); a polyline whose last end equals its first start is closed.
+//! Both sections are empty when the bake did not look for intersections or found none.
+//!
 //! # Compatibility
 //!
-//! The version is bumped on any change to the header or to a section's meaning. A reader accepts only
-//! the version it was built for and reports any other as [`DecodeError::UnsupportedVersion`]: re-bake
-//! the source mesh (bakes are deterministic, so this is cheap to automate in `build.rs`).
+//! The version is bumped on any change to the header or to a section's meaning. Version 2 added the
+//! two intersection sections (the header is unchanged). A reader of version 2 also reads version-1
+//! files, which have no intersection sections (the asset then has no intersection edges), and reports
+//! any other version as [`DecodeError::UnsupportedVersion`]: re-bake the source mesh (bakes are
+//! deterministic, so this is cheap to automate in `build.rs`).
 
 // Sections are written and uploaded as they lie in memory.
 #[cfg(target_endian = "big")]
@@ -55,8 +66,10 @@ use serde::{Deserialize, Serialize};
 
 /// The eight bytes every asset starts with.
 pub const MAGIC: [u8; 8] = *b"CHAMFER\0";
-/// The format version this crate reads and writes.
-pub const FORMAT_VERSION: u32 = 1;
+/// The format version this crate writes (and the newest it reads).
+pub const FORMAT_VERSION: u32 = 2;
+/// The oldest format version this crate still reads.
+pub const OLDEST_READ_VERSION: u32 = 1;
 /// The largest header accepted; real headers are a few hundred bytes.
 pub const MAX_HEADER_BYTES: u32 = 1 << 20;
 /// Every section starts at a multiple of this many bytes.
@@ -303,11 +316,15 @@ pub enum SectionKind {
     NextEnds = 7,
     /// Per capped vertex, one edge end at that vertex: the start of its ring (thesis §10.5).
     CapHeads = 8,
+    /// Intersection edges: two `[f32; 3]` end points per segment, polylines in order (version 2).
+    IntersectionSegments = 9,
+    /// Index of the first segment of each intersection polyline (version 2).
+    IntersectionPolylines = 10,
 }
 
 impl SectionKind {
     /// Every kind, in the order sections are written.
-    pub const ALL: [Self; 8] = [
+    pub const ALL: [Self; 10] = [
         Self::RenderPositions,
         Self::RenderNormals,
         Self::MeshIndices,
@@ -316,9 +333,21 @@ impl SectionKind {
         Self::EdgeAttributes,
         Self::NextEnds,
         Self::CapHeads,
+        Self::IntersectionSegments,
+        Self::IntersectionPolylines,
     ];
 
-    /// The kind with this number, if it is one of this version's.
+    /// The kinds a file of format `version` holds (every one of them, possibly empty), or `None`
+    /// for a version this crate does not read.
+    pub fn of_version(version: u32) -> Option<&'static [Self]> {
+        match version {
+            1 => Some(&Self::ALL[..8]),
+            2 => Some(&Self::ALL),
+            _ => None,
+        }
+    }
+
+    /// The kind with this number, if it is one of the newest version's.
     pub fn from_u32(value: u32) -> Option<Self> {
         Self::ALL.into_iter().find(|k| *k as u32 == value)
     }
@@ -334,6 +363,8 @@ impl SectionKind {
             Self::EdgeAttributes => "edge_attributes",
             Self::NextEnds => "next_ends",
             Self::CapHeads => "cap_heads",
+            Self::IntersectionSegments => "intersection_segments",
+            Self::IntersectionPolylines => "intersection_polylines",
         }
     }
 }
@@ -455,6 +486,11 @@ pub struct Asset {
     pub next_ends: Indices,
     /// First edge end of each capped vertex's ring; empty if not baked.
     pub cap_heads: Indices,
+    /// Intersection edges as segments (two end points each), polyline after polyline; empty if not
+    /// baked or none were found. Read them through [`intersection_polylines`](Self::intersection_polylines).
+    pub intersection_segments: Vec<[[f32; 3]; 2]>,
+    /// Index into [`intersection_segments`](Self::intersection_segments) of each polyline's first segment.
+    pub intersection_starts: Vec<u32>,
 }
 
 impl Asset {
@@ -489,6 +525,32 @@ impl Asset {
             .get(2 * end as usize - (end as usize & 1))
     }
 
+    /// The intersection edges, one slice of chained segments per polyline (`s[k][1] == s[k + 1][0]`).
+    ///
+    /// They are view-independent like creases: a renderer can draw
+    /// [`intersection_segments`](Self::intersection_segments) as one flat list of line segments
+    /// (depth tested), using the polylines only where it joins consecutive segments.
+    pub fn intersection_polylines(&self) -> impl ExactSizeIterator<Item = &[[[f32; 3]; 2]]> + '_ {
+        let segments = &self.intersection_segments;
+        let starts = &self.intersection_starts;
+        (0..starts.len()).map(move |p| {
+            let end = starts.get(p + 1).map_or(segments.len(), |&s| s as usize);
+            &segments[starts[p] as usize..end]
+        })
+    }
+
+    /// Total length of the intersection edges, in mesh units.
+    pub fn intersection_length(&self) -> f64 {
+        self.intersection_segments
+            .iter()
+            .map(|[a, b]| {
+                let d: [f64; 3] = std::array::from_fn(|k| f64::from(b[k]) - f64::from(a[k]));
+                (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
+            })
+            .sum::<f64>()
+            + 0.0 // an empty sum is -0.0
+    }
+
     /// The raw bytes of one section, as written to the file.
     pub fn section_bytes(&self, kind: SectionKind) -> &[u8] {
         match kind {
@@ -500,6 +562,8 @@ impl Asset {
             SectionKind::EdgeAttributes => bytemuck::cast_slice(&self.edge_attributes),
             SectionKind::NextEnds => self.next_ends.as_bytes(),
             SectionKind::CapHeads => self.cap_heads.as_bytes(),
+            SectionKind::IntersectionSegments => bytemuck::cast_slice(&self.intersection_segments),
+            SectionKind::IntersectionPolylines => bytemuck::cast_slice(&self.intersection_starts),
         }
     }
 }

@@ -68,6 +68,24 @@ fn tetrahedron() -> Asset {
         edge_attributes: attributes,
         next_ends: Indices::with_bound(next, 12),
         cap_heads: Indices::with_bound(heads, 12),
+        intersection_segments: Vec::new(),
+        intersection_starts: Vec::new(),
+    }
+}
+
+/// The tetrahedron with two intersection polylines: an open one of two segments, a closed triangle.
+fn with_intersections() -> Asset {
+    let (a, b, c) = ([0.1, 0.1, 0.1], [0.2, 0.1, 0.1], [0.2, 0.3, 0.1]);
+    Asset {
+        intersection_segments: vec![
+            [[0.0, 0.5, 0.5], [0.5, 0.5, 0.5]],
+            [[0.5, 0.5, 0.5], [0.5, 0.0, 0.5]],
+            [a, b],
+            [b, c],
+            [c, a],
+        ],
+        intersection_starts: vec![0, 2],
+        ..tetrahedron()
     }
 }
 
@@ -367,4 +385,118 @@ fn cap_heads_without_next_ends_are_refused() {
         Asset::decode(&asset.encode_to_vec()).is_ok(),
         "neither is fine"
     );
+}
+
+#[test]
+fn intersections_round_trip_and_read_as_polylines() {
+    let asset = with_intersections();
+    let back = decoded(&asset);
+    assert_eq!(back.intersection_segments, asset.intersection_segments);
+    assert_eq!(back.intersection_starts, asset.intersection_starts);
+    assert_eq!(back.encode_to_vec(), asset.encode_to_vec());
+    let polylines: Vec<&[[[f32; 3]; 2]]> = back.intersection_polylines().collect();
+    assert_eq!(polylines.len(), 2);
+    assert_eq!(polylines[0].len(), 2);
+    assert_eq!(polylines[1].len(), 3);
+    assert_eq!(
+        polylines[1][2][1], polylines[1][0][0],
+        "the second one is closed"
+    );
+    let expected = 0.5 + 0.5 + 0.1 + 0.2 + (0.1f64 * 0.1 + 0.2 * 0.2).sqrt();
+    assert!((back.intersection_length() - expected).abs() < 1e-6);
+    assert_eq!(
+        back.section_bytes(SectionKind::IntersectionSegments).len(),
+        5 * 24
+    );
+}
+
+#[test]
+fn version_1_files_are_read_without_intersections() {
+    let asset = tetrahedron();
+    let mut v1 = Vec::new();
+    asset.encode_version(1, &mut v1).expect("a v1 layout");
+    assert_eq!(v1[8..12], 1u32.to_le_bytes());
+    let back = Asset::decode(&v1).expect("version 1 is still read");
+    assert_eq!(back.intersection_segments, Vec::<[[f32; 3]; 2]>::new());
+    assert_eq!(back.intersection_polylines().len(), 0);
+    assert_eq!(
+        back.encode_to_vec(),
+        asset.encode_to_vec(),
+        "re-encoded as version 2"
+    );
+    // A version-1 file cannot hold intersection sections: kind 9 is unknown there.
+    assert!(
+        with_intersections()
+            .encode_version(1, &mut Vec::new())
+            .is_err()
+    );
+    let mut lying = asset.encode_to_vec();
+    lying[8..12].copy_from_slice(&1u32.to_le_bytes());
+    assert!(matches!(
+        Asset::decode(&lying),
+        Err(DecodeError::BadSectionTable(reason)) if reason.contains("kind 9")
+    ));
+    // And a version-2 file must have them (empty is fine).
+    let mut missing = v1;
+    missing[8..12].copy_from_slice(&2u32.to_le_bytes());
+    assert!(matches!(
+        Asset::decode(&missing),
+        Err(DecodeError::BadSectionTable(reason)) if reason.contains("missing")
+    ));
+}
+
+#[test]
+fn broken_intersection_polylines_are_refused() {
+    let refused = |asset: Asset| Asset::decode(&asset.encode_to_vec()).expect_err("refused");
+    let mut unchained = with_intersections();
+    unchained.intersection_segments[1][0][0] += 0.25;
+    assert!(matches!(
+        refused(unchained),
+        DecodeError::Invalid {
+            kind: SectionKind::IntersectionSegments,
+            position: 1,
+            ..
+        }
+    ));
+    // The same break is fine where a new polyline starts.
+    let mut split = with_intersections();
+    split.intersection_segments[1][0][0] += 0.25;
+    split.intersection_starts = vec![0, 1, 2];
+    assert!(Asset::decode(&split.encode_to_vec()).is_ok());
+    for starts in [vec![1, 2], vec![0, 0], vec![0, 3, 2], vec![0, 5], vec![]] {
+        let mut bad = with_intersections();
+        bad.intersection_starts = starts.clone();
+        let err = refused(bad);
+        assert!(
+            matches!(
+                err,
+                DecodeError::Invalid {
+                    kind: SectionKind::IntersectionPolylines,
+                    ..
+                } | DecodeError::BadSectionLength {
+                    kind: SectionKind::IntersectionPolylines,
+                    ..
+                }
+            ),
+            "{starts:?}: {err}"
+        );
+    }
+    let mut point = with_intersections();
+    point.intersection_segments[4][1] = point.intersection_segments[4][0];
+    assert!(matches!(
+        refused(point),
+        DecodeError::Invalid { position: 4, .. }
+    ));
+    let mut nan = with_intersections();
+    nan.intersection_segments[3][1][2] = f32::NAN;
+    assert_eq!(
+        refused(nan),
+        DecodeError::NonFinite {
+            kind: SectionKind::IntersectionSegments,
+            position: 7
+        }
+    );
+    let mut ragged = with_intersections().encode_to_vec();
+    ragged.truncate(ragged.len() - 4); // the last polyline start, cut in half
+    assert!(Asset::decode(&ragged).is_err());
 }

@@ -1,5 +1,6 @@
 //! The camera the renderers are given each frame, and an orbit helper that frames a model.
 
+use glam::camera::rh::{proj::directx, view::look_at_mat4};
 use glam::{Mat4, Vec3, Vec4};
 
 /// The view of one frame. All of the renderers' math happens in model space, so a single
@@ -66,14 +67,14 @@ impl Camera {
         } else {
             Vec3::Y
         };
-        let view = Mat4::look_at_rh(eye, center, up);
+        let view = look_at_mat4(eye, center, up);
         let (near, far) = (
             (distance - radius * 1.5).max(distance * 1e-3),
             distance + radius * 1.5,
         );
         let projection = if orbit.orthographic {
             let half_height = radius * 1.02 * aspect.recip().max(1.0);
-            Mat4::orthographic_rh(
+            directx::orthographic(
                 -half_height * aspect,
                 half_height * aspect,
                 -half_height,
@@ -82,7 +83,7 @@ impl Camera {
                 far,
             )
         } else {
-            Mat4::perspective_rh(fov_y, aspect, near, far)
+            directx::perspective(fov_y, aspect, near, far)
         };
         Self {
             model_view: view,

@@ -29,6 +29,7 @@ created with the usual mode (0666 minus the umask).";
   chamfer bake assets/ -o baked/                 (a folder: every mesh under it, as build::bake_dir)
   chamfer bake scan.ply.gz -o scan.chamfer --weld-epsilon 1e-5 --crease-deg 40
   chamfer bake part.obj -o part.chamfer --timings
+  chamfer bake assembly.glb -o assembly.chamfer --intersections
 
 {SAFETY_HELP}"))]
 pub struct BakeArgs {
@@ -79,6 +80,10 @@ pub struct OptionArgs {
     /// Refuse a file (or a file it refers to) larger than this many bytes, after inflating .gz.
     #[arg(long, default_value_t = Limits::DEFAULT.max_input_bytes, value_name = "BYTES")]
     max_input_bytes: u64,
+    /// Also find intersection edges, where triangles cut through each other (within one mesh and
+    /// between the objects, primitives and instances of the file), and store them in the asset.
+    #[arg(long)]
+    intersections: bool,
 }
 
 impl OptionArgs {
@@ -100,7 +105,8 @@ impl OptionArgs {
                     .with_max_vertices(self.max_vertices)
                     .with_max_instances(self.max_instances)
                     .with_max_input_bytes(self.max_input_bytes),
-            );
+            )
+            .with_intersections(self.intersections);
         options.validate()?;
         Ok(options)
     }
@@ -235,17 +241,30 @@ fn report(input: &Path, output: &Path, baked: &Baked, write: Duration, timings: 
         stats.edges.coplanar_dropped,
         baked.asset.encoded_len(),
     );
+    if let Some(found) = &baked.intersections {
+        text += &format!(
+            "\n  intersections: {} segments in {} polylines ({} closed), length {:.6}; {} candidate pairs, {} coplanar, {} triangles skipped",
+            found.segments,
+            found.polylines,
+            found.closed_polylines,
+            found.length,
+            found.candidate_pairs,
+            found.coplanar_pairs,
+            found.skipped_triangles,
+        );
+    }
     if timings {
         let t = &baked.timings;
         let ms = |d: Duration| d.as_secs_f64() * 1e3;
         let triangles = stats.input_triangles as f64;
         text += &format!(
-            "\n  parse {:.1} ms | weld {:.1} | adjacency {:.1} | classify {:.1} | caps {:.1} | normals {:.1} | assemble {:.1} | write {:.1} ms\n  processing (all but parse): {:.1} ms = {:.2} M triangles/s; mesh {:.1} MB, peak RSS {}",
+            "\n  parse {:.1} ms | weld {:.1} | adjacency {:.1} | classify {:.1} | caps {:.1} | intersections {:.1} | normals {:.1} | assemble {:.1} | write {:.1} ms\n  processing (all but parse): {:.1} ms = {:.2} M triangles/s; mesh {:.1} MB, peak RSS {}",
             ms(t.parse),
             ms(t.weld),
             ms(t.adjacency),
             ms(t.classify),
             ms(t.caps),
+            ms(t.intersections),
             ms(t.normals),
             ms(t.assemble),
             ms(write),

@@ -16,7 +16,7 @@ use serde_json::json;
 pub struct InspectArgs {
     /// The asset.
     asset: PathBuf,
-    /// Print JSON (stable keys: vertices, welded_vertices, triangles, degenerate_triangles, edges, bytes).
+    /// Print JSON (stable keys: vertices, welded_vertices, triangles, degenerate_triangles, edges, intersections, bytes).
     #[arg(long)]
     json: bool,
 }
@@ -105,6 +105,12 @@ pub fn summary(asset: &Asset, total_bytes: u64) -> serde_json::Value {
             "radius_max": s.chamfer.radius_max,
         },
         "caps": asset.cap_heads.len(),
+        "intersections": {
+            "segments": asset.intersection_segments.len(),
+            "polylines": asset.intersection_starts.len(),
+            "closed": asset.intersection_polylines().filter(|p| p.first().map(|s| s[0]) == p.last().map(|s| s[1])).count(),
+            "length": asset.intersection_length(),
+        },
         "bounds": { "min": asset.header.bounds_min, "max": asset.header.bounds_max },
         "bytes": { "total": total_bytes, "per_section": per_section, "per_edge": per_edge },
     })
@@ -168,6 +174,15 @@ fn table(out: &mut String, name: &str, asset: &Asset, r: &serde_json::Value) -> 
         out,
         "  caps           {} vertices where two or more kept edges meet",
         r["caps"]
+    )?;
+    let i = &r["intersections"];
+    writeln!(
+        out,
+        "  intersections  {} segments in {} polylines ({} closed), length {:.6}",
+        i["segments"],
+        i["polylines"],
+        i["closed"],
+        i["length"].as_f64().unwrap_or(0.0)
     )?;
     let b = &r["bytes"];
     writeln!(

@@ -1,9 +1,10 @@
-//! `chamfer`: bake meshes into `.chamfer` edge assets, inspect and render them, and write marks back
-//! into meshes.
+//! `chamfer`: bake meshes into `.chamfer` edge assets, inspect, render and draw them (SVG), and write
+//! marks back into meshes.
 
 mod annotate;
 mod bake;
 mod demo;
+mod draw;
 mod inspect;
 mod memory;
 mod render;
@@ -28,6 +29,7 @@ enum Command {
     Demo(demo::DemoArgs),
     Annotate(annotate::AnnotateArgs),
     Render(render::RenderArgs),
+    Draw(draw::DrawArgs),
 }
 
 fn main() -> ExitCode {
@@ -38,6 +40,7 @@ fn main() -> ExitCode {
         Command::Demo(args) => demo::run(&args),
         Command::Annotate(args) => annotate::run(&args),
         Command::Render(args) => render::run(&args),
+        Command::Draw(args) => draw::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -29,15 +29,16 @@ pub struct RenderArgs {
     options: OptionArgs,
 }
 
-/// How the picture is taken (shared with `chamfer demo`).
+/// Where the camera is and the frame it fills (shared with `chamfer draw`, so a drawing and a
+/// render of the same flags line up pixel for pixel).
 #[derive(Args, Clone)]
-pub struct ViewArgs {
+pub struct CameraArgs {
     /// Image width in pixels.
     #[arg(long, default_value_t = 1024)]
-    width: u32,
+    pub width: u32,
     /// Image height in pixels.
     #[arg(long, default_value_t = 768)]
-    height: u32,
+    pub height: u32,
     /// Camera turn around the vertical axis, degrees (0 looks from +Z).
     #[arg(long, default_value_t = 35.0, allow_negative_numbers = true)]
     azimuth: f32,
@@ -50,6 +51,56 @@ pub struct ViewArgs {
     /// Orthographic camera.
     #[arg(long)]
     ortho: bool,
+}
+
+impl CameraArgs {
+    pub fn check(&self) -> anyhow::Result<()> {
+        if !(1..=16_384).contains(&self.width) || !(1..=16_384).contains(&self.height) {
+            bail!(
+                "--width and --height must be 1 to 16384 pixels, not {}x{}",
+                self.width,
+                self.height
+            );
+        }
+        if !self.azimuth.is_finite() || !self.elevation.is_finite() {
+            bail!("--azimuth and --elevation must be finite");
+        }
+        if self.distance.is_some_and(|d| !(d.is_finite() && d > 0.0)) {
+            bail!("--distance must be a positive number");
+        }
+        Ok(())
+    }
+
+    /// The camera flags that are not the frame size, as they would be typed.
+    pub fn describe(&self) -> String {
+        let mut flags = format!("--azimuth {} --elevation {}", self.azimuth, self.elevation);
+        if let Some(d) = self.distance {
+            flags += &format!(" --distance {d}");
+        }
+        if self.ortho {
+            flags += " --ortho";
+        }
+        flags
+    }
+
+    /// The orbit camera framing `bounds` (the asset's), as `chamfer render` uses it.
+    pub fn camera(&self, bounds: [[f32; 3]; 2]) -> Camera {
+        let orbit = Orbit {
+            azimuth_deg: self.azimuth,
+            elevation_deg: self.elevation,
+            distance: self.distance,
+            orthographic: self.ortho,
+            ..Orbit::default()
+        };
+        Camera::orbit(bounds, &orbit, [self.width, self.height])
+    }
+}
+
+/// How the picture is taken (shared with `chamfer demo`).
+#[derive(Args, Clone)]
+pub struct ViewArgs {
+    #[command(flatten)]
+    camera: CameraArgs,
     /// Edge width in pixels.
     #[arg(long, default_value_t = 2.0)]
     edge_width: f32,
@@ -201,19 +252,7 @@ impl ViewArgs {
     }
 
     fn check(&self) -> anyhow::Result<()> {
-        if !(1..=16_384).contains(&self.width) || !(1..=16_384).contains(&self.height) {
-            bail!(
-                "--width and --height must be 1 to 16384 pixels, not {}x{}",
-                self.width,
-                self.height
-            );
-        }
-        if !self.azimuth.is_finite() || !self.elevation.is_finite() {
-            bail!("--azimuth and --elevation must be finite");
-        }
-        if self.distance.is_some_and(|d| !(d.is_finite() && d > 0.0)) {
-            bail!("--distance must be a positive number");
-        }
+        self.camera.check()?;
         if !(self.edge_width.is_finite() && (0.0..=1000.0).contains(&self.edge_width)) {
             bail!(
                 "--edge-width must be 0 to 1000 pixels, not {}",
@@ -358,17 +397,10 @@ pub fn render(asset: &Asset, view: &ViewArgs) -> anyhow::Result<(Image, String)>
     view.check()?;
     let gpu = Offscreen::new()?;
     fits_the_device(&gpu.device.limits(), view)?;
-    let target = gpu.target(view.width, view.height, view.samples)?;
+    let target = gpu.target(view.camera.width, view.camera.height, view.samples)?;
     let pipelines = Pipelines::new(&gpu.device, &target.formats())?;
     let uploaded = GpuAsset::for_techniques(&gpu.device, asset, &[view.technique()?])?;
-    let orbit = Orbit {
-        azimuth_deg: view.azimuth,
-        elevation_deg: view.elevation,
-        distance: view.distance,
-        orthographic: view.ortho,
-        ..Orbit::default()
-    };
-    let camera = Camera::orbit(uploaded.bounds(), &orbit, target.size());
+    let camera = view.camera.camera(uploaded.bounds());
     let mut mesh = MeshRenderer::new(&pipelines, &uploaded)?;
     mesh.prepare(&gpu.queue, &camera, &view.mesh_style());
     let mut edges = EdgeRenderer::new(&pipelines, &uploaded);
@@ -396,21 +428,22 @@ pub fn render(asset: &Asset, view: &ViewArgs) -> anyhow::Result<(Image, String)>
 /// the request fails with a message instead of in the device's error handler.
 fn fits_the_device(limits: &wgpu::Limits, view: &ViewArgs) -> anyhow::Result<()> {
     let largest = limits.max_texture_dimension_2d;
-    if view.width > largest || view.height > largest {
+    let (width, height) = (view.camera.width, view.camera.height);
+    if width > largest || height > largest {
         bail!(
             "{}x{} pixels is larger than this device's textures (at most {largest} on a side)",
-            view.width,
-            view.height
+            width,
+            height
         );
     }
     let row =
-        (u64::from(view.width) * 4).next_multiple_of(u64::from(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT));
-    let readback = row * u64::from(view.height);
+        (u64::from(width) * 4).next_multiple_of(u64::from(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT));
+    let readback = row * u64::from(height);
     if readback > limits.max_buffer_size {
         bail!(
             "{}x{} pixels needs a {readback}-byte readback buffer, more than this device's {} bytes",
-            view.width,
-            view.height,
+            width,
+            height,
             limits.max_buffer_size
         );
     }
