@@ -9,7 +9,7 @@ struct Frame {
     eye: vec4<f32>,
     // Third column of the projection: what a step of one unit towards the camera adds to a clip position.
     proj_z: vec4<f32>,
-    colors: array<vec4<f32>, 5>,
+    colors: array<vec4<f32>, COLOR_COUNT>,
     viewport: vec2<f32>,
     // World size of one pixel at clip w = 1.
     pixel_scale: f32,

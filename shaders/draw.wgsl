@@ -24,10 +24,10 @@ struct Out {
     cap_list: array<Cap>,
 }
 
-// Per drawn instance, its five class colours (the drawn word's instance bits pick the five).
+// Per drawn instance, its COLOR_COUNT class colours (the drawn word's instance bits pick them).
 @group(0) @binding(15) var<storage, read> instance_colors: array<vec4<f32>>;
 
 fn drawn_color(word: u32) -> vec4<f32> {
-    return instance_colors[(word >> INSTANCE_SHIFT) * 5u + (word & 0xffu)];
+    return instance_colors[(word >> INSTANCE_SHIFT) * COLOR_COUNT + (word & 0xffu)];
 }
 

@@ -35,6 +35,8 @@ wgsl! {
     CAPS = "caps.wgsl";
     /// The lit mesh pass.
     MESH = "mesh.wgsl";
+    /// Baked intersection edges, drawn like creases.
+    INTERSECTIONS = "intersections.wgsl";
     /// Flat-coloured pulled geometry.
     FLAT = "flat.wgsl";
     /// Per-vertex edge classification and screen values (thesis §8.2–8.3).

@@ -300,13 +300,7 @@ pub mod cube {
 
     pub fn edges_in(color: [f32; 4], width_px: f32, caps: CapMethod) -> EdgeStyle {
         EdgeStyle {
-            colors: EdgeColors {
-                contour: color,
-                boundary: color,
-                marked: color,
-                ridge: color,
-                valley: color,
-            },
+            colors: EdgeColors::all(color),
             width_px,
             caps,
             ..EdgeStyle::default()

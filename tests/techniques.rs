@@ -768,3 +768,77 @@ fn the_feature_wireframe_leaves_out_the_face_diagonals() {
         "feature edges only: the cube's nine visible edges"
     );
 }
+
+#[test]
+fn intersection_edges_are_drawn_like_creases_and_only_as_a_class() {
+    let path = chamfer_tests::fixture("shapes/two-cubes.obj");
+    let options = chamfer_preprocess::BakeOptions::DEFAULT.with_intersections(true);
+    let asset = chamfer_preprocess::bake_file(&path, &options)
+        .expect("bake")
+        .asset;
+    assert!(!asset.intersection_segments.is_empty());
+    // From the left, where the second cube ([0.5, 1.5] × [0.25, 1.25] × [0.3, 1.3]) comes out of
+    // the first's front and top: seams the camera sees; from the right it hides them itself.
+    let orbit = Orbit {
+        azimuth_deg: -40.0,
+        ..Orbit::default()
+    };
+    let camera = Camera::orbit(
+        [asset.header.bounds_min, asset.header.bounds_max],
+        &orbit,
+        [256, 256],
+    );
+    let green = [0.0, 1.0, 0.0, 1.0];
+    let style = |classes| EdgeStyle {
+        classes,
+        colors: EdgeColors {
+            intersection: RED,
+            ..EdgeColors::all(green)
+        },
+        width_px: 3.0,
+        ..EdgeStyle::default()
+    };
+    let marked = |image: &Image| {
+        asset
+            .intersection_segments
+            .iter()
+            .filter(|[a, b]| {
+                let middle = (Vec3::from(*a) + Vec3::from(*b)) * 0.5;
+                disk(image, project(&camera, middle), 2.0)
+                    .into_iter()
+                    .any(is_red)
+            })
+            .count()
+    };
+    let all = chamfer_runtime::render::EdgeClasses::ALL;
+    let with = picture_of(
+        &asset,
+        &camera,
+        &style(all),
+        Some(&grey_mesh()),
+        BLUE_BACKGROUND,
+    );
+    let without = picture_of(
+        &asset,
+        &camera,
+        &style(chamfer_runtime::render::EdgeClasses(
+            all.0 & !chamfer_runtime::render::EdgeClasses::INTERSECTION.0,
+        )),
+        Some(&grey_mesh()),
+        BLUE_BACKGROUND,
+    );
+    let segments = asset.intersection_segments.len();
+    let (seen, unseen) = (marked(&with), marked(&without));
+    eprintln!("{seen} of {segments} segment middles marked; {unseen} without the class");
+    // The loop runs round both cubes: the camera sees its front half at least; the depth test
+    // hides the rest behind the cubes.
+    assert!(seen * 3 >= segments, "{seen} of {segments}");
+    assert!(seen < segments, "hidden parts are hidden");
+    assert_eq!(unseen, 0);
+    assert!(
+        !without
+            .rgba
+            .chunks(4)
+            .any(|p| is_red([p[0], p[1], p[2], p[3]]))
+    );
+}

@@ -121,7 +121,7 @@ fn compare(input: &str, camera: &[&str]) -> Compared {
     };
     run("render", &out("mesh.png"), &["--style", "mesh"]);
     run("render", &out("edges.png"), &["--style", "edges"]);
-    // The renderer does not draw intersection edges yet: compare the classes it draws.
+    // The classes both draw (these meshes are baked without intersections).
     let classes = ["--classes", "contour,boundary,marked,crease"];
     run("draw", &out("lines.svg"), &classes);
     run(

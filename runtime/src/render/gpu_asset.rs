@@ -44,6 +44,9 @@ pub struct GpuAsset {
     pub(crate) extras: AssetExtras,
     /// This upload's identity, shared by its clones: renderers keep per-asset state by it.
     pub(crate) key: std::sync::Arc<()>,
+    /// The intersection segments, six `f32` each (end 0, end 1), or a placeholder when none.
+    pub(crate) intersection_segments: wgpu::Buffer,
+    pub(crate) intersection_count: u32,
     /// [`AssetExtras::VERTEX_NORMALS`]: `vec4<f32>` per topology vertex.
     pub(crate) vertex_normals: Option<wgpu::Buffer>,
     /// [`AssetExtras::VERTEX_NORMALS`]: the topology vertex (`u32`) of each render vertex.
@@ -143,6 +146,7 @@ impl GpuAsset {
             SectionKind::TopologyPositions,
             SectionKind::EdgeVertices,
             SectionKind::EdgeAttributes,
+            SectionKind::IntersectionSegments,
         ] {
             check(kind.name(), asset.section_bytes(kind).len())?;
         }
@@ -210,6 +214,13 @@ impl GpuAsset {
             ),
             extras: AssetExtras::NONE,
             key: std::sync::Arc::new(()),
+            intersection_segments: upload(
+                device,
+                "intersection segments",
+                asset.section_bytes(SectionKind::IntersectionSegments),
+                storage,
+            ),
+            intersection_count: asset.intersection_segments.len() as u32,
             vertex_normals: None,
             render_to_topology: None,
             fin_corners: None,
@@ -273,6 +284,7 @@ impl GpuAsset {
             &self.edge_attributes,
             &self.rings,
             &self.face_planes,
+            &self.intersection_segments,
         ]
         .iter()
         .map(|b| b.size())

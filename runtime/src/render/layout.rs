@@ -20,6 +20,8 @@ pub(crate) const MAX_GATHER: u32 = 16;
 
 /// The per-frame contour class, beside the baked [`EdgeFlags`] bits (which use the low byte).
 pub(crate) const CONTOUR_CLASS: u32 = 1 << 8;
+/// The class of the asset's intersection edges (a section of their own, not mesh edges).
+pub(crate) const INTERSECTION_CLASS: u32 = 1 << 9;
 
 /// Bits of a drawn edge's word (classify writes it, joins and draws read it): its colour index in the
 /// low byte, then how to build its quad.
@@ -30,6 +32,9 @@ pub(crate) mod drawn {
     pub(crate) const COLOR_MARKED: u32 = 2;
     pub(crate) const COLOR_RIDGE: u32 = 3;
     pub(crate) const COLOR_VALLEY: u32 = 4;
+    pub(crate) const COLOR_INTERSECTION: u32 = 5;
+    /// Colours per instance.
+    pub(crate) const COLOR_COUNT: u32 = 6;
     /// Drawn as a contour (half quad outside the silhouette).
     pub(crate) const CONTOUR: u32 = 1 << 8;
     /// The front face's opposite vertex, inside the silhouette, is v3 (else v2).
@@ -59,11 +64,14 @@ pub(crate) fn constants() -> Vec<(&'static str, u32)> {
         ("FLIPPED", EdgeFlags::FLIPPED.0.into()),
         ("CHAMFER", EdgeFlags::CHAMFER.0.into()),
         ("CONTOUR", CONTOUR_CLASS),
+        ("INTERSECTION", INTERSECTION_CLASS),
         ("COLOR_CONTOUR", drawn::COLOR_CONTOUR),
         ("COLOR_BOUNDARY", drawn::COLOR_BOUNDARY),
         ("COLOR_MARKED", drawn::COLOR_MARKED),
         ("COLOR_RIDGE", drawn::COLOR_RIDGE),
         ("COLOR_VALLEY", drawn::COLOR_VALLEY),
+        ("COLOR_INTERSECTION", drawn::COLOR_INTERSECTION),
+        ("COLOR_COUNT", drawn::COLOR_COUNT),
         ("DRAWN_CONTOUR", drawn::CONTOUR),
         ("INSIDE_V3", drawn::INSIDE_V3),
         ("ON_SCREEN", drawn::ON_SCREEN),
@@ -95,7 +103,7 @@ pub(crate) struct Frame {
     pub(crate) mvp: [[f32; 4]; 4],
     pub(crate) eye: [f32; 4],
     pub(crate) proj_z: [f32; 4],
-    pub(crate) colors: [[f32; 4]; 5],
+    pub(crate) colors: [[f32; 4]; drawn::COLOR_COUNT as usize],
     pub(crate) viewport: [f32; 2],
     pub(crate) pixel_scale: f32,
     pub(crate) width: f32,

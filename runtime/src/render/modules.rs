@@ -40,6 +40,11 @@ pub(crate) fn edges() -> String {
     assemble(&[wgsl::COMMON, wgsl::HIGHLIGHT, wgsl::DRAW, wgsl::EDGES])
 }
 
+/// Intersection edges.
+pub(crate) fn intersections() -> String {
+    assemble(&[wgsl::COMMON, wgsl::INTERSECTIONS])
+}
+
 /// Round caps.
 pub(crate) fn caps() -> String {
     assemble(&[wgsl::COMMON, wgsl::HIGHLIGHT, wgsl::DRAW, wgsl::CAPS])
@@ -123,6 +128,7 @@ pub(crate) fn all() -> Vec<(&'static str, String)> {
         ("chamfers", chamfers()),
         ("edges", edges()),
         ("caps", caps()),
+        ("intersections", intersections()),
         ("mesh", mesh()),
         ("mcguire_hughes", mcguire_hughes()),
         ("alternate", alternate()),

@@ -2,7 +2,7 @@
 
 use crate::asset::EdgeFlags;
 
-use super::layout::CONTOUR_CLASS;
+use super::layout::{CONTOUR_CLASS, INTERSECTION_CLASS, drawn::COLOR_COUNT};
 use super::lighting::Highlight;
 use super::technique::Technique;
 
@@ -21,11 +21,15 @@ impl EdgeClasses {
     pub const VALLEY: Self = Self(EdgeFlags::VALLEY.0 as u32);
     /// Edges marked in the source file, and material seams.
     pub const MARKED: Self = Self((EdgeFlags::MARKED.0 | EdgeFlags::MATERIAL.0) as u32);
+    /// Where triangles cut through each other (baked with `--intersections`, thesis §2.2); drawn
+    /// by [`Technique::Joined`] like creases, view-independent and depth tested.
+    pub const INTERSECTION: Self = Self(INTERSECTION_CLASS);
     /// Both crease directions.
     pub const CREASE: Self = Self(Self::RIDGE.0 | Self::VALLEY.0);
     /// Every class.
-    pub const ALL: Self =
-        Self(Self::CONTOUR.0 | Self::BOUNDARY.0 | Self::CREASE.0 | Self::MARKED.0);
+    pub const ALL: Self = Self(
+        Self::CONTOUR.0 | Self::BOUNDARY.0 | Self::CREASE.0 | Self::MARKED.0 | Self::INTERSECTION.0,
+    );
     /// No class: nothing is drawn.
     pub const NONE: Self = Self(0);
 
@@ -61,6 +65,8 @@ pub struct EdgeColors {
     pub ridge: [f32; 4],
     /// Concave creases.
     pub valley: [f32; 4],
+    /// Intersection edges.
+    pub intersection: [f32; 4],
 }
 
 impl EdgeColors {
@@ -72,16 +78,18 @@ impl EdgeColors {
             marked: color,
             ridge: color,
             valley: color,
+            intersection: color,
         }
     }
 
-    pub(crate) fn array(&self) -> [[f32; 4]; 5] {
+    pub(crate) fn array(&self) -> [[f32; 4]; COLOR_COUNT as usize] {
         [
             self.contour,
             self.boundary,
             self.marked,
             self.ridge,
             self.valley,
+            self.intersection,
         ]
     }
 }
@@ -94,6 +102,7 @@ impl Default for EdgeColors {
             marked: [0.95, 0.55, 0.05, 1.0],
             ridge: [0.08, 0.08, 0.1, 1.0],
             valley: [0.1, 0.25, 0.6, 1.0],
+            intersection: [0.1, 0.55, 0.2, 1.0],
         }
     }
 }

@@ -144,7 +144,7 @@ pub struct ViewArgs {
         long,
         value_enum,
         value_delimiter = ',',
-        default_value = "contour,boundary,marked,ridge,valley"
+        default_value = "contour,boundary,marked,ridge,valley,intersection"
     )]
     classes: Vec<Class>,
     /// How edges join.
@@ -201,6 +201,8 @@ enum Class {
     Marked,
     Ridge,
     Valley,
+    /// Intersection edges (baked with `bake --intersections`).
+    Intersection,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -307,6 +309,7 @@ impl ViewArgs {
                 Class::Marked => EdgeClasses::MARKED,
                 Class::Ridge => EdgeClasses::RIDGE,
                 Class::Valley => EdgeClasses::VALLEY,
+                Class::Intersection => EdgeClasses::INTERSECTION,
             }
         });
         let highlight = (self.style == Style::Chamfer).then(|| Highlight {

@@ -15,6 +15,7 @@ use std::sync::Arc;
 use glam::Vec3;
 
 use super::{Blocks, FrameContext, PerAsset, TechniqueFrame};
+use crate::render::layout::drawn::COLOR_COUNT;
 use crate::render::layout::{self, ChamferRecord, DRAWN_BYTES, JOIN_BYTES_PER_END, ScreenRecord};
 use crate::render::lighting::Light;
 use crate::render::pipelines::{Access, BindingSet, RenderPipeline, workgroups};
@@ -94,6 +95,12 @@ const DRAW: BindingSet = BindingSet {
     ],
 };
 
+const SEGMENTS: BindingSet = BindingSet {
+    label: "intersection edges",
+    stages: wgpu::ShaderStages::VERTEX_FRAGMENT,
+    entries: &[(0, Instance), (17, Read)],
+};
+
 /// Offset of the cap draw's arguments in the `out` buffer.
 const CAP_DRAW_OFFSET: u64 = std::mem::size_of::<layout::DrawArgs>() as u64;
 
@@ -116,26 +123,34 @@ pub(crate) struct Pipelines {
     chamfer_records: wgpu::ComputePipeline,
     edges: wgpu::RenderPipeline,
     caps: wgpu::RenderPipeline,
+    segments_layout: wgpu::BindGroupLayout,
+    segments: wgpu::RenderPipeline,
 }
 
 impl Pipelines {
     pub(crate) fn new(cache: &Cache) -> Result<Self, RenderError> {
-        let layouts = [CLASSIFY, JOINS, RECORDS, ARGS, DRAW].map(|set| cache.layout(&set));
+        let layouts =
+            [CLASSIFY, JOINS, RECORDS, ARGS, DRAW, SEGMENTS].map(|set| cache.layout(&set));
         let [
             classify_layout,
             joins_layout,
             records_layout,
             args_layout,
             draw_layout,
+            segments_layout,
         ] = layouts;
         let classify = cache.module("classify.wgsl", &modules::classify())?;
         let joins = cache.module("joins.wgsl", &modules::joins())?;
         let args = cache.module("args.wgsl", &modules::args())?;
         let records = cache.module("chamfers.wgsl", &modules::chamfers())?;
         let target = cache.target();
-        let draw = |label, module: &wgpu::ShaderModule, vertex, fragment| {
+        let draw = |label,
+                    layout: &wgpu::BindGroupLayout,
+                    module: &wgpu::ShaderModule,
+                    vertex,
+                    fragment| {
             cache.render_pipeline(
-                &[&draw_layout],
+                &[layout],
                 RenderPipeline {
                     label,
                     module,
@@ -151,12 +166,14 @@ impl Pipelines {
         };
         let edges = draw(
             "edges",
+            &draw_layout,
             &cache.module("edges.wgsl", &modules::edges())?,
             "edge_vertex_main",
             "edge_fragment",
         )?;
         let caps = draw(
             "caps",
+            &draw_layout,
             &cache.module("caps.wgsl", &modules::caps())?,
             "cap_vertex_main",
             "cap_fragment",
@@ -175,8 +192,16 @@ impl Pipelines {
                 &records,
                 "chamfer_records",
             )?,
+            segments: draw(
+                "intersection edges",
+                &segments_layout,
+                &cache.module("intersections.wgsl", &modules::intersections())?,
+                "segment_vertex",
+                "segment_fragment",
+            )?,
             edges,
             caps,
+            segments_layout,
             classify_layout,
             joins_layout,
             records_layout,
@@ -261,7 +286,7 @@ impl Lists {
             starts: storage("instance starts", 4 * u64::from(instances), none)?,
             colors: storage(
                 "instance colours",
-                80 * u64::from(instances),
+                16 * u64::from(COLOR_COUNT) * u64::from(instances),
                 wgpu::BufferUsages::COPY_DST,
             )?,
             capacity,
@@ -280,6 +305,8 @@ struct AssetGroups {
     classify: wgpu::BindGroup,
     joins: wgpu::BindGroup,
     records: wgpu::BindGroup,
+    /// Over the asset's intersection segments, if it has any.
+    segments: Option<wgpu::BindGroup>,
 }
 
 /// The readback of how many slots a frame wanted, without ever waiting: copied at the end of one
@@ -613,7 +640,15 @@ impl TechniqueFrame for Frame {
                     (14, &lists.starts),
                     (13, &self.lighting),
                 ];
+                let segments = (asset.intersection_count > 0).then(|| {
+                    group(
+                        &SEGMENTS,
+                        &pipelines.segments_layout,
+                        &[(0, &blocks), (17, &asset.intersection_segments)],
+                    )
+                });
                 Ok(AssetGroups {
+                    segments,
                     classify: group(&CLASSIFY, &pipelines.classify_layout, &buffers),
                     joins: group(&JOINS, &pipelines.joins_layout, &buffers),
                     records: group(&RECORDS, &pipelines.records_layout, &buffers),
@@ -651,6 +686,14 @@ impl TechniqueFrame for Frame {
         if self.caps != CapMethod::None {
             pass.set_pipeline(&pipelines.caps);
             pass.draw_indirect(&lists.out, CAP_DRAW_OFFSET);
+        }
+        for &(asset, offset, _, _) in &self.runs {
+            let (gpu, groups) = self.assets.get(asset);
+            if let Some(segments) = &groups.segments {
+                pass.set_bind_group(0, segments, &[offset]);
+                pass.set_pipeline(&pipelines.segments);
+                pass.draw(0..18, 0..gpu.intersection_count);
+            }
         }
     }
 
