@@ -6,7 +6,8 @@ use glam::Vec3;
 
 use super::layout::MeshFrame;
 use super::pipelines::{Access, BindingSet, RenderPipeline};
-use super::{Camera, GpuAsset, Light, Pipelines, RenderError, modules};
+use super::techniques::Blocks;
+use super::{Camera, GpuAsset, Instance, Light, Pipelines, RenderError, modules};
 
 /// Where the mesh's light comes from.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -48,7 +49,7 @@ impl Default for MeshStyle {
 const MESH: BindingSet = BindingSet {
     label: "mesh",
     stages: wgpu::ShaderStages::VERTEX_FRAGMENT,
-    entries: &[(0, Access::Uniform)],
+    entries: &[(0, Access::Instance)],
 };
 
 /// The mesh pipeline, per device and target.
@@ -62,13 +63,6 @@ impl Pipeline {
     pub(crate) fn new(cache: &Pipelines) -> Result<Self, RenderError> {
         let layout = cache.layout(&MESH);
         let module = cache.module("mesh.wgsl", &modules::mesh())?;
-        let vertex_buffer = |attributes| {
-            Some(wgpu::VertexBufferLayout {
-                array_stride: 12,
-                step_mode: wgpu::VertexStepMode::Vertex,
-                attributes,
-            })
-        };
         let target = cache.target();
         let pipeline = cache.render_pipeline(
             &[&layout],
@@ -77,10 +71,7 @@ impl Pipeline {
                 module: &module,
                 vertex: "mesh_vertex",
                 fragment: Some("mesh_fragment"),
-                buffers: &[
-                    vertex_buffer(&wgpu::vertex_attr_array![0 => Float32x3]),
-                    vertex_buffer(&wgpu::vertex_attr_array![1 => Float32x3]),
-                ],
+                buffers: &super::techniques::surface_angle::mesh_buffers(),
                 primitive: wgpu::PrimitiveState::default(),
                 depth_stencil: target.depth(true, wgpu::CompareFunction::Less),
                 multisample: target.multisample(),
@@ -91,72 +82,126 @@ impl Pipeline {
     }
 }
 
-/// Draws a [`GpuAsset`]'s triangles with its crease-split normals, writing depth for the edges.
+/// Draws assets' triangles with their crease-split normals, writing depth for the edges: one asset
+/// ([`MeshRenderer::new`]) or the instances of a scene ([`MeshRenderer::prepare_scene`]).
 #[derive(Debug)]
 pub struct MeshRenderer {
     pipeline: Arc<Pipeline>,
-    uniform: wgpu::Buffer,
-    group: wgpu::BindGroup,
-    asset: GpuAsset,
+    cache: Pipelines,
+    blocks: Blocks,
+    group: Option<wgpu::BindGroup>,
+    asset: Option<GpuAsset>,
+    /// Per instance of this frame: its block and asset.
+    draws: Vec<(u32, GpuAsset)>,
 }
 
 impl MeshRenderer {
     /// A mesh pass for `asset` with the pipeline of `pipelines` (compiled once per target).
     pub fn new(pipelines: &Pipelines, asset: &GpuAsset) -> Result<Self, RenderError> {
-        let pipeline = pipelines.mesh()?;
-        let device = pipelines.device();
-        let uniform = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("mesh frame"),
-            size: std::mem::size_of::<MeshFrame>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let group = MESH.group(device, &pipeline.layout, &[(0, &uniform)]);
+        let mut renderer = Self::for_scenes(pipelines)?;
+        renderer.asset = Some(asset.clone());
+        Ok(renderer)
+    }
+
+    /// A mesh pass for the instances given to [`prepare_scene`](Self::prepare_scene).
+    pub fn for_scenes(pipelines: &Pipelines) -> Result<Self, RenderError> {
         Ok(Self {
-            pipeline,
-            uniform,
-            group,
-            asset: asset.clone(),
+            pipeline: pipelines.mesh()?,
+            cache: pipelines.clone(),
+            blocks: Blocks::new(pipelines, "mesh frame", std::mem::size_of::<MeshFrame>()),
+            group: None,
+            asset: None,
+            draws: Vec::new(),
         })
     }
 
-    /// Sets this frame's camera and style.
+    /// Sets this frame's camera and style for the asset given to [`new`](Self::new) (nothing is
+    /// drawn for a renderer made [`for_scenes`](Self::for_scenes)).
     pub fn prepare(&mut self, queue: &wgpu::Queue, camera: &Camera, style: &MeshStyle) {
-        let light = match style.light {
-            MeshLight::View(towards) => camera
-                .model_view
-                .inverse()
-                .transform_vector3(Vec3::from(towards))
-                .normalize_or(Vec3::Z)
-                .extend(0.0),
-            MeshLight::Model(Light::Directional(towards)) => {
-                Vec3::from(towards).normalize_or(Vec3::Z).extend(0.0)
-            }
-            MeshLight::Model(Light::Point(position)) => Vec3::from(position).extend(1.0),
-        };
-        let uniform = MeshFrame {
-            mvp: camera.view_projection().to_cols_array_2d(),
-            light: light.to_array(),
-            color: style.color,
-            params: [
-                style.ambient.clamp(0.0, 1.0),
-                style.specular.max(0.0),
-                style.shininess.max(0.0),
-                0.0,
-            ],
-            eye: camera.eye().to_array(),
-        };
-        queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
+        match self.asset.clone() {
+            Some(asset) => self.prepare_scene(queue, camera, &[Instance::new(&asset)], style),
+            None => self.prepare_scene(queue, camera, &[], style),
+        }
     }
 
-    /// Draws the mesh into `pass`.
+    /// Sets this frame's camera, instances and style.
+    pub fn prepare_scene(
+        &mut self,
+        queue: &wgpu::Queue,
+        camera: &Camera,
+        instances: &[Instance<'_>],
+        style: &MeshStyle,
+    ) {
+        let frames: Vec<MeshFrame> = instances
+            .iter()
+            .map(|instance| {
+                let camera = Camera {
+                    model_view: camera.model_view * instance.transform,
+                    ..*camera
+                };
+                mesh_frame(&camera, style)
+            })
+            .collect();
+        if self.blocks.write(&self.cache, queue, &frames) {
+            self.group = None;
+        }
+        let blocks = &self.blocks;
+        let layout = &self.pipeline.layout;
+        let device = self.cache.device();
+        self.group.get_or_insert_with(|| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("mesh"),
+                layout,
+                entries: &[wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: blocks.binding(),
+                }],
+            })
+        });
+        self.draws = instances
+            .iter()
+            .enumerate()
+            .map(|(i, instance)| (self.blocks.offset(i), instance.asset.clone()))
+            .collect();
+    }
+
+    /// Draws the mesh (or the scene's meshes) into `pass`.
     pub fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
-        let asset = &self.asset;
+        let Some(group) = &self.group else {
+            return;
+        };
         pass.set_pipeline(&self.pipeline.pipeline);
-        pass.set_bind_group(0, &self.group, &[]);
-        pass.set_vertex_buffer(0, asset.render_positions.slice(..));
-        pass.set_vertex_buffer(1, asset.render_normals.slice(..));
-        pass.set_index_buffer(asset.mesh_indices.slice(..), asset.index_format);
-        pass.draw_indexed(0..asset.index_count, 0, 0..1);
+        for (offset, asset) in &self.draws {
+            pass.set_bind_group(0, group, &[*offset]);
+            super::techniques::draw_mesh(pass, asset);
+        }
+    }
+}
+
+/// The mesh pass's uniform for `camera` (already in the instance's model space).
+fn mesh_frame(camera: &Camera, style: &MeshStyle) -> MeshFrame {
+    let light = match style.light {
+        MeshLight::View(towards) => camera
+            .model_view
+            .inverse()
+            .transform_vector3(Vec3::from(towards))
+            .normalize_or(Vec3::Z)
+            .extend(0.0),
+        MeshLight::Model(Light::Directional(towards)) => {
+            Vec3::from(towards).normalize_or(Vec3::Z).extend(0.0)
+        }
+        MeshLight::Model(Light::Point(position)) => Vec3::from(position).extend(1.0),
+    };
+    MeshFrame {
+        mvp: camera.view_projection().to_cols_array_2d(),
+        light: light.to_array(),
+        color: style.color,
+        params: [
+            style.ambient.clamp(0.0, 1.0),
+            style.specular.max(0.0),
+            style.shininess.max(0.0),
+            0.0,
+        ],
+        eye: camera.eye().to_array(),
     }
 }

@@ -103,9 +103,11 @@ impl SceneRenderer {
         Self::with_first_slots(pipelines, 0)
     }
 
-    /// A renderer whose edge lists ([`Technique::Joined`]) start with at least `slots` slots; by
-    /// default they hold every edge of the first frame's instances up to 65 536, then an eighth of
-    /// them, and grow when a frame wants more (that frame drops what does not fit).
+    /// A renderer whose edge lists ([`Technique::Joined`]) start with `slots` slots (at least 64);
+    /// by default they hold every edge of the first frame's instances up to 65 536, then an eighth
+    /// of them. Either way they grow when a frame wants more: that frame drops what does not fit,
+    /// and a later one (once the count is read back, without waiting) gets lists a quarter larger
+    /// than it wanted.
     pub fn with_first_slots(pipelines: &Pipelines, slots: u64) -> Self {
         Self {
             pipelines: pipelines.clone(),

@@ -408,7 +408,7 @@ impl Frame {
         Self::with_capacity(cache, 0)
     }
 
-    /// A frame whose lists start with at least `slots` slots (0: sized from the first frame).
+    /// A frame whose lists start with `slots` slots (at least 64; 0: sized from the first frame).
     pub(crate) fn with_capacity(cache: &Cache, slots: u64) -> Result<Self, RenderError> {
         let device = cache.device();
         let uniform = |label, size: usize, usage| {
@@ -499,8 +499,13 @@ impl Frame {
             .iter()
             .map(|d| u64::from(d.asset.edge_count))
             .sum();
-        // Every edge up to FIRST_SLOTS, then an eighth; grown from what frames want.
-        let first = upper.min(FIRST_SLOTS.max(upper / 8));
+        // Every edge up to FIRST_SLOTS, then an eighth (unless the frame was told); grown from what
+        // frames want.
+        let first = if self.wanted_slots > 0 {
+            0
+        } else {
+            upper.min(FIRST_SLOTS.max(upper / 8))
+        };
         let wanted = self.wanted_slots.max(first).max(64);
         // The largest per-slot list must fit one storage binding.
         let per_slot = if chamfers {

@@ -1,0 +1,203 @@
+//! Scenes: many instances of assets in one frame (SceneRenderer), checked against assets baked
+//! already transformed, and the instance and list bookkeeping checked with counters.
+
+use chamfer_preprocess::mesh::Mesh;
+use chamfer_runtime::render::{
+    Camera, GpuAsset, Image, Instance, MeshRenderer, Orbit, SceneRenderer,
+};
+use chamfer_tests::cube::*;
+use chamfer_tests::{bake_fixture, gpu};
+use glam::{Mat4, Vec3};
+
+/// The fandisk (an asset with contours, ridges and valleys) as a mesh.
+fn fandisk() -> Mesh {
+    chamfer_preprocess::load::load(
+        &chamfer_tests::fixture("meshes/fandisk.obj"),
+        &chamfer_preprocess::Limits::DEFAULT,
+    )
+    .expect("fandisk")
+    .mesh
+}
+
+/// `mesh` moved by `transform`, its winding flipped if the transform mirrors (as a glTF viewer
+/// does), so its faces still face out.
+fn transformed(mesh: &Mesh, transform: Mat4) -> Mesh {
+    let mirrored = transform.determinant() < 0.0;
+    Mesh {
+        positions: mesh
+            .positions
+            .iter()
+            .map(|&p| transform.transform_point3(p))
+            .collect(),
+        triangles: mesh
+            .triangles
+            .iter()
+            .map(|&[a, b, c]| if mirrored { [a, c, b] } else { [a, b, c] })
+            .collect(),
+        ..Mesh::default()
+    }
+}
+
+fn baked(mesh: Mesh) -> chamfer_runtime::asset::Asset {
+    chamfer_preprocess::bake(mesh, "scene", &chamfer_preprocess::BakeOptions::DEFAULT)
+        .expect("bake")
+        .asset
+}
+
+/// One frame of `instances` (mesh and red edges) on blue.
+fn scene_picture(camera: &Camera, instances: &[Instance<'_>], scene: &mut SceneRenderer) -> Image {
+    let gpu = gpu();
+    let [w, h] = camera.viewport;
+    let target = gpu.target(w, h, 1).expect("target");
+    let pipelines = chamfer_tests::pipelines(target.formats());
+    let mut mesh = MeshRenderer::for_scenes(&pipelines).expect("mesh");
+    mesh.prepare_scene(&gpu.queue, camera, instances, &grey_mesh());
+    let style = edges_in(RED, 2.0, chamfer_runtime::render::CapMethod::NextIndex);
+    let mut encoder = gpu.encoder();
+    let prepared = scene
+        .prepare(&gpu.queue, &mut encoder, camera, instances, &style)
+        .expect("prepare");
+    {
+        let mut pass = target.begin_pass(&mut encoder, BLUE_BACKGROUND);
+        mesh.render(&mut pass);
+        prepared.render(&mut pass);
+    }
+    gpu.submit(encoder).expect("submit");
+    target.read(gpu).expect("read")
+}
+
+fn differing(a: &Image, b: &Image) -> usize {
+    a.rgba
+        .chunks(4)
+        .zip(b.rgba.chunks(4))
+        .filter(|(p, q)| p != q)
+        .count()
+}
+
+#[test]
+fn instances_mirrored_and_scaled_draw_what_pretransformed_copies_do() {
+    let gpu = gpu();
+    let mesh = fandisk();
+    let asset = baked(mesh.clone());
+    // One copy moved, one mirrored in x and stretched unevenly.
+    let first = Mat4::from_translation(Vec3::new(-2.0, 0.0, 0.0));
+    let second = Mat4::from_translation(Vec3::new(2.5, 0.3, 0.0))
+        * Mat4::from_scale(Vec3::new(-1.0, 1.2, 0.8));
+    let mut both = transformed(&mesh, first);
+    let mirrored = transformed(&mesh, second);
+    let offset = both.positions.len() as u32;
+    both.positions.extend(mirrored.positions);
+    both.triangles
+        .extend(mirrored.triangles.iter().map(|t| t.map(|i| i + offset)));
+    let together = baked(both);
+    let camera = Camera::orbit(
+        [together.header.bounds_min, together.header.bounds_max],
+        &Orbit {
+            azimuth_deg: 25.0,
+            elevation_deg: 20.0,
+            ..Orbit::default()
+        },
+        [320, 200],
+    );
+    let pipelines = chamfer_tests::pipelines(gpu.formats(1));
+    let uploaded = GpuAsset::new(&gpu.device, &asset).expect("upload");
+    let copies = GpuAsset::new(&gpu.device, &together).expect("upload");
+    let scene = [
+        Instance::new(&uploaded).with_transform(first),
+        Instance::new(&uploaded).with_transform(second),
+    ];
+    let instanced = scene_picture(&camera, &scene, &mut SceneRenderer::new(&pipelines));
+    let reference = scene_picture(
+        &camera,
+        &[Instance::new(&copies)],
+        &mut SceneRenderer::new(&pipelines),
+    );
+    let one = scene_picture(&camera, &scene[..1], &mut SceneRenderer::new(&pipelines));
+    let red = |image: &Image| {
+        image
+            .rgba
+            .chunks(4)
+            .filter(|p| is_red([p[0], p[1], p[2], p[3]]))
+            .count()
+    };
+    let (diff, control) = (
+        differing(&instanced, &reference),
+        differing(&one, &reference),
+    );
+    eprintln!(
+        "{diff} pixels differ from the pre-transformed copies ({} red); one instance alone: {control}",
+        red(&reference)
+    );
+    // The same picture but for rounding where the copies' positions were transformed on the CPU.
+    assert!(diff * 100 < red(&reference), "{diff}");
+    // The check can fail: leaving out the mirrored instance changes thousands of pixels.
+    assert!(control > 20 * diff.max(50), "{control}");
+}
+
+#[test]
+fn an_instance_outside_the_view_costs_no_edge_work() {
+    let gpu = gpu();
+    let asset = bake_fixture("meshes/fandisk.obj");
+    let uploaded = GpuAsset::new(&gpu.device, &asset).expect("upload");
+    let pipelines = chamfer_tests::pipelines(gpu.formats(1));
+    let camera = Camera::orbit(
+        [asset.header.bounds_min, asset.header.bounds_max],
+        &Orbit::default(),
+        [200, 160],
+    );
+    let far_away = Mat4::from_translation(Vec3::new(1e4, 0.0, 0.0));
+    let counts = |instances: &[Instance<'_>]| {
+        let mut scene = SceneRenderer::new(&pipelines);
+        scene_picture(&camera, instances, &mut scene);
+        (
+            scene.read_counts(&gpu.device, &gpu.queue).expect("counts"),
+            scene.stats(),
+        )
+    };
+    let (alone, alone_stats) = counts(&[Instance::new(&uploaded)]);
+    let (with_far, far_stats) = counts(&[
+        Instance::new(&uploaded),
+        Instance::new(&uploaded).with_transform(far_away),
+    ]);
+    assert_eq!((alone_stats.instances, alone_stats.culled), (1, 0));
+    assert_eq!((far_stats.instances, far_stats.culled), (2, 1));
+    // Not one edge classified or drawn for the instance out of view.
+    assert_eq!(with_far.wanted, alone.wanted);
+    assert_eq!(with_far.edges, alone.edges);
+    // And the counter counts: a second instance in view doubles the edges.
+    let beside = Mat4::from_translation(Vec3::new(0.0, 0.0, -0.5));
+    let (two, two_stats) = counts(&[
+        Instance::new(&uploaded),
+        Instance::new(&uploaded).with_transform(beside),
+    ]);
+    assert_eq!(two_stats.culled, 0);
+    assert!(two.wanted > alone.wanted, "{two:?} vs {alone:?}");
+}
+
+#[test]
+fn lists_that_overflow_grow_for_the_next_frames() {
+    let gpu = gpu();
+    let asset = bake_fixture("meshes/fandisk.obj");
+    let uploaded = GpuAsset::new(&gpu.device, &asset).expect("upload");
+    let pipelines = chamfer_tests::pipelines(gpu.formats(1));
+    let camera = Camera::orbit(
+        [asset.header.bounds_min, asset.header.bounds_max],
+        &Orbit::default(),
+        [200, 160],
+    );
+    let instances = [Instance::new(&uploaded)];
+    // Lists far too small for the fandisk's drawn edges.
+    let mut scene = SceneRenderer::with_first_slots(&pipelines, 64);
+    let mut seen = Vec::new();
+    for _ in 0..4 {
+        scene_picture(&camera, &instances, &mut scene);
+        seen.push(scene.read_counts(&gpu.device, &gpu.queue).expect("counts"));
+    }
+    eprintln!("{seen:?}");
+    let first = seen[0];
+    assert_eq!(first.edges, 64, "the first frame draws what fits");
+    assert!(first.wanted > 64);
+    let last = seen[3];
+    assert_eq!(last.edges, last.wanted, "later frames draw every edge");
+    assert_eq!(last.wanted, first.wanted);
+}
