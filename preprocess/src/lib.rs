@@ -31,6 +31,7 @@ pub mod normals;
 mod options;
 mod polylines;
 pub mod radii;
+pub mod scene;
 pub mod weld;
 pub mod write;
 

@@ -791,3 +791,63 @@ fn bake_intersections_then_inspect_json_shows_them() {
         assert_eq!(json["intersections"]["length"], 0.0);
     }
 }
+
+#[test]
+fn bake_scene_keeps_a_gltf_scene_and_render_draws_it() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("baked");
+    let gltf = fixture("shapes/two-cube-instances.gltf");
+    let run = chamfer(&["bake", path_str(&gltf), "--scene", "-o", path_str(&out)]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let scene_path = out.join("two-cube-instances.scene.json");
+    let scene = std::fs::read_to_string(&scene_path).expect("scene file");
+    let parsed: serde_json::Value = serde_json::from_str(&scene).expect("JSON");
+    assert_eq!(
+        parsed["assets"].as_array().map(Vec::len),
+        Some(1),
+        "one mesh"
+    );
+    assert_eq!(
+        parsed["instances"].as_array().map(Vec::len),
+        Some(2),
+        "two nodes"
+    );
+    assert!(out.join("two-cube-instances.mesh0.chamfer").is_file());
+    let png = dir.path().join("scene.png");
+    let run = chamfer(&[
+        "render",
+        path_str(&scene_path),
+        "-o",
+        path_str(&png),
+        "--width",
+        "96",
+        "--height",
+        "64",
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert!(text(&run.stdout).contains("2 instances of 1 assets"));
+    // A scene reaching outside its folder is refused, naming the file and the name.
+    let sneaky = dir.path().join("sneaky.scene.json");
+    std::fs::write(
+        &sneaky,
+        scene.replace("two-cube-instances.mesh0", "../etc/x"),
+    )
+    .expect("write");
+    let run = chamfer(&["render", path_str(&sneaky), "-o", path_str(&png)]);
+    let stderr = text(&run.stderr);
+    assert_eq!(run.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("sneaky.scene.json") && stderr.contains("plain file name"),
+        "{stderr}"
+    );
+    // A scene needs a node graph.
+    let run = chamfer(&[
+        "bake",
+        path_str(&fixture("shapes/cube.obj")),
+        "--scene",
+        "-o",
+        path_str(&out),
+    ]);
+    assert_eq!(run.status.code(), Some(1));
+    assert!(text(&run.stderr).contains("cube.obj"));
+}

@@ -17,3 +17,4 @@ pub mod asset;
 pub mod highlight;
 #[cfg(feature = "render")]
 pub mod render;
+pub mod scene;

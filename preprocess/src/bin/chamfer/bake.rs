@@ -44,6 +44,11 @@ pub struct BakeArgs {
     /// Print the time of each bake step and the peak memory.
     #[arg(long)]
     timings: bool,
+    /// Keep a glTF/GLB scene's structure: one asset per mesh (`STEM.meshN.chamfer`) and
+    /// `STEM.scene.json` listing its instances and their transforms, written into OUTPUT (a
+    /// folder), instead of one flattened asset. `chamfer render` draws the scene file.
+    #[arg(long)]
+    scene: bool,
 }
 
 /// The bake settings as command-line flags (shared with `chamfer demo`).
@@ -114,6 +119,9 @@ impl OptionArgs {
 
 pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
     let options = args.options.to_options()?;
+    if args.scene {
+        return run_scenes(args, &options);
+    }
     let jobs = plan(&args.inputs, &args.output)?;
     let progress = Progress::start(jobs.len());
     let results: Vec<anyhow::Result<(Baked, Duration)>> = jobs
@@ -148,6 +156,46 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
         bail!("{failed} of {} inputs failed", jobs.len());
     }
     stdout
+}
+
+/// `bake --scene`: each input's meshes and scene file into the output folder.
+fn run_scenes(args: &BakeArgs, options: &BakeOptions) -> anyhow::Result<()> {
+    let folder = &args.output;
+    if folder.exists() && !folder.is_dir() {
+        bail!(
+            "{}: --scene writes several files; give a folder as the output",
+            folder.display()
+        );
+    }
+    std::fs::create_dir_all(folder)
+        .with_context(|| format!("{}: cannot create output directory", folder.display()))?;
+    let mut stems = std::collections::HashMap::new();
+    for input in &args.inputs {
+        if let Some(first) = stems.insert(stem(input), input) {
+            bail!(
+                "{} and {} would both write {}.scene.json",
+                first.display(),
+                input.display(),
+                stem(input)
+            );
+        }
+    }
+    for input in &args.inputs {
+        let name = stem(input);
+        let baked = chamfer_preprocess::scene::bake_scene(input, &name, options)?;
+        for warning in &baked.warnings {
+            crate::warn(format_args!("warning: {}: {warning}", input.display()));
+        }
+        let written = chamfer_preprocess::scene::write_scene(&baked, folder, &name)?;
+        crate::say(format_args!(
+            "{} -> {}: {} instances of {} assets",
+            input.display(),
+            written.display(),
+            baked.scene.instances.len(),
+            baked.assets.len()
+        ))?;
+    }
+    Ok(())
 }
 
 /// Pairs every input with its output path and refuses clashes, inputs named as outputs and

@@ -7,10 +7,13 @@ use chamfer_preprocess::write::{ensure_not_an_input, ensure_replaceable, write_a
 use chamfer_runtime::asset::Asset;
 use chamfer_runtime::highlight::strip::Material;
 use chamfer_runtime::render::{
-    Camera, CapMethod, EdgeClasses, EdgeRenderer, EdgeStyle, GpuAsset, Highlight, HybridDepth,
-    Image, Light, MeshLight, MeshRenderer, MeshStyle, Offscreen, Orbit, Pipelines, Technique,
+    Camera, CapMethod, EdgeClasses, EdgeStyle, GpuAsset, Highlight, HybridDepth, Image, Instance,
+    Light, MeshLight, MeshRenderer, MeshStyle, Offscreen, Orbit, Pipelines, SceneRenderer,
+    Technique,
 };
+use chamfer_runtime::scene::{MAX_SCENE_BYTES, SceneFile};
 use clap::{Args, ValueEnum};
+use glam::{Mat4, Vec3};
 
 use crate::bake::OptionArgs;
 
@@ -367,50 +370,109 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     ensure_not_an_input(&args.output, &[&args.input])?;
     ensure_replaceable(&args.output)?;
     let options = args.options.to_options()?;
-    let asset = if args
-        .input
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("chamfer"))
-    {
+    let name = args.input.to_string_lossy().to_ascii_lowercase();
+    let (assets, instances) = if name.ends_with(".scene.json") {
+        read_scene(&args.input, &options.limits)?
+    } else if name.ends_with(".chamfer") {
         let bytes = chamfer_preprocess::load::read(&args.input, &options.limits)?;
-        Asset::decode(&bytes).with_context(|| format!("{}", args.input.display()))?
+        let asset = Asset::decode(&bytes).with_context(|| format!("{}", args.input.display()))?;
+        (vec![asset], vec![(0, Mat4::IDENTITY)])
     } else {
         let baked = chamfer_preprocess::bake_file(&args.input, &options)?;
         for warning in &baked.warnings {
             crate::warn(format_args!("warning: {}: {warning}", args.input.display()));
         }
-        baked.asset
+        (vec![baked.asset], vec![(0, Mat4::IDENTITY)])
     };
-    let (image, adapter) = render(&asset, &args.view)
+    let (image, adapter) = render_scene(&assets, &instances, &args.view)
         .with_context(|| format!("{}: cannot render", args.input.display()))?;
     write_png(&image, &args.output)?;
+    let triangles: u64 = instances
+        .iter()
+        .map(|&(a, _)| assets[a].triangle_count() as u64)
+        .sum();
+    let edges: u64 = instances
+        .iter()
+        .map(|&(a, _)| assets[a].edge_count() as u64)
+        .sum();
     crate::say(format_args!(
-        "{} ({} triangles, {} edges) -> {} ({}x{}, {adapter})",
+        "{} ({} instances of {} assets: {triangles} triangles, {edges} edges) -> {} ({}x{}, {adapter})",
         args.input.display(),
-        asset.triangle_count(),
-        asset.edge_count(),
+        instances.len(),
+        assets.len(),
         args.output.display(),
         image.width,
         image.height,
     ))
 }
 
+/// A scene file's assets (read from its folder, each a regular file within the limits) and its
+/// instances.
+pub fn read_scene(
+    path: &Path,
+    limits: &chamfer_preprocess::Limits,
+) -> anyhow::Result<(Vec<Asset>, Vec<(usize, Mat4)>)> {
+    let limits = limits.with_max_input_bytes(limits.max_input_bytes.min(MAX_SCENE_BYTES));
+    let bytes = chamfer_preprocess::load::read(path, &limits)?;
+    let scene = SceneFile::parse(&bytes).with_context(|| format!("{}", path.display()))?;
+    let folder = path.parent().unwrap_or(Path::new("."));
+    let assets = scene
+        .assets
+        .iter()
+        .map(|name| {
+            let asset_path = folder.join(name);
+            let bytes = chamfer_preprocess::load::read(&asset_path, &limits)?;
+            Asset::decode(&bytes).with_context(|| format!("{}", asset_path.display()))
+        })
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    let instances = scene
+        .instances
+        .iter()
+        .map(|i| (i.asset as usize, Mat4::from_cols_array(&i.transform)))
+        .collect();
+    Ok((assets, instances))
+}
+
 /// Renders `asset` as `view` says; returns the image and the adapter's name.
 pub fn render(asset: &Asset, view: &ViewArgs) -> anyhow::Result<(Image, String)> {
+    render_scene(std::slice::from_ref(asset), &[(0, Mat4::IDENTITY)], view)
+}
+
+/// Renders the instances of `assets` (asset index, model to world) as `view` says, the camera
+/// framing all of them.
+pub fn render_scene(
+    assets: &[Asset],
+    instances: &[(usize, Mat4)],
+    view: &ViewArgs,
+) -> anyhow::Result<(Image, String)> {
     view.check()?;
     let gpu = Offscreen::new()?;
     fits_the_device(&gpu.device.limits(), view)?;
     let target = gpu.target(view.camera.width, view.camera.height, view.samples)?;
     let pipelines = Pipelines::new(&gpu.device, &target.formats())?;
-    let uploaded = GpuAsset::for_techniques(&gpu.device, asset, &[view.technique()?])?;
-    let camera = view.camera.camera(uploaded.bounds());
-    let mut mesh = MeshRenderer::new(&pipelines, &uploaded)?;
-    mesh.prepare(&gpu.queue, &camera, &view.mesh_style());
-    let mut edges = EdgeRenderer::new(&pipelines, &uploaded);
+    let technique = view.technique()?;
+    let uploaded = assets
+        .iter()
+        .map(|asset| GpuAsset::for_techniques(&gpu.device, asset, &[technique]))
+        .collect::<Result<Vec<_>, _>>()?;
+    let drawn: Vec<Instance<'_>> = instances
+        .iter()
+        .map(|&(a, transform)| Instance::new(&uploaded[a]).with_transform(transform))
+        .collect();
+    let camera = view.camera.camera(scene_bounds(&drawn));
+    let mut mesh = MeshRenderer::for_scenes(&pipelines)?;
+    mesh.prepare_scene(&gpu.queue, &camera, &drawn, &view.mesh_style());
+    let mut edges = SceneRenderer::new(&pipelines);
     let mut encoder = gpu.encoder();
     let prepared = match view.style {
         Style::Mesh => None,
-        _ => Some(edges.prepare(&gpu.queue, &mut encoder, &camera, &view.edge_style())?),
+        _ => Some(edges.prepare(
+            &gpu.queue,
+            &mut encoder,
+            &camera,
+            &drawn,
+            &view.edge_style(),
+        )?),
     };
     {
         let mut pass = target.begin_pass(&mut encoder, [1.0, 1.0, 1.0, 1.0]);
@@ -425,6 +487,29 @@ pub fn render(asset: &Asset, view: &ViewArgs) -> anyhow::Result<(Image, String)>
     gpu.submit(encoder)?;
     let adapter = format!("{} ({:?})", gpu.info.name, gpu.info.backend);
     Ok((target.read(&gpu)?, adapter))
+}
+
+/// The box around every instance's transformed bounds.
+fn scene_bounds(instances: &[Instance<'_>]) -> [[f32; 3]; 2] {
+    let mut lo = Vec3::splat(f32::INFINITY);
+    let mut hi = Vec3::splat(f32::NEG_INFINITY);
+    for instance in instances {
+        let [a, b] = instance.asset.bounds().map(Vec3::from);
+        for k in 0..8 {
+            let corner = Vec3::new(
+                if k & 1 == 0 { a.x } else { b.x },
+                if k & 2 == 0 { a.y } else { b.y },
+                if k & 4 == 0 { a.z } else { b.z },
+            );
+            let p = instance.transform.transform_point3(corner);
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+    }
+    if lo.x > hi.x {
+        return [[0.0; 3], [1.0; 3]];
+    }
+    [lo.to_array(), hi.to_array()]
 }
 
 /// Refuses a picture larger than the device's textures or its largest buffer (the readback), so

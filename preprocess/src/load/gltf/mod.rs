@@ -66,6 +66,133 @@ pub(crate) fn parse_with_spans(
     warnings: &mut Vec<String>,
     spans: &mut Vec<PrimitiveSpan>,
 ) -> Result<Mesh, Error> {
+    with_document(
+        path,
+        bytes,
+        limits,
+        warnings,
+        |root, accessors, instances, warnings| {
+            let invalid = |message: String| Error::Parse {
+                path: path.to_owned(),
+                format: "glTF",
+                message,
+            };
+            // Each primitive is read once, however many nodes draw it; instances only transform it.
+            let mut read: HashMap<(usize, usize), Option<Mesh>> = HashMap::new();
+            let mut mesh = Mesh::default();
+            for (mesh_index, transform) in instances {
+                let Some(m) = root.meshes.get(mesh_index) else {
+                    return Err(invalid(format!(
+                        "a node refers to mesh {mesh_index}, which does not exist"
+                    )));
+                };
+                for (p, primitive) in m.primitives.iter().enumerate() {
+                    let local = match read.entry((mesh_index, p)) {
+                        Entry::Occupied(entry) => entry.into_mut(),
+                        Entry::Vacant(entry) => {
+                            let name = format!("mesh {mesh_index} primitive {p}");
+                            entry.insert(
+                                read_primitive(accessors, primitive, &name, warnings)
+                                    .map_err(|e| invalid(format!("{name}: {e}")))?,
+                            )
+                        }
+                    };
+                    let Some(local) = local else {
+                        continue;
+                    };
+                    if !spans
+                        .iter()
+                        .any(|s| (s.mesh, s.primitive) == (mesh_index, p))
+                    {
+                        spans.push(PrimitiveSpan {
+                            mesh: mesh_index,
+                            primitive: p,
+                            first_vertex: mesh.positions.len() as u32,
+                            first_triangle: mesh.triangles.len() as u32,
+                            triangle_count: local.triangles.len() as u32,
+                        });
+                    }
+                    mesh.append(transformed(local, transform));
+                }
+            }
+            Ok(mesh)
+        },
+    )
+}
+
+/// The document's scene kept as it is: each mesh the scene draws, once, with its primitives in its
+/// own space (in document order), and every instance as (index into those meshes, world
+/// transform).
+pub(crate) fn parse_scene(
+    path: &Path,
+    bytes: &[u8],
+    limits: &Limits,
+    warnings: &mut Vec<String>,
+) -> Result<SceneMeshes, Error> {
+    with_document(
+        path,
+        bytes,
+        limits,
+        warnings,
+        |root, accessors, instances, warnings| {
+            let invalid = |message: String| Error::Parse {
+                path: path.to_owned(),
+                format: "glTF",
+                message,
+            };
+            let mut used: Vec<usize> = instances.iter().map(|&(m, _)| m).collect();
+            used.sort_unstable();
+            used.dedup();
+            let mut meshes = Vec::with_capacity(used.len());
+            for &mesh_index in &used {
+                let Some(m) = root.meshes.get(mesh_index) else {
+                    return Err(invalid(format!(
+                        "a node refers to mesh {mesh_index}, which does not exist"
+                    )));
+                };
+                let mut mesh = Mesh::default();
+                for (p, primitive) in m.primitives.iter().enumerate() {
+                    let name = format!("mesh {mesh_index} primitive {p}");
+                    if let Some(local) = read_primitive(accessors, primitive, &name, warnings)
+                        .map_err(|e| invalid(format!("{name}: {e}")))?
+                    {
+                        mesh.append(local);
+                    }
+                }
+                meshes.push((mesh_index, mesh));
+            }
+            let instances = instances
+                .into_iter()
+                .filter_map(|(m, transform)| used.binary_search(&m).ok().map(|i| (i, transform)))
+                .collect();
+            Ok(SceneMeshes { meshes, instances })
+        },
+    )
+}
+
+/// What [`parse_scene`] returns.
+#[derive(Debug)]
+pub(crate) struct SceneMeshes {
+    /// (the document's mesh index, the mesh in its own space).
+    pub(crate) meshes: Vec<(usize, Mesh)>,
+    /// (index into `meshes`, world transform).
+    pub(crate) instances: Vec<(usize, Mat4)>,
+}
+
+/// Checks the document, counts what it asks for against `limits`, loads its buffers, and hands the
+/// node graph's instances to `read`.
+fn with_document<R>(
+    path: &Path,
+    bytes: &[u8],
+    limits: &Limits,
+    warnings: &mut Vec<String>,
+    read: impl FnOnce(
+        &json::Root,
+        &Accessors<'_>,
+        Vec<(usize, Mat4)>,
+        &mut Vec<String>,
+    ) -> Result<R, Error>,
+) -> Result<R, Error> {
     let invalid = |message: String| Error::Parse {
         path: path.to_owned(),
         format: "glTF",
@@ -106,46 +233,7 @@ pub(crate) fn parse_with_spans(
         root,
         buffers: &buffers,
     };
-
-    // Each primitive is read once, however many nodes draw it; instances only transform it.
-    let mut read: HashMap<(usize, usize), Option<Mesh>> = HashMap::new();
-    let mut mesh = Mesh::default();
-    for (mesh_index, transform) in instances {
-        let Some(m) = root.meshes.get(mesh_index) else {
-            return Err(invalid(format!(
-                "a node refers to mesh {mesh_index}, which does not exist"
-            )));
-        };
-        for (p, primitive) in m.primitives.iter().enumerate() {
-            let local = match read.entry((mesh_index, p)) {
-                Entry::Occupied(entry) => entry.into_mut(),
-                Entry::Vacant(entry) => {
-                    let name = format!("mesh {mesh_index} primitive {p}");
-                    entry.insert(
-                        read_primitive(&accessors, primitive, &name, warnings)
-                            .map_err(|e| invalid(format!("{name}: {e}")))?,
-                    )
-                }
-            };
-            let Some(local) = local else {
-                continue;
-            };
-            if !spans
-                .iter()
-                .any(|s| (s.mesh, s.primitive) == (mesh_index, p))
-            {
-                spans.push(PrimitiveSpan {
-                    mesh: mesh_index,
-                    primitive: p,
-                    first_vertex: mesh.positions.len() as u32,
-                    first_triangle: mesh.triangles.len() as u32,
-                    triangle_count: local.triangles.len() as u32,
-                });
-            }
-            mesh.append(transformed(local, transform));
-        }
-    }
-    Ok(mesh)
+    read(root, &accessors, instances, warnings)
 }
 
 /// A GLB's header states the file's length; a file longer or shorter than that is damaged (or

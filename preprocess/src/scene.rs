@@ -1,0 +1,86 @@
+//! Baking a glTF scene with its structure kept: one asset per mesh the scene draws and a scene file
+//! ([`chamfer_runtime::scene::SceneFile`]) of its instances, so a runtime can draw, move and hide
+//! each instance (an exploded view, a door that opens). The flattened single asset stays what
+//! [`bake_file`](crate::bake_file) makes.
+
+use std::path::{Path, PathBuf};
+
+use chamfer_runtime::scene::{SceneFile, SceneInstance};
+
+use crate::load::{self, Format};
+use crate::write::write_atomically;
+use crate::{BakeOptions, Baked, Error, bake};
+
+/// A baked scene: its assets, named, and the scene file that draws them.
+#[derive(Debug)]
+pub struct BakedScene {
+    /// Each asset's file name (`{stem}.mesh{N}.chamfer`, N the glTF mesh's index) and its bake.
+    pub assets: Vec<(String, Baked)>,
+    /// The instances, naming the assets above.
+    pub scene: SceneFile,
+    /// What the loader had to skip.
+    pub warnings: Vec<String>,
+}
+
+/// Bakes every mesh a glTF/GLB file's scene draws, each in its own space, and lists the instances.
+/// `stem` names the assets (`{stem}.mesh{N}.chamfer`).
+///
+/// Fails, naming the file, for other formats (`--scene` keeps a glTF node graph; an OBJ or PLY has
+/// none), for whatever [`bake_file`](crate::bake_file) fails on, and for a scene with no mesh.
+pub fn bake_scene(path: &Path, stem: &str, options: &BakeOptions) -> Result<BakedScene, Error> {
+    options.validate()?;
+    if load::format_of(path) != Some(Format::Gltf) {
+        return Err(Error::Unsupported {
+            path: path.to_owned(),
+            what: "a scene from anything but glTF or GLB (only they have a node graph)".into(),
+        });
+    }
+    let bytes = load::read(path, &options.limits)?;
+    let mut warnings = Vec::new();
+    let parsed = load::gltf::parse_scene(path, &bytes, &options.limits, &mut warnings)?;
+    if parsed.meshes.is_empty() {
+        return Err(Error::Unsupported {
+            path: path.to_owned(),
+            what: "a scene that draws no mesh".into(),
+        });
+    }
+    let source = path.display().to_string();
+    let mut assets = Vec::with_capacity(parsed.meshes.len());
+    for (index, mesh) in parsed.meshes {
+        let source = format!("{source} mesh {index}");
+        let baked = bake(mesh, &source, options)?;
+        assets.push((format!("{stem}.mesh{index}.chamfer"), baked));
+    }
+    let instances = parsed
+        .instances
+        .into_iter()
+        .map(|(asset, transform)| SceneInstance {
+            asset: asset as u32,
+            transform: transform.to_cols_array(),
+            name: None,
+        })
+        .collect();
+    let scene = SceneFile::new(
+        assets.iter().map(|(name, _)| name.clone()).collect(),
+        instances,
+    );
+    Ok(BakedScene {
+        assets,
+        scene,
+        warnings,
+    })
+}
+
+/// Writes a baked scene into `folder` (each file atomically): the assets, then `{stem}.scene.json`.
+/// Returns the scene file's path.
+pub fn write_scene(baked: &BakedScene, folder: &Path, stem: &str) -> Result<PathBuf, Error> {
+    for (name, asset) in &baked.assets {
+        write_atomically(&folder.join(name), |out| asset.asset.encode(out))?;
+    }
+    let scene_path = folder.join(format!("{stem}.scene.json"));
+    let text = baked.scene.to_json();
+    write_atomically(&scene_path, |out| {
+        std::io::Write::write_all(out, text.as_bytes())
+    })?;
+    Ok(scene_path)
+}
