@@ -24,7 +24,7 @@ use crate::limits::Limited;
 use crate::mesh::{Mark, Mesh};
 use crate::{Error, Limits};
 
-pub(super) fn parse(
+pub(crate) fn parse(
     path: &Path,
     bytes: &[u8],
     limits: &Limits,
