@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
-# Set-up plus every test of the workspace (unit, integration, CLI, doc tests), the docs without warnings and
-# the published crates packaged and built from their tarballs. CI runs exactly this.
+# Set-up plus every test of the workspace (unit, integration, CLI, doc tests), annotated glTF files through
+# the Khronos glTF-Validator, the docs without warnings and the published crates packaged and built from
+# their tarballs. CI runs exactly this.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/setup.sh
 cargo test --workspace --release --locked
+# Annotated glTF / GLB files through the Khronos glTF-Validator (npm).
+./scripts/validate-gltf.sh
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --release --locked
 # Every crate users depend on, as crates.io would get it: cargo packs the workspace's crates into a
 # local registry overlay so each tarball builds against the others' tarballs (dependencies from

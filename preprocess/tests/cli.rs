@@ -295,12 +295,65 @@ fn annotate_writes_marks_that_bake_reads_back() {
         "-o",
         path_str(&dir.path().join("c.obj")),
     ]);
+    // An OBJ cannot hold edges: the error names the output and what to call it instead.
     assert_eq!(run.status.code(), Some(1));
+    let stderr = text(&run.stderr);
     assert!(
-        text(&run.stderr).contains("cube.obj"),
+        stderr.contains("c.obj") && stderr.contains(".glb") && stderr.lines().count() == 1,
+        "{stderr}"
+    );
+}
+
+#[test]
+fn annotate_writes_the_glb_edge_extensions_it_is_told_to() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("cube.glb");
+    let input = fixture("shapes/cube.obj");
+    let run = chamfer(&[
+        "annotate",
+        path_str(&input),
+        "--gltf-edges",
+        "extras,edge-visibility,CESIUM_primitive_outline",
+        "-o",
+        path_str(&out),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert!(
+        text(&run.stdout).contains("12 hard and 0 silhouette edges"),
+        "{}",
+        text(&run.stdout)
+    );
+    let bytes = std::fs::read(&out).expect("GLB");
+    let length = u32::from_le_bytes(bytes[12..16].try_into().expect("4 bytes")) as usize;
+    let document: serde_json::Value =
+        serde_json::from_slice(&bytes[20..20 + length]).expect("JSON chunk");
+    assert_eq!(
+        document["extensionsUsed"],
+        serde_json::json!([
+            "EXT_mesh_primitive_edge_visibility",
+            "CESIUM_primitive_outline"
+        ])
+    );
+    // The extensions are glTF's: a PLY output with them is refused, in one line, before writing.
+    let ply = dir.path().join("cube.ply");
+    let run = chamfer(&[
+        "annotate",
+        path_str(&input),
+        "--gltf-edges",
+        "edge-visibility",
+        "-o",
+        path_str(&ply),
+    ]);
+    assert_eq!(run.status.code(), Some(1));
+    assert_eq!(
+        text(&run.stderr).lines().count(),
+        1,
         "{}",
         text(&run.stderr)
     );
+    assert!(!ply.exists());
+    let run = chamfer(&["annotate", "--help"]);
+    assert!(text(&run.stdout).contains("--gltf-edges"));
 }
 
 /// Width and height of a PNG, from its IHDR chunk.
