@@ -387,3 +387,47 @@ fn ply_tristrips_count_against_the_triangle_limit_before_they_are_added() {
         "{error}"
     );
 }
+
+#[test]
+fn the_default_weld_closes_a_cad_export_whose_copies_are_ulps_apart() {
+    // Each face has its own corners, 1 to 4 ULPs from the other faces' copies, 2,000 units from the
+    // origin: a tolerance relative to the model's extent (1.7e-6 here) would not join them.
+    let path = fixture("shapes/cube-cad-jittered.glb");
+    let default = bake_file(&path, &BakeOptions::DEFAULT)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .asset
+        .header
+        .stats;
+    assert_eq!((default.input_vertices, default.welded_vertices), (24, 8));
+    // The cube's 18 edges and 12 ridges, no crack. (The welded corners keep the first copy's
+    // jitter, so a face diagonal may be more than the 0.01° coplanar threshold from flat: smooth.)
+    let e = default.edges;
+    assert_eq!((e.total, e.boundary, e.crease, e.ridge), (18, 0, 12, 12));
+    assert_eq!(e.smooth + e.coplanar_dropped, 6);
+    // --weld-epsilon 0 keeps the exact weld: every face is its own open square.
+    let exact = bake_file(&path, &BakeOptions::DEFAULT.with_weld_epsilon(0.0))
+        .unwrap_or_else(|e| panic!("{e}"))
+        .asset
+        .header
+        .stats;
+    assert!(exact.welded_vertices > 8, "{}", exact.welded_vertices);
+    assert_eq!((exact.edges.boundary, exact.edges.crease), (24, 0));
+}
+
+#[test]
+fn the_relative_weld_distance_follows_the_farthest_corner() {
+    use chamfer_preprocess::WeldTolerance;
+    use glam::Vec3;
+    let far = [
+        Vec3::new(1000.0, 2000.0, -2.0),
+        Vec3::new(1001.0, 2001.0, 2.0),
+    ];
+    let expected = 1e-6 * Vec3::new(1001.0, 2001.0, 2.0).length();
+    assert!((WeldTolerance::DEFAULT.distance(&far) - expected).abs() < 1e-9);
+    assert_eq!(WeldTolerance::EXACT.distance(&far), 0.0);
+    // Distinct vertices a thousandth of the model apart never weld by default.
+    let near_origin = [Vec3::ZERO, Vec3::new(1e-3, 0.0, 0.0), Vec3::ONE];
+    let weld =
+        chamfer_preprocess::weld::weld(&near_origin, WeldTolerance::DEFAULT.distance(&near_origin));
+    assert_eq!(weld.remap, [0, 1, 2]);
+}

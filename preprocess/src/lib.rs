@@ -41,4 +41,4 @@ pub mod write;
 pub use bake::{Baked, Timings, bake, bake_bytes, bake_file};
 pub use error::Error;
 pub use limits::Limits;
-pub use options::{BakeOptions, OptionsError, Radius};
+pub use options::{BakeOptions, OptionsError, Radius, WeldTolerance};

@@ -798,3 +798,47 @@ fn limits_are_flags_and_documented_in_help() {
         assert!(help.contains(flag), "bake --help lacks {flag}");
     }
 }
+
+#[test]
+fn the_default_weld_is_relative_and_weld_epsilon_zero_keeps_it_exact() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let input = fixture("shapes/cube-cad-jittered.glb");
+    let welded = |flags: &[&str]| {
+        let asset = dir.path().join("cube.chamfer");
+        let mut args = vec!["bake", path_str(&input), "-o", path_str(&asset)];
+        args.extend_from_slice(flags);
+        let run = chamfer(&args);
+        assert!(run.status.success(), "{}", text(&run.stderr));
+        let run = chamfer(&["inspect", path_str(&asset), "--json"]);
+        let json: serde_json::Value = serde_json::from_slice(&run.stdout).expect("valid JSON");
+        (
+            json["welded_vertices"].clone(),
+            json["edges"]["boundary"].clone(),
+        )
+    };
+    assert_eq!(welded(&[]), (8.into(), 0.into()));
+    assert_eq!(welded(&["--weld-rel", "1e-6"]), (8.into(), 0.into()));
+    let (exact, boundary) = welded(&["--weld-epsilon", "0"]);
+    assert!(
+        exact.as_u64() > Some(8) && boundary == 24,
+        "{exact} {boundary}"
+    );
+    let run = chamfer(&[
+        "bake",
+        path_str(&input),
+        "--weld-epsilon",
+        "0",
+        "--weld-rel",
+        "1e-6",
+        "-o",
+        path_str(&dir.path().join("both.chamfer")),
+    ]);
+    assert_eq!(run.status.code(), Some(2), "the two are one choice");
+    assert!(
+        text(&run.stderr).contains("cannot be used with"),
+        "{}",
+        text(&run.stderr)
+    );
+    let run = chamfer(&["bake", "--help"]);
+    assert!(text(&run.stdout).contains("--weld-rel"));
+}

@@ -199,7 +199,7 @@ pub fn annotate_with(
         source,
     })?;
     // The bake welds with the same function and options, so this remap is its vertex numbering.
-    let remap = weld::weld(&mesh.positions, options.weld_epsilon).remap;
+    let remap = weld::weld(&mesh.positions, options.weld.distance(&mesh.positions)).remap;
     let name = input.file_name().map_or_else(
         || input.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
