@@ -207,7 +207,7 @@ impl BakeOptions {
             (
                 "weld".into(),
                 match self.weld {
-                    WeldTolerance::Absolute(d) if d == 0.0 => "exact".into(),
+                    WeldTolerance::Absolute(0.0) => "exact".into(),
                     WeldTolerance::Absolute(d) => d.to_string(),
                     WeldTolerance::Relative(f) => format!("{f} x farthest corner"),
                 },

@@ -25,7 +25,7 @@
 //!   GLB (one primitive per material), chosen by the output's extension, then annotated as above.
 //!
 //! Reading the output back gives the same marks and radii (`extras.chamfer` wins over the
-//! extensions when a primitive has both, see [`load::gltf::marks`](crate::load::gltf::marks)); the
+//! extensions when a primitive has both: `load/gltf/marks.rs`); the
 //! extensions alone read back as marks on exactly the hard edges.
 
 mod convert;
