@@ -5,8 +5,8 @@
 //! - PLY (binary little endian): `vertex` (`x y z`, `nx ny nz` and `s t` when the OBJ has them) and
 //!   `face` (`vertex_indices`, the triangles the bake uses). PLY has no materials.
 //! - glTF / GLB: one node, one mesh, one TRIANGLES primitive per material (each with its own
-//!   vertices, unsigned-int indices, unit normals when the OBJ's are usable, and texture coordinates
-//!   with `v` flipped to glTF's top-left origin), one plain material per OBJ material.
+//!   vertices, unsigned-int indices, unit normals when the OBJ's are usable, and finite texture
+//!   coordinates with `v` flipped to glTF's top-left origin), one plain material per OBJ material.
 
 use std::collections::HashMap;
 
@@ -122,7 +122,11 @@ pub(super) fn to_gltf(mesh: &Mesh, glb: bool) -> Result<Vec<u8>, String> {
                 json!({ "componentType": 5126, "count": used.len(), "type": "VEC3" }),
             ));
         }
-        if let Some(uvs) = &mesh.uvs {
+        if let Some(uvs) = mesh
+            .uvs
+            .as_ref()
+            .filter(|t| t.iter().all(|t| t.is_finite()))
+        {
             attributes["TEXCOORD_0"] = json!(add(
                 floats(&mut used.iter().flat_map(|&v| [uvs[v].x, 1.0 - uvs[v].y])),
                 34962,
