@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what building and testing Chamfer needs on a fresh Debian/Ubuntu machine: a C toolchain,
-# the Vulkan loader and Mesa's software Vulkan driver (lavapipe, for headless wgpu), and Rust.
+# the Vulkan loader and Mesa's software Vulkan driver (lavapipe, for headless wgpu), Node.js (the glTF-Validator)
+# and Rust.
 # Sourced by demo.sh and test.sh; safe to run again (installs only what is missing).
 set -euo pipefail
 # Mesa's device-select layer prints harmless XDG_RUNTIME_DIR warnings without this.
@@ -18,6 +19,16 @@ if ((${#missing[@]})); then
     echo "setup: installing ${missing[*]}"
     $sudo apt-get update -qq
     DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}" >/dev/null
+fi
+
+# Node.js and npm, for the Khronos glTF-Validator (scripts/validate-gltf.sh), only when npm is missing
+# (a nodesource nodejs already brings npm and must not be mixed with Debian's npm package).
+if ! command -v npm >/dev/null; then
+    sudo=""
+    [[ $(id -u) -ne 0 ]] && sudo="sudo"
+    echo "setup: installing nodejs npm"
+    $sudo apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq nodejs npm >/dev/null
 fi
 
 if ! command -v cargo >/dev/null; then

@@ -3,6 +3,13 @@
 //! This crate is the one place the shaders live; `chamfer-runtime` assembles each pipeline's module
 //! from these pieces (shared definitions first, then the pass) and prepends the constants it shares
 //! with the Rust side, so a constant is never written twice. See `README.md` for what each file holds.
+//!
+//! ```
+//! // Each file is a constant, and `ALL` lists them by file name (for tools that check or bundle WGSL).
+//! assert!(chamfer_shaders::COMMON.contains("struct Frame"));
+//! let (name, source) = chamfer_shaders::ALL[0];
+//! assert_eq!((name, source), ("common.wgsl", chamfer_shaders::COMMON));
+//! ```
 
 macro_rules! wgsl {
     ($($(#[$doc:meta])* $name:ident = $file:literal;)*) => {

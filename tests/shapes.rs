@@ -299,3 +299,135 @@ fn gltf_marks_in_extras_cesium_outline_and_edge_visibility() {
         );
     }
 }
+
+/// A mesh's triangles as corner positions (bits), each rotated to start at its smallest corner
+/// (winding kept), sorted: equal for two files that hold the same faces however they number them.
+fn canonical_triangles(relative: &str) -> Vec<[[u32; 3]; 3]> {
+    let mesh =
+        chamfer_preprocess::load::load(&fixture(relative), &chamfer_preprocess::Limits::DEFAULT)
+            .unwrap_or_else(|e| panic!("{e}"))
+            .mesh;
+    let mut triangles: Vec<[[u32; 3]; 3]> = mesh
+        .triangles
+        .iter()
+        .map(|t| {
+            let p = t.map(|v| mesh.positions[v as usize].to_array().map(f32::to_bits));
+            let k = (0..3).min_by_key(|&k| p[k]).expect("three corners");
+            [p[k], p[(k + 1) % 3], p[(k + 2) % 3]]
+        })
+        .collect();
+    triangles.sort_unstable();
+    triangles
+}
+
+#[test]
+fn ply_header_lines_that_are_not_keywords_are_read_with_a_warning() {
+    // Blender 2.4x's "Created by Blender ..." line, unprefixed, among the header keywords.
+    let path = fixture("shapes/cube-blender24.ply");
+    let loaded = chamfer_preprocess::load::load(&path, &chamfer_preprocess::Limits::DEFAULT)
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(loaded.warnings.len(), 1, "{:?}", loaded.warnings);
+    assert!(
+        loaded.warnings[0].contains("Created by Blender 2.49"),
+        "{:?}",
+        loaded.warnings
+    );
+    // The quads fan into the cube's own triangles (same vertex numbering and winding).
+    assert_eq!(
+        canonical_triangles("shapes/cube-blender24.ply"),
+        canonical_triangles("shapes/cube.obj")
+    );
+    assert_eq!(edges("shapes/cube-blender24.ply"), edges("shapes/cube.obj"));
+}
+
+#[test]
+fn ply_tristrips_with_restarts_are_the_cube_with_its_winding() {
+    // Six strips (two stitched by repeated vertices, the rest split by -1) make the cube's 12
+    // triangles, each wound as the OBJ winds it: every odd strip triangle has its last two swapped.
+    assert_eq!(
+        canonical_triangles("shapes/cube-tristrips.ply"),
+        canonical_triangles("shapes/cube.obj")
+    );
+    let stats = bake("shapes/cube-tristrips.ply").header.stats;
+    assert_eq!(stats.edges, edges("shapes/cube.obj"));
+    assert_eq!(
+        (
+            stats.input_triangles,
+            stats.degenerate_triangles,
+            stats.edges.ridge
+        ),
+        (12, 0, 12)
+    );
+}
+
+#[test]
+fn ply_tristrips_count_against_the_triangle_limit_before_they_are_added() {
+    let path = fixture("shapes/cube-tristrips.ply");
+    // The first strip list holds at most 13 - 2 = 11 triangles: over a limit of 10 before any is added.
+    let limits = chamfer_preprocess::Limits::DEFAULT.with_max_triangles(10);
+    let error = chamfer_preprocess::load::load(&path, &limits).expect_err("over the limit");
+    assert!(matches!(error, Error::LimitExceeded { .. }), "{error}");
+    assert!(error.to_string().contains("cube-tristrips.ply"), "{error}");
+    let bytes = std::fs::read(&path).expect("fixture");
+    // A negative index other than -1 is an error naming it.
+    let at = bytes
+        .windows(4)
+        .position(|w| w == (-1i32).to_be_bytes())
+        .expect("a restart");
+    let mut bad = bytes.clone();
+    bad[at..at + 4].copy_from_slice(&(-2i32).to_be_bytes());
+    let error = chamfer_preprocess::load::load_bytes(
+        std::path::Path::new("bad-strip.ply"),
+        &bad,
+        &chamfer_preprocess::Limits::DEFAULT,
+    )
+    .expect_err("-2 is no restart");
+    assert!(
+        error.to_string().contains("negative vertex index -2"),
+        "{error}"
+    );
+}
+
+#[test]
+fn the_default_weld_closes_a_cad_export_whose_copies_are_ulps_apart() {
+    // Each face has its own corners, 1 to 4 ULPs from the other faces' copies, 2,000 units from the
+    // origin: a tolerance relative to the model's extent (1.7e-6 here) would not join them.
+    let path = fixture("shapes/cube-cad-jittered.glb");
+    let default = bake_file(&path, &BakeOptions::DEFAULT)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .asset
+        .header
+        .stats;
+    assert_eq!((default.input_vertices, default.welded_vertices), (24, 8));
+    // The cube's 18 edges and 12 ridges, no crack. (The welded corners keep the first copy's
+    // jitter, so a face diagonal may be more than the 0.01° coplanar threshold from flat: smooth.)
+    let e = default.edges;
+    assert_eq!((e.total, e.boundary, e.crease, e.ridge), (18, 0, 12, 12));
+    assert_eq!(e.smooth + e.coplanar_dropped, 6);
+    // --weld-epsilon 0 keeps the exact weld: every face is its own open square.
+    let exact = bake_file(&path, &BakeOptions::DEFAULT.with_weld_epsilon(0.0))
+        .unwrap_or_else(|e| panic!("{e}"))
+        .asset
+        .header
+        .stats;
+    assert!(exact.welded_vertices > 8, "{}", exact.welded_vertices);
+    assert_eq!((exact.edges.boundary, exact.edges.crease), (24, 0));
+}
+
+#[test]
+fn the_relative_weld_distance_follows_the_farthest_corner() {
+    use chamfer_preprocess::WeldTolerance;
+    use glam::Vec3;
+    let far = [
+        Vec3::new(1000.0, 2000.0, -2.0),
+        Vec3::new(1001.0, 2001.0, 2.0),
+    ];
+    let expected = 1e-6 * Vec3::new(1001.0, 2001.0, 2.0).length();
+    assert!((WeldTolerance::DEFAULT.distance(&far) - expected).abs() < 1e-9);
+    assert_eq!(WeldTolerance::EXACT.distance(&far), 0.0);
+    // Distinct vertices a thousandth of the model apart never weld by default.
+    let near_origin = [Vec3::ZERO, Vec3::new(1e-3, 0.0, 0.0), Vec3::ONE];
+    let weld =
+        chamfer_preprocess::weld::weld(&near_origin, WeldTolerance::DEFAULT.distance(&near_origin));
+    assert_eq!(weld.remap, [0, 1, 2]);
+}

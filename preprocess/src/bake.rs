@@ -134,7 +134,7 @@ pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Er
         marks,
         ..
     } = mesh;
-    let welded = weld::weld(&positions, options.weld_epsilon);
+    let welded = weld::weld(&positions, options.weld.distance(&positions));
     drop(positions);
     for t in &mut triangles {
         *t = t.map(|i| welded.remap[i as usize]);

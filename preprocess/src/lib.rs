@@ -6,10 +6,19 @@
 //! [`intersections`] (optional) → [`normals`] → the asset. [`draw`] makes hidden-line drawings (SVG) of
 //! an asset.
 //!
-//! ```no_run
-//! use chamfer_preprocess::{bake_file, BakeOptions};
-//! let baked = bake_file("model.obj".as_ref(), &BakeOptions::DEFAULT)?;
-//! std::fs::write("model.chamfer", baked.asset.encode_to_vec())?;
+//! ```
+//! use chamfer_preprocess::{BakeOptions, bake_bytes};
+//! use chamfer_runtime::asset::{Asset, EdgeFlags};
+//! // A unit cube as an OBJ (the path's extension names the format; `bake_file` reads a file).
+//! let cube = b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n\
+//!     f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+//! let baked = bake_bytes("cube.obj".as_ref(), cube, &BakeOptions::DEFAULT)?;
+//! // Its 12 sides are ridge creases; the 6 face diagonals are coplanar and dropped.
+//! let asset = Asset::decode(&baked.asset.encode_to_vec())?;
+//! let ridges = (0..asset.edge_count())
+//!     .filter(|&e| asset.edge_flags(e).contains(EdgeFlags::RIDGE))
+//!     .count();
+//! assert_eq!((asset.edge_count(), ridges), (12, 12));
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
@@ -38,4 +47,4 @@ pub mod write;
 pub use bake::{Baked, Timings, bake, bake_bytes, bake_file};
 pub use error::Error;
 pub use limits::Limits;
-pub use options::{BakeOptions, OptionsError, Radius};
+pub use options::{BakeOptions, OptionsError, Radius, WeldTolerance};

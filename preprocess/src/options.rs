@@ -1,14 +1,18 @@
 //! Bake settings: parsed once (by the CLI or a build script) and passed by reference to every step.
 
+use glam::Vec3;
+
 use crate::Limits;
 
 /// How to bake a mesh. Start from [`BakeOptions::DEFAULT`] and change fields with the `with_*` setters.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct BakeOptions {
-    /// Weld positions within this distance (mesh units). Default 0: weld only bit-identical positions
-    /// (with -0.0 equal to 0.0). Must be finite and non-negative.
-    pub weld_epsilon: f32,
+    /// Which positions weld into one vertex. Default [`WeldTolerance::DEFAULT`]: within 1e-6 of the
+    /// distance from the origin to the bounding box's farthest corner, which joins the copies of a
+    /// vertex that CAD exports leave a few ULPs apart (measured in BENCHMARKS.md) and changes none of
+    /// the shared test meshes. `WeldTolerance::Absolute(0.0)` welds only bit-identical positions.
+    pub weld: WeldTolerance,
     /// Drop interior edges whose face normals differ by less than this many degrees (thesis §6.2),
     /// unless they are marked or a material seam. Default 0.01°. Must be in [0, `crease_deg`).
     pub coplanar_deg: f32,
@@ -41,6 +45,45 @@ pub enum Radius {
     Relative(f32),
 }
 
+/// How close two positions must be to weld into one topology vertex ([`weld`](crate::weld)).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum WeldTolerance {
+    /// Within this distance, in mesh units; 0 welds only bit-identical positions (with -0.0 equal
+    /// to 0.0). Must be finite and non-negative.
+    Absolute(f32),
+    /// Within this fraction of the distance from the origin to the bounding box's farthest corner
+    /// (the length of the largest absolute coordinate on each axis). An f32's spacing grows with
+    /// its magnitude, not with the model's extent, so this is a number of ULPs of the largest
+    /// coordinate: 1e-6 is at least 8 of them. Must be in [0, 0.01].
+    Relative(f32),
+}
+
+impl WeldTolerance {
+    /// The default fraction: 1e-6 (chosen from the measurement in BENCHMARKS.md).
+    pub const DEFAULT_FRACTION: f32 = 1e-6;
+    /// [`DEFAULT_FRACTION`](Self::DEFAULT_FRACTION) of the farthest corner's distance.
+    pub const DEFAULT: Self = Self::Relative(Self::DEFAULT_FRACTION);
+    /// Only bit-identical positions.
+    pub const EXACT: Self = Self::Absolute(0.0);
+
+    /// The weld distance for these positions.
+    pub fn distance(self, positions: &[Vec3]) -> f32 {
+        match self {
+            Self::Absolute(distance) => distance,
+            Self::Relative(fraction) => {
+                let farthest = positions.iter().fold(Vec3::ZERO, |m, p| m.max(p.abs()));
+                fraction * farthest.length()
+            }
+        }
+    }
+}
+
+impl Default for WeldTolerance {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
 /// Why options were refused.
 #[derive(Debug, thiserror::Error, PartialEq)]
 #[error("invalid option {name} = {value}: {reason}")]
@@ -54,9 +97,9 @@ pub struct OptionsError {
 }
 
 impl BakeOptions {
-    /// Exact weld, 0.01° coplanar threshold, 30° creases.
+    /// Weld within 1e-6 of the farthest corner's distance, 0.01° coplanar threshold, 30° creases.
     pub const DEFAULT: Self = Self {
-        weld_epsilon: 0.0,
+        weld: WeldTolerance::DEFAULT,
         coplanar_deg: 0.01,
         crease_deg: 30.0,
         radius: Radius::None,
@@ -65,12 +108,14 @@ impl BakeOptions {
         intersections: false,
     };
 
-    /// Sets [`weld_epsilon`](Self::weld_epsilon).
-    pub fn with_weld_epsilon(self, weld_epsilon: f32) -> Self {
-        Self {
-            weld_epsilon,
-            ..self
-        }
+    /// Sets [`weld`](Self::weld).
+    pub fn with_weld(self, weld: WeldTolerance) -> Self {
+        Self { weld, ..self }
+    }
+
+    /// Sets [`weld`](Self::weld) to this absolute distance (0: exact).
+    pub fn with_weld_epsilon(self, distance: f32) -> Self {
+        self.with_weld(WeldTolerance::Absolute(distance))
     }
 
     /// Sets [`coplanar_deg`](Self::coplanar_deg).
@@ -125,12 +170,20 @@ impl BakeOptions {
                 })
             }
         };
-        check(
-            self.weld_epsilon.is_finite() && self.weld_epsilon >= 0.0,
-            "weld-epsilon",
-            self.weld_epsilon,
-            "must be a finite number >= 0",
-        )?;
+        match self.weld {
+            WeldTolerance::Absolute(d) => check(
+                d.is_finite() && d >= 0.0,
+                "weld-epsilon",
+                d,
+                "must be a finite number >= 0",
+            )?,
+            WeldTolerance::Relative(f) => check(
+                (0.0..=0.01).contains(&f),
+                "weld-rel",
+                f,
+                "must be in [0, 0.01]",
+            )?,
+        }
         check(
             self.crease_deg > 0.0 && self.crease_deg <= 180.0,
             "crease-deg",
@@ -163,7 +216,14 @@ impl BakeOptions {
     /// The settings as `(name, value)` pairs, recorded in the asset for provenance.
     pub fn describe(&self) -> Vec<(String, String)> {
         vec![
-            ("weld_epsilon".into(), self.weld_epsilon.to_string()),
+            (
+                "weld".into(),
+                match self.weld {
+                    WeldTolerance::Absolute(0.0) => "exact".into(),
+                    WeldTolerance::Absolute(d) => d.to_string(),
+                    WeldTolerance::Relative(f) => format!("{f} x farthest corner"),
+                },
+            ),
             ("coplanar_deg".into(), self.coplanar_deg.to_string()),
             ("crease_deg".into(), self.crease_deg.to_string()),
             (

@@ -30,6 +30,9 @@ pub struct Weld {
 /// (never on hashing or thread count). Kept vertices are more than `epsilon` apart, and every vertex
 /// is within `epsilon` of its topology vertex, so clusters never chain further than that.
 ///
+/// The bake passes [`WeldTolerance::distance`](crate::WeldTolerance::distance) of its options (by
+/// default 1e-6 of the distance from the origin to the bounding box's farthest corner).
+///
 /// Contract: positions are finite and `epsilon` is finite and non-negative (checked by
 /// [`Mesh::validate`](crate::mesh::Mesh::validate) and [`BakeOptions::validate`](crate::BakeOptions::validate)).
 /// Runs in O(n) expected time; the tolerance weld probes 8 grid cells per unique position.

@@ -295,12 +295,65 @@ fn annotate_writes_marks_that_bake_reads_back() {
         "-o",
         path_str(&dir.path().join("c.obj")),
     ]);
+    // An OBJ cannot hold edges: the error names the output and what to call it instead.
     assert_eq!(run.status.code(), Some(1));
+    let stderr = text(&run.stderr);
     assert!(
-        text(&run.stderr).contains("cube.obj"),
+        stderr.contains("c.obj") && stderr.contains(".glb") && stderr.lines().count() == 1,
+        "{stderr}"
+    );
+}
+
+#[test]
+fn annotate_writes_the_glb_edge_extensions_it_is_told_to() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("cube.glb");
+    let input = fixture("shapes/cube.obj");
+    let run = chamfer(&[
+        "annotate",
+        path_str(&input),
+        "--gltf-edges",
+        "extras,edge-visibility,CESIUM_primitive_outline",
+        "-o",
+        path_str(&out),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert!(
+        text(&run.stdout).contains("12 hard and 0 silhouette edges"),
+        "{}",
+        text(&run.stdout)
+    );
+    let bytes = std::fs::read(&out).expect("GLB");
+    let length = u32::from_le_bytes(bytes[12..16].try_into().expect("4 bytes")) as usize;
+    let document: serde_json::Value =
+        serde_json::from_slice(&bytes[20..20 + length]).expect("JSON chunk");
+    assert_eq!(
+        document["extensionsUsed"],
+        serde_json::json!([
+            "EXT_mesh_primitive_edge_visibility",
+            "CESIUM_primitive_outline"
+        ])
+    );
+    // The extensions are glTF's: a PLY output with them is refused, in one line, before writing.
+    let ply = dir.path().join("cube.ply");
+    let run = chamfer(&[
+        "annotate",
+        path_str(&input),
+        "--gltf-edges",
+        "edge-visibility",
+        "-o",
+        path_str(&ply),
+    ]);
+    assert_eq!(run.status.code(), Some(1));
+    assert_eq!(
+        text(&run.stderr).lines().count(),
+        1,
         "{}",
         text(&run.stderr)
     );
+    assert!(!ply.exists());
+    let run = chamfer(&["annotate", "--help"]);
+    assert!(text(&run.stdout).contains("--gltf-edges"));
 }
 
 /// Width and height of a PNG, from its IHDR chunk.
@@ -850,4 +903,48 @@ fn bake_scene_keeps_a_gltf_scene_and_render_draws_it() {
     ]);
     assert_eq!(run.status.code(), Some(1));
     assert!(text(&run.stderr).contains("cube.obj"));
+}
+
+#[test]
+fn the_default_weld_is_relative_and_weld_epsilon_zero_keeps_it_exact() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let input = fixture("shapes/cube-cad-jittered.glb");
+    let welded = |flags: &[&str]| {
+        let asset = dir.path().join("cube.chamfer");
+        let mut args = vec!["bake", path_str(&input), "-o", path_str(&asset)];
+        args.extend_from_slice(flags);
+        let run = chamfer(&args);
+        assert!(run.status.success(), "{}", text(&run.stderr));
+        let run = chamfer(&["inspect", path_str(&asset), "--json"]);
+        let json: serde_json::Value = serde_json::from_slice(&run.stdout).expect("valid JSON");
+        (
+            json["welded_vertices"].clone(),
+            json["edges"]["boundary"].clone(),
+        )
+    };
+    assert_eq!(welded(&[]), (8.into(), 0.into()));
+    assert_eq!(welded(&["--weld-rel", "1e-6"]), (8.into(), 0.into()));
+    let (exact, boundary) = welded(&["--weld-epsilon", "0"]);
+    assert!(
+        exact.as_u64() > Some(8) && boundary == 24,
+        "{exact} {boundary}"
+    );
+    let run = chamfer(&[
+        "bake",
+        path_str(&input),
+        "--weld-epsilon",
+        "0",
+        "--weld-rel",
+        "1e-6",
+        "-o",
+        path_str(&dir.path().join("both.chamfer")),
+    ]);
+    assert_eq!(run.status.code(), Some(2), "the two are one choice");
+    assert!(
+        text(&run.stderr).contains("cannot be used with"),
+        "{}",
+        text(&run.stderr)
+    );
+    let run = chamfer(&["bake", "--help"]);
+    assert!(text(&run.stdout).contains("--weld-rel"));
 }

@@ -23,8 +23,12 @@ pub(super) fn write(
         format: "PLY",
         message,
     };
+    // The loader already warned about header lines it reads as comments; they are written as such.
     let mut ply = Parser::<DefaultElement>::new()
-        .read_ply(&mut &bytes[..])
+        .read_ply(&mut crate::load::ply::lenient_header(
+            bytes,
+            &mut Vec::new(),
+        ))
         .map_err(|e| invalid(e.to_string()))?;
     // Each welded vertex is written as its first input vertex.
     let mut first = vec![u32::MAX; remap.len()];

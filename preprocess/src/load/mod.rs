@@ -8,7 +8,7 @@
 pub(crate) mod files;
 pub(crate) mod gltf;
 mod obj;
-mod ply;
+pub(crate) mod ply;
 
 use std::path::Path;
 

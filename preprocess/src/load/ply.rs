@@ -3,10 +3,15 @@
 //! parse into typed structs instead of one hash map per vertex).
 //!
 //! Reads `vertex` (`x y z`, optional `nx ny nz`), `face` (`vertex_indices` or `vertex_index`, lists
-//! of any integer type and length, fanned into triangles) and `edge` (`vertex1 vertex2`, optional
-//! `radius`) as marked edges. Other elements and properties are skipped.
+//! of any integer type and length, fanned into triangles), `tristrips` (the same lists as triangle
+//! strips with `-1` restarts, as Cyberware and Stanford scans store them) and `edge` (`vertex1
+//! vertex2`, optional `radius`) as marked edges. Other elements and properties are skipped.
+//!
+//! Header lines that are not PLY keywords (Blender 2.4x wrote an unprefixed "Created by Blender"
+//! line) are read as comments, with a warning, as other readers do.
 
-use std::io::{BufRead, BufReader};
+use std::borrow::Cow;
+use std::io::{BufRead, BufReader, Read};
 use std::path::Path;
 
 use glam::Vec3;
@@ -19,18 +24,18 @@ use crate::limits::Limited;
 use crate::mesh::{Mark, Mesh};
 use crate::{Error, Limits};
 
-pub(super) fn parse(
+pub(crate) fn parse(
     path: &Path,
     bytes: &[u8],
     limits: &Limits,
-    _warnings: &mut Vec<String>,
+    warnings: &mut Vec<String>,
 ) -> Result<Mesh, Error> {
     let parse_error = |message: String| Error::Parse {
         path: path.to_owned(),
         format: "PLY",
         message,
     };
-    let mut reader = Reader::new(BufReader::new(bytes));
+    let mut reader = Reader::new(BufReader::new(lenient_header(bytes, warnings)));
     let header = Parser::<Skip>::new()
         .read_header(&mut reader)
         .map_err(|e| parse_error(e.to_string()))?;
@@ -115,6 +120,27 @@ pub(super) fn parse(
                 }
                 faces.map_err(err)?;
             }
+            "tristrips" => {
+                let mut over_limit = false;
+                let strips = for_each_element(input, &header, element, |strip: Strip| {
+                    let values = strip.values();
+                    // A strip of n indices holds at most n - 2 triangles: checked before any is added.
+                    let most = mesh.triangles.len() as u64 + values.len().saturating_sub(2) as u64;
+                    if most > limits.max_triangles {
+                        over_limit = true;
+                        return Err(String::new());
+                    }
+                    strip_triangles(&values, &mut mesh.triangles)
+                });
+                if over_limit {
+                    limits.check(
+                        path,
+                        Limited::Triangles,
+                        limits.max_triangles.saturating_add(1),
+                    )?;
+                }
+                strips.map_err(err)?;
+            }
             "edge" => {
                 for_each_element(input, &header, element, |edge: Edge| {
                     if let Some(v) = edge.negative {
@@ -133,6 +159,82 @@ pub(super) fn parse(
     }
     mesh.materials = vec![0; mesh.triangles.len()];
     Ok(mesh)
+}
+
+/// The PLY header keywords; any other header line is read as a comment.
+const HEADER_KEYWORDS: [&str; 7] = [
+    "ply",
+    "format",
+    "comment",
+    "obj_info",
+    "element",
+    "property",
+    "end_header",
+];
+
+/// The file with every header line that is not a PLY keyword turned into a `comment` (one warning
+/// each), so the strict header parser accepts what other readers accept. The body is not copied.
+pub(crate) fn lenient_header<'a>(bytes: &'a [u8], warnings: &mut Vec<String>) -> impl Read + 'a {
+    let mut header: Cow<'a, [u8]> = Cow::Borrowed(&[]);
+    let mut at = 0;
+    while at < bytes.len() {
+        let end = bytes[at..]
+            .iter()
+            .position(|&b| b == b'\n')
+            .map_or(bytes.len(), |n| at + n + 1);
+        let line = &bytes[at..end];
+        let text = String::from_utf8_lossy(line);
+        let keyword = text.split_whitespace().next().unwrap_or("");
+        if !text.trim().is_empty() && !HEADER_KEYWORDS.contains(&keyword) {
+            let owned = header.to_mut();
+            if owned.is_empty() {
+                owned.extend_from_slice(&bytes[..at]);
+            }
+            warnings.push(format!(
+                "header line {:?} is not a PLY keyword; read as a comment",
+                text.trim()
+            ));
+            owned.extend_from_slice(b"comment ");
+            owned.extend_from_slice(line);
+        } else if let Cow::Owned(owned) = &mut header {
+            owned.extend_from_slice(line);
+        }
+        at = end;
+        if keyword == "end_header" {
+            break;
+        }
+    }
+    let header = match header {
+        Cow::Borrowed(_) => Cow::Borrowed(&bytes[..at]),
+        owned => owned,
+    };
+    std::io::Cursor::new(header).chain(&bytes[at..])
+}
+
+/// Triangles of a `tristrips` list: `-1` ends a strip; within a strip triangle `j` is
+/// `(v_j, v_j+1, v_j+2)`, with the last two swapped when `j` is odd so every triangle keeps the
+/// strip's winding. Triangles that repeat a vertex (the joins of stitched strips) are not added.
+fn strip_triangles(indices: &[i64], out: &mut Vec<[u32; 3]>) -> Result<(), String> {
+    for strip in indices.split(|&v| v == -1) {
+        let strip: Vec<u32> = strip
+            .iter()
+            .map(|&v| {
+                u32::try_from(v)
+                    .map_err(|_| format!("negative vertex index {v} (only -1 restarts a strip)"))
+            })
+            .collect::<Result<_, _>>()?;
+        for (j, w) in strip.windows(3).enumerate() {
+            let triangle = if j % 2 == 0 {
+                [w[0], w[1], w[2]]
+            } else {
+                [w[0], w[2], w[1]]
+            };
+            if w[0] != w[1] && w[1] != w[2] && w[0] != w[2] {
+                out.push(triangle);
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Reads `element.count` elements of type `E` in the file's encoding, handing each to `consume`.
@@ -276,6 +378,61 @@ impl PropertyAccess for Face {
             Property::ListUInt(v) => self.take(v.into_iter().map(i64::from)),
             _ => PropertyAccessResult::UnsupportedType,
         }
+    }
+}
+
+/// A `tristrips` element's index list as read, `-1` restarts included (an unsigned list's
+/// all-ones value is its `-1`).
+#[derive(Default)]
+struct Strip {
+    unsigned: Vec<u32>,
+    signed: Vec<i32>,
+    other: Vec<i64>,
+}
+
+impl Strip {
+    fn values(self) -> Vec<i64> {
+        if !self.signed.is_empty() {
+            self.signed.into_iter().map(i64::from).collect()
+        } else if !self.unsigned.is_empty() {
+            let restart = |v: u32| if v == u32::MAX { -1 } else { i64::from(v) };
+            self.unsigned.into_iter().map(restart).collect()
+        } else {
+            self.other
+        }
+    }
+}
+
+impl PropertyAccess for Strip {
+    fn new() -> Self {
+        Self::default()
+    }
+    fn begin_list_uint(&mut self, name: &str, _len: usize) -> BeginList<'_, u32> {
+        if Face::is_index_list(name) {
+            BeginList::Fill(&mut self.unsigned)
+        } else {
+            BeginList::UseSetter
+        }
+    }
+    fn begin_list_int(&mut self, name: &str, _len: usize) -> BeginList<'_, i32> {
+        if Face::is_index_list(name) {
+            BeginList::Fill(&mut self.signed)
+        } else {
+            BeginList::UseSetter
+        }
+    }
+    fn set_property(&mut self, name: &str, property: Property) -> PropertyAccessResult {
+        if !Face::is_index_list(name) {
+            return PropertyAccessResult::Ignored;
+        }
+        self.other = match property {
+            Property::ListChar(v) => v.into_iter().map(i64::from).collect(),
+            Property::ListUChar(v) => v.into_iter().map(i64::from).collect(),
+            Property::ListShort(v) => v.into_iter().map(i64::from).collect(),
+            Property::ListUShort(v) => v.into_iter().map(i64::from).collect(),
+            _ => return PropertyAccessResult::UnsupportedType,
+        };
+        PropertyAccessResult::Set
     }
 }
 

@@ -271,7 +271,7 @@ fn length_error(kind: SectionKind, reason: String) -> DecodeError {
 }
 
 fn read_u32s(kind: SectionKind, bytes: &[u8]) -> Result<Vec<u32>, DecodeError> {
-    if bytes.len() % 4 != 0 {
+    if !bytes.len().is_multiple_of(4) {
         return Err(length_error(
             kind,
             format!("{} bytes is not a whole number of u32", bytes.len()),
@@ -284,7 +284,7 @@ fn read_u32s(kind: SectionKind, bytes: &[u8]) -> Result<Vec<u32>, DecodeError> {
 }
 
 fn read_vec3s(kind: SectionKind, bytes: &[u8]) -> Result<Vec<[f32; 3]>, DecodeError> {
-    if bytes.len() % 12 != 0 {
+    if !bytes.len().is_multiple_of(12) {
         return Err(length_error(
             kind,
             format!("{} bytes is not a whole number of 3 × f32", bytes.len()),
@@ -328,7 +328,7 @@ fn read_indices(
 ) -> Result<Indices, DecodeError> {
     let width = IndexWidth::for_bound(bound);
     let stride = width.bytes() * group;
-    if bytes.len() % stride != 0 {
+    if !bytes.len().is_multiple_of(stride) {
         return Err(length_error(
             kind,
             format!(

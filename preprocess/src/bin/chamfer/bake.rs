@@ -7,7 +7,9 @@ use std::time::{Duration, Instant};
 
 use anyhow::{Context, bail};
 use chamfer_preprocess::write::{ensure_not_an_input, ensure_replaceable, write_atomically};
-use chamfer_preprocess::{BakeOptions, Baked, Error, Limits, Radius, bake_file, build};
+use chamfer_preprocess::{
+    BakeOptions, Baked, Error, Limits, Radius, WeldTolerance, bake_file, build,
+};
 use clap::Args;
 use rayon::prelude::*;
 
@@ -54,9 +56,15 @@ pub struct BakeArgs {
 /// The bake settings as command-line flags (shared with `chamfer demo`).
 #[derive(Args, Clone)]
 pub struct OptionArgs {
-    /// Weld positions closer than this distance; 0 welds only identical positions.
-    #[arg(long, default_value_t = BakeOptions::DEFAULT.weld_epsilon, value_name = "DIST")]
-    weld_epsilon: f32,
+    /// Weld positions closer than this distance, in mesh units; 0 welds only identical positions.
+    /// [default: --weld-rel 1e-6]
+    #[arg(long, value_name = "DIST", conflicts_with = "weld_rel")]
+    weld_epsilon: Option<f32>,
+    /// Weld positions closer than this fraction of the distance from the origin to the bounding
+    /// box's farthest corner (1e-6 is at least 8 ULPs of the largest coordinate: the copies of a
+    /// vertex that CAD exports leave apart weld, distinct vertices do not).
+    #[arg(long, value_name = "F", default_value_t = WeldTolerance::DEFAULT_FRACTION)]
+    weld_rel: f32,
     /// Drop interior edges whose faces are coplanar within this many degrees.
     #[arg(long, default_value_t = BakeOptions::DEFAULT.coplanar_deg, value_name = "DEG")]
     coplanar_deg: f32,
@@ -95,7 +103,10 @@ impl OptionArgs {
     /// The options, checked.
     pub fn to_options(&self) -> anyhow::Result<BakeOptions> {
         let options = BakeOptions::DEFAULT
-            .with_weld_epsilon(self.weld_epsilon)
+            .with_weld(match self.weld_epsilon {
+                Some(distance) => WeldTolerance::Absolute(distance),
+                None => WeldTolerance::Relative(self.weld_rel),
+            })
             .with_coplanar_deg(self.coplanar_deg)
             .with_crease_deg(self.crease_deg)
             .with_radius(match (self.radius, self.radius_rel) {

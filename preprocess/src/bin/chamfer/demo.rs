@@ -10,8 +10,9 @@ use clap::Args;
 
 use crate::bake::OptionArgs;
 
-/// The bundled mesh: Hoppe's fandisk, 12,946 triangles (see fixtures/meshes/SOURCES.md).
-const FANDISK: &[u8] = include_bytes!("../../../../fixtures/meshes/fandisk.obj");
+/// The bundled mesh: Hoppe's fandisk, 12,946 triangles (see fixtures/meshes/SOURCES.md). `assets/fandisk.obj`
+/// is a link to the fixture, so the file lives once in the repository and travels in the package.
+const FANDISK: &[u8] = include_bytes!("../../../assets/fandisk.obj");
 
 /// Bake the bundled fandisk mesh, render it to a PNG beside the asset, and print what the asset holds.
 #[derive(Args)]

@@ -8,6 +8,10 @@
 //!   (edges `v0-v1`, `v1-v2`, `v2-v0` of each triangle in order, low bits first): 0 hidden,
 //!   1 silhouette, 2 hard, 3 hard and already listed by another triangle. Hard edges become marks;
 //!   silhouettes are left to the runtime's contour test.
+//!
+//! `extras.chamfer`, when a primitive has it, is the whole truth for that primitive: `chamfer
+//! annotate` writes the two extensions beside it for other viewers (every always-drawn edge is hard
+//! there, creases included), so reading them too would turn every crease into a mark.
 
 use gltf::json;
 use serde::Deserialize;
@@ -49,6 +53,7 @@ pub(super) fn read(
             ))
         }
     };
+    let mut has_chamfer_extras = false;
     if let Some(raw) = &primitive.extras {
         let extras: Extras = serde_json::from_str(raw.get()).map_err(|e| {
             format!("extras.chamfer does not follow schema version {SCHEMA_VERSION}: {e}")
@@ -60,6 +65,7 @@ pub(super) fn read(
                     chamfer.version
                 ));
             } else {
+                has_chamfer_extras = true;
                 for (k, edge) in chamfer.edges.iter().enumerate() {
                     let what = format!("extras.chamfer.edges[{k}]");
                     let (Some(Some(a)), Some(Some(b))) = (edge.first(), edge.get(1)) else {
@@ -76,6 +82,9 @@ pub(super) fn read(
                 }
             }
         }
+    }
+    if has_chamfer_extras {
+        return Ok(marks);
     }
     let extension = |key: &str| {
         primitive

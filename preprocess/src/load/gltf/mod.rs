@@ -47,6 +47,9 @@ pub(crate) struct PrimitiveSpan {
     pub first_triangle: u32,
     /// How many triangles it has.
     pub triangle_count: u32,
+    /// Its first instance mirrors it (negative determinant): the loaded triangles have their last
+    /// two corners swapped against the file's.
+    pub mirrored: bool,
 }
 
 pub(super) fn parse(
@@ -110,6 +113,7 @@ pub(crate) fn parse_with_spans(
                             first_vertex: mesh.positions.len() as u32,
                             first_triangle: mesh.triangles.len() as u32,
                             triangle_count: local.triangles.len() as u32,
+                            mirrored: transform.determinant() < 0.0,
                         });
                     }
                     mesh.append(transformed(local, transform));
@@ -393,7 +397,8 @@ fn transformed(local: &Mesh, transform: Mat4) -> Mesh {
     }
 }
 
-/// Triangles from a triangle list, strip or fan, as the glTF specification numbers them.
+/// Triangles from a triangle list, strip or fan, numbered and with their corners in the order of the
+/// glTF specification (§3.7.2.1).
 fn assemble_triangles(mode: json::mesh::Mode, indices: &[u32]) -> Vec<[u32; 3]> {
     use json::mesh::Mode;
     let n = indices.len();
@@ -407,8 +412,9 @@ fn assemble_triangles(mode: json::mesh::Mode, indices: &[u32]) -> Vec<[u32; 3]> 
                 }
             })
             .collect(),
+        // p_i = {v_i+1, v_i+2, v_0}: the corner order matters to EXT_mesh_primitive_edge_visibility.
         Mode::TriangleFan => (1..n.saturating_sub(1))
-            .map(|i| [indices[0], indices[i], indices[i + 1]])
+            .map(|i| [indices[i], indices[i + 1], indices[0]])
             .collect(),
         _ => indices
             .chunks_exact(3)
@@ -430,7 +436,7 @@ mod tests {
         );
         assert_eq!(
             assemble_triangles(Mode::TriangleFan, &[0, 1, 2, 3]),
-            [[0, 1, 2], [0, 2, 3]]
+            [[1, 2, 0], [2, 3, 0]]
         );
         assert_eq!(
             assemble_triangles(Mode::Triangles, &[0, 1, 2, 3]),
