@@ -1,0 +1,186 @@
+//! Frame time and GPU memory of a scene of many instances drawn by one `SceneRenderer`, against the
+//! same instances each drawn by a renderer of its own (one per object, as before scenes), same run.
+//!
+//! ```text
+//! cargo run --release -p chamfer-preprocess --example bench_scene -- [--frames 7] [--size 1920x1080]
+//!     [--grid 10]
+//! ```
+//! The scene: ten assets (fixtures shapes and meshes, each scaled into a unit cell) repeated over a
+//! grid×grid×grid lattice (1,000 instances by default), each turned a little, seen from outside the
+//! lattice. The configurations run round-robin after a warm-up; frames are timed from encoding to the
+//! GPU finishing, medians shown.
+
+use std::path::Path;
+use std::time::Instant;
+
+use chamfer_runtime::render::{
+    Camera, EdgeStyle, GpuAsset, Instance, MeshRenderer, MeshStyle, Offscreen, Orbit, Pipelines,
+    SceneRenderer,
+};
+use glam::{Mat4, Quat, Vec3};
+
+const ASSETS: [&str; 10] = [
+    "shapes/cube.obj",
+    "shapes/cylinder-16.obj",
+    "shapes/cone-16.obj",
+    "shapes/sphere-16x32.obj",
+    "shapes/step.obj",
+    "meshes/suzanne.obj",
+    "meshes/spot.obj",
+    "meshes/teapot.obj",
+    "meshes/fandisk.obj",
+    "meshes/cow.obj",
+];
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let mut frames = 7;
+    let mut size = [1920, 1080];
+    let mut grid = 10;
+    let mut args = std::env::args().skip(1);
+    while let Some(arg) = args.next() {
+        match arg.as_str() {
+            "--frames" => frames = args.next().ok_or("--frames needs a number")?.parse()?,
+            "--grid" => grid = args.next().ok_or("--grid needs a number")?.parse()?,
+            "--size" => {
+                let text = args.next().ok_or("--size needs WxH")?;
+                let (w, h) = text.split_once('x').ok_or("--size needs WxH")?;
+                size = [w.parse()?, h.parse()?];
+            }
+            other => return Err(format!("unknown argument {other}").into()),
+        }
+    }
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../fixtures");
+    let gpu = Offscreen::new()?;
+    let target = gpu.target(size[0], size[1], 1)?;
+    let pipelines = Pipelines::new(&gpu.device, &target.formats())?;
+    let mut uploaded = Vec::new();
+    let mut fits = Vec::new();
+    for name in ASSETS {
+        let asset = chamfer_preprocess::bake_file(&root.join(name), &Default::default())?.asset;
+        let [lo, hi] = [asset.header.bounds_min, asset.header.bounds_max].map(Vec3::from);
+        // Into a cell of side 0.8 around the origin.
+        fits.push(
+            Mat4::from_scale(Vec3::splat(0.8 / (hi - lo).max_element().max(1e-6)))
+                * Mat4::from_translation(-(lo + hi) * 0.5),
+        );
+        uploaded.push(GpuAsset::new(&gpu.device, &asset)?);
+    }
+    let mut instances = Vec::new();
+    for i in 0..grid * grid * grid {
+        let (x, y, z) = (i % grid, (i / grid) % grid, i / (grid * grid));
+        let a = i % ASSETS.len();
+        let turn = Quat::from_rotation_y(i as f32 * 0.7) * Quat::from_rotation_x(i as f32 * 0.3);
+        let transform = Mat4::from_translation(Vec3::new(x as f32, y as f32, z as f32))
+            * Mat4::from_quat(turn)
+            * fits[a];
+        instances.push(Instance::new(&uploaded[a]).with_transform(transform));
+    }
+    let extent = grid as f32 - 1.0;
+    let bounds = [[-0.5; 3], [extent + 0.5; 3]];
+    let camera = Camera::orbit(bounds, &Orbit::default(), size);
+    let triangles: u64 = instances
+        .iter()
+        .map(|i| u64::from(i.asset.triangle_count()))
+        .sum();
+    let edges: u64 = instances
+        .iter()
+        .map(|i| u64::from(i.asset.edge_count()))
+        .sum();
+    println!(
+        "adapter: {} ({:?}), {}x{}, {} instances of {} assets ({triangles} triangles, {edges} edges), {frames} frames (medians)\n",
+        gpu.info.name,
+        gpu.info.backend,
+        size[0],
+        size[1],
+        instances.len(),
+        ASSETS.len()
+    );
+    let mut mesh = MeshRenderer::for_scenes(&pipelines)?;
+    mesh.prepare_scene(&gpu.queue, &camera, &instances, &MeshStyle::default());
+    let style = EdgeStyle::default();
+    let mut scene = SceneRenderer::new(&pipelines);
+    let mut separate: Vec<SceneRenderer> = instances
+        .iter()
+        .map(|_| SceneRenderer::new(&pipelines))
+        .collect();
+
+    let frame = |draw: &mut dyn FnMut(
+        &mut wgpu::CommandEncoder,
+    ) -> Result<(), Box<dyn std::error::Error>>|
+     -> Result<f64, Box<dyn std::error::Error>> {
+        let start = Instant::now();
+        let mut encoder = gpu.encoder();
+        draw(&mut encoder)?;
+        gpu.submit(encoder)?;
+        Ok(start.elapsed().as_secs_f64() * 1e3)
+    };
+    let mut times = [Vec::new(), Vec::new(), Vec::new()];
+    for round in 0..frames + 2 {
+        let m = frame(&mut |encoder| {
+            mesh.render(&mut target.begin_pass(encoder, [1.0; 4]));
+            Ok(())
+        })?;
+        let s = frame(&mut |encoder| {
+            let prepared = scene.prepare(&gpu.queue, encoder, &camera, &instances, &style)?;
+            let mut pass = target.begin_pass(encoder, [1.0; 4]);
+            mesh.render(&mut pass);
+            prepared.render(&mut pass);
+            Ok(())
+        })?;
+        let p = frame(&mut |encoder| {
+            // Every renderer's compute first, then one pass that draws them all.
+            let mut prepared = Vec::with_capacity(separate.len());
+            for (renderer, instance) in separate.iter_mut().zip(&instances) {
+                prepared.push(renderer.prepare(
+                    &gpu.queue,
+                    encoder,
+                    &camera,
+                    std::slice::from_ref(instance),
+                    &style,
+                )?);
+            }
+            let mut pass = target.begin_pass(encoder, [1.0; 4]);
+            mesh.render(&mut pass);
+            for prepared in &prepared {
+                prepared.render(&mut pass);
+            }
+            Ok(())
+        })?;
+        if round >= 2 {
+            times[0].push(m);
+            times[1].push(s);
+            times[2].push(p);
+        }
+    }
+    let [m, s, p] = times.map(median);
+    let counts = scene.read_counts(&gpu.device, &gpu.queue)?;
+    let separate_bytes: u64 = separate.iter().map(SceneRenderer::gpu_bytes).sum();
+    let asset_bytes: u64 = uploaded.iter().map(GpuAsset::gpu_bytes).sum();
+    println!("| configuration | frame ms | over mesh-only | per-frame GPU MB | drawn edges |");
+    println!("|---|---:|---:|---:|---:|");
+    println!("| mesh only (instanced mesh pass) | {m:.1} | | | |");
+    println!(
+        "| + one SceneRenderer | {s:.1} | {:+.0}% | {:.2} | {} |",
+        (s / m - 1.0) * 100.0,
+        scene.gpu_bytes() as f64 / 1e6,
+        counts.edges
+    );
+    println!(
+        "| + {} renderers of one instance each | {p:.1} | {:+.0}% | {:.2} | |",
+        separate.len(),
+        (p / m - 1.0) * 100.0,
+        separate_bytes as f64 / 1e6,
+    );
+    println!(
+        "\nassets' buffers, shared by both: {:.2} MB; per-frame memory, separate / scene: {:.1}x; edge work (frame minus mesh), separate / scene: {:.1}x",
+        asset_bytes as f64 / 1e6,
+        separate_bytes as f64 / scene.gpu_bytes().max(1) as f64,
+        (p - m) / (s - m).max(1e-3)
+    );
+    Ok(())
+}
+
+fn median(mut values: Vec<f64>) -> f64 {
+    values.sort_by(f64::total_cmp);
+    values[values.len() / 2]
+}
