@@ -104,10 +104,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .map(|_| SceneRenderer::new(&pipelines))
         .collect();
 
-    let frame = |draw: &mut dyn FnMut(
-        &mut wgpu::CommandEncoder,
-    ) -> Result<(), Box<dyn std::error::Error>>|
-     -> Result<f64, Box<dyn std::error::Error>> {
+    let frame = |draw: &mut Recording| -> Result<f64, Box<dyn std::error::Error>> {
         let start = Instant::now();
         let mut encoder = gpu.encoder();
         draw(&mut encoder)?;
@@ -179,6 +176,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     Ok(())
 }
+
+/// What one frame records into its encoder.
+type Recording<'a> =
+    dyn FnMut(&mut wgpu::CommandEncoder) -> Result<(), Box<dyn std::error::Error>> + 'a;
 
 fn median(mut values: Vec<f64>) -> f64 {
     values.sort_by(f64::total_cmp);

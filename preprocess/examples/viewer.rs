@@ -1,10 +1,11 @@
-//! An interactive window on an asset or a mesh (baked on the fly):
-//! `cargo run --release --example viewer -- INPUT`.
+//! An interactive window on an asset, a mesh (baked on the fly) or a scene file (`chamfer bake
+//! --scene`): `cargo run --release --example viewer -- INPUT`.
 //!
 //! Drag to orbit, scroll to zoom. Keys: 1 contours, 2 ridges, 3 valleys, 4 boundaries, 5 marked
 //! (toggle each class); + / - edge width; C cycles the cap method; D depth-scaled width; E edges on
 //! or off; O orthographic; T cycles the edge technique (its name is in the title); H the chamfer
-//! highlight (seed 000) under a light circling the model; Esc quits. Meshes are baked with a chamfer radius of 0.4 % of their diagonal on ridges. It is also the smallest example of hosting the renderers in an
+//! highlight (seed 000) under a light circling the model; X explodes a scene (each instance moved
+//! away from the centre, every frame's transforms given anew); Esc quits. Meshes are baked with a chamfer radius of 0.4 % of their diagonal on ridges. It is also the smallest example of hosting the renderers in an
 //! application's own wgpu setup: the window, device and frame belong to this file.
 
 use std::path::PathBuf;
@@ -13,9 +14,10 @@ use std::sync::Arc;
 use anyhow::Context;
 use chamfer_runtime::asset::Asset;
 use chamfer_runtime::render::{
-    Camera, CapMethod, EdgeClasses, EdgeRenderer, EdgeStyle, FrameViews, GpuAsset, Highlight,
-    Light, MeshLight, MeshRenderer, MeshStyle, Orbit, Pipelines, Target, Technique,
+    Camera, CapMethod, EdgeClasses, EdgeStyle, FrameViews, GpuAsset, Highlight, Instance, Light,
+    MeshLight, MeshRenderer, MeshStyle, Orbit, Pipelines, SceneRenderer, Target, Technique,
 };
+use glam::{Mat4, Vec3};
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, EventLoop};
@@ -28,22 +30,30 @@ const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth24PlusStencil8;
 fn main() -> anyhow::Result<()> {
     let input: PathBuf = std::env::args_os()
         .nth(1)
-        .context("usage: viewer INPUT (a .chamfer asset or an OBJ, glTF/GLB or PLY mesh)")?
+        .context(
+            "usage: viewer INPUT (a .chamfer asset, a .scene.json scene or an OBJ, glTF/GLB or PLY mesh)",
+        )?
         .into();
-    let asset = if input
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("chamfer"))
-    {
-        let bytes = chamfer_preprocess::load::read(&input, &chamfer_preprocess::Limits::DEFAULT)?;
-        Asset::decode(&bytes).with_context(|| format!("{}", input.display()))?
+    let name = input.to_string_lossy().to_ascii_lowercase();
+    let limits = chamfer_preprocess::Limits::DEFAULT;
+    let (assets, instances) = if name.ends_with(".scene.json") {
+        let scene = chamfer_preprocess::scene::read_scene(&input, &limits)?;
+        (scene.assets, scene.instances)
+    } else if name.ends_with(".chamfer") {
+        let bytes = chamfer_preprocess::load::read(&input, &limits)?;
+        let asset = Asset::decode(&bytes).with_context(|| format!("{}", input.display()))?;
+        (vec![asset], vec![(0, Mat4::IDENTITY)])
     } else {
         let options = chamfer_preprocess::BakeOptions::DEFAULT
             .with_radius(chamfer_preprocess::Radius::Relative(0.004));
-        chamfer_preprocess::bake_file(&input, &options)?.asset
+        let asset = chamfer_preprocess::bake_file(&input, &options)?.asset;
+        (vec![asset], vec![(0, Mat4::IDENTITY)])
     };
     let event_loop = EventLoop::new()?;
     let mut viewer = Viewer {
-        asset,
+        assets,
+        instances,
+        explode: false,
         title: input.display().to_string(),
         window: None,
         orbit: Orbit::default(),
@@ -60,7 +70,10 @@ fn main() -> anyhow::Result<()> {
 }
 
 struct Viewer {
-    asset: Asset,
+    assets: Vec<Asset>,
+    /// Each instance's asset and model-to-world transform, as the input gave them.
+    instances: Vec<(usize, Mat4)>,
+    explode: bool,
     title: String,
     window: Option<Gpu>,
     orbit: Orbit,
@@ -82,13 +95,13 @@ struct Gpu {
     config: wgpu::SurfaceConfiguration,
     depth: wgpu::TextureView,
     depth_sampled: wgpu::TextureView,
-    asset: GpuAsset,
+    assets: Vec<GpuAsset>,
     mesh: MeshRenderer,
-    edges: EdgeRenderer,
+    edges: SceneRenderer,
 }
 
 impl Gpu {
-    fn new(event_loop: &ActiveEventLoop, asset: &Asset) -> anyhow::Result<Self> {
+    fn new(event_loop: &ActiveEventLoop, assets: &[Asset]) -> anyhow::Result<Self> {
         let window = Arc::new(
             event_loop.create_window(Window::default_attributes().with_title("chamfer viewer"))?,
         );
@@ -121,9 +134,12 @@ impl Gpu {
         surface.configure(&device, &config);
         let target = Target::new(config.format, Some(DEPTH), 1);
         let pipelines = Pipelines::new(&device, &target)?;
-        let uploaded = GpuAsset::for_techniques(&device, asset, &Technique::all())?;
-        let mesh = MeshRenderer::new(&pipelines, &uploaded)?;
-        let edges = EdgeRenderer::new(&pipelines, &uploaded);
+        let uploaded = assets
+            .iter()
+            .map(|asset| GpuAsset::for_techniques(&device, asset, &Technique::all()))
+            .collect::<Result<Vec<_>, _>>()?;
+        let mesh = MeshRenderer::for_scenes(&pipelines)?;
+        let edges = SceneRenderer::new(&pipelines);
         let (depth, depth_sampled) = depth_views(&device, &config);
         Ok(Self {
             window,
@@ -133,7 +149,7 @@ impl Gpu {
             config,
             depth,
             depth_sampled,
-            asset: uploaded,
+            assets: uploaded,
             mesh,
             edges,
         })
@@ -146,8 +162,15 @@ impl Gpu {
         (self.depth, self.depth_sampled) = depth_views(&self.device, &self.config);
     }
 
+    /// What the camera frames: the scene as placed, so that it stays put while the scene explodes.
+    fn bounds(&self, placed: &[(usize, Mat4)]) -> [[f32; 3]; 2] {
+        Instance::scene_bounds(&instances(&self.assets, placed, false)).unwrap_or_default()
+    }
+
     fn draw(
         &mut self,
+        placed: &[(usize, Mat4)],
+        explode: bool,
         orbit: &Orbit,
         style: &EdgeStyle,
         mesh_style: &MeshStyle,
@@ -163,17 +186,20 @@ impl Gpu {
             _ => return Ok(()),
         };
         let view = frame.texture.create_view(&Default::default());
+        // The camera frames the scene as placed, so it stays put while the scene explodes.
         let camera = Camera::orbit(
-            self.asset.bounds(),
+            self.bounds(placed),
             orbit,
             [self.config.width, self.config.height],
         );
-        self.mesh.prepare(&self.queue, &camera, mesh_style);
         let mut encoder = self.device.create_command_encoder(&Default::default());
+        let instances = instances(&self.assets, placed, explode);
+        self.mesh
+            .prepare_scene(&self.queue, &camera, &instances, mesh_style);
         let prepared = if draw_edges {
             Some(
                 self.edges
-                    .prepare(&self.queue, &mut encoder, &camera, style)?,
+                    .prepare(&self.queue, &mut encoder, &camera, &instances, style)?,
             )
         } else {
             None
@@ -222,6 +248,31 @@ impl Gpu {
         self.queue.present(frame);
         Ok(())
     }
+}
+
+/// The instances to draw this frame; exploded: each moved away from the scene's centre to twice
+/// its distance.
+fn instances<'a>(
+    assets: &'a [GpuAsset],
+    placed: &[(usize, Mat4)],
+    explode: bool,
+) -> Vec<Instance<'a>> {
+    let instances: Vec<Instance<'a>> = placed
+        .iter()
+        .map(|&(asset, transform)| Instance::new(&assets[asset]).with_transform(transform))
+        .collect();
+    let Some(bounds) = Instance::scene_bounds(&instances).filter(|_| explode) else {
+        return instances;
+    };
+    let centre = |[lo, hi]: [[f32; 3]; 2]| (Vec3::from(lo) + Vec3::from(hi)) * 0.5;
+    let scene_centre = centre(bounds);
+    instances
+        .into_iter()
+        .map(|instance| {
+            let away = centre(instance.world_bounds()) - scene_centre;
+            instance.with_transform(Mat4::from_translation(away) * instance.transform)
+        })
+        .collect()
 }
 
 /// The depth attachment, and a depth-only view of it for the techniques that read it after the pass.
@@ -300,7 +351,7 @@ impl ApplicationHandler for Viewer {
         if self.window.is_some() {
             return;
         }
-        match Gpu::new(event_loop, &self.asset) {
+        match Gpu::new(event_loop, &self.assets) {
             Ok(gpu) => {
                 gpu.window
                     .set_title(&format!("chamfer viewer: {}", self.title));
@@ -354,7 +405,14 @@ impl ApplicationHandler for Viewer {
                 } else {
                     (self.style, MeshStyle::default())
                 };
-                if let Err(e) = gpu.draw(&self.orbit, &style, &mesh_style, self.draw_edges) {
+                if let Err(e) = gpu.draw(
+                    &self.instances,
+                    self.explode,
+                    &self.orbit,
+                    &style,
+                    &mesh_style,
+                    self.draw_edges,
+                ) {
                     self.error = Some(e);
                     event_loop.exit();
                 }
@@ -395,12 +453,10 @@ impl ApplicationHandler for Viewer {
                     MouseScrollDelta::PixelDelta(p) => p.y as f32 / 40.0,
                 };
                 let fitted = self.orbit.distance.unwrap_or_else(|| {
-                    let camera = Camera::orbit(
-                        gpu.asset.bounds(),
-                        &self.orbit,
-                        [gpu.config.width, gpu.config.height],
-                    );
-                    let [lo, hi] = gpu.asset.bounds().map(glam::Vec3::from);
+                    let bounds = gpu.bounds(&self.instances);
+                    let camera =
+                        Camera::orbit(bounds, &self.orbit, [gpu.config.width, gpu.config.height]);
+                    let [lo, hi] = bounds.map(Vec3::from);
                     camera.eye().truncate().distance((lo + hi) * 0.5)
                 });
                 self.orbit.distance = Some(fitted * 0.9f32.powf(steps));
@@ -412,6 +468,9 @@ impl ApplicationHandler for Viewer {
                 }
                 if event.logical_key == Key::Character("h".into()) {
                     self.highlight = !self.highlight;
+                    true
+                } else if event.logical_key == Key::Character("x".into()) {
+                    self.explode = !self.explode;
                     true
                 } else {
                     apply_key(

@@ -1,15 +1,18 @@
 //! Baking a glTF scene with its structure kept: one asset per mesh the scene draws and a scene file
 //! ([`chamfer_runtime::scene::SceneFile`]) of its instances, so a runtime can draw, move and hide
-//! each instance (an exploded view, a door that opens). The flattened single asset stays what
-//! [`bake_file`](crate::bake_file) makes.
+//! each instance (an exploded view, a door that opens), and reading such a scene back. The
+//! flattened single asset stays what [`bake_file`](crate::bake_file) makes.
 
 use std::path::{Path, PathBuf};
 
-use chamfer_runtime::scene::{SceneFile, SceneInstance};
+use chamfer_runtime::asset::Asset;
+use chamfer_runtime::scene::{MAX_SCENE_BYTES, SceneFile, SceneInstance};
+use glam::Mat4;
 
+use crate::load::files::{RefusedReference, read_reference};
 use crate::load::{self, Format};
 use crate::write::write_atomically;
-use crate::{BakeOptions, Baked, Error, bake};
+use crate::{BakeOptions, Baked, Error, Limits, bake};
 
 /// A baked scene: its assets, named, and the scene file that draws them.
 #[derive(Debug)]
@@ -83,4 +86,58 @@ pub fn write_scene(baked: &BakedScene, folder: &Path, stem: &str) -> Result<Path
         std::io::Write::write_all(out, text.as_bytes())
     })?;
     Ok(scene_path)
+}
+
+/// A scene file read back: its assets, decoded, and what draws them.
+#[derive(Debug)]
+pub struct LoadedScene {
+    /// The assets, in the scene file's order.
+    pub assets: Vec<Asset>,
+    /// Each instance's asset (an index into `assets`) and model-to-world transform.
+    pub instances: Vec<(usize, Mat4)>,
+}
+
+/// Reads a scene file (at most [`MAX_SCENE_BYTES`] and `limits.max_input_bytes`) and the assets it
+/// names. Assets are read only from the scene's folder or below it (a link that leads out is
+/// refused), each a regular file within `limits.max_input_bytes`, and decoded with the asset's
+/// validation.
+///
+/// Fails, naming the file, for a scene that does not parse or validate
+/// ([`SceneFile::parse`]), an asset that is missing, refused or does not decode.
+pub fn read_scene(path: &Path, limits: &Limits) -> Result<LoadedScene, Error> {
+    let limits = limits.with_max_input_bytes(limits.max_input_bytes.min(MAX_SCENE_BYTES));
+    let bytes = load::read(path, &limits)?;
+    let scene = SceneFile::parse(&bytes).map_err(|e| Error::Parse {
+        path: path.to_owned(),
+        format: "scene file",
+        message: e.to_string(),
+    })?;
+    let assets = scene
+        .assets
+        .iter()
+        .map(|name| {
+            let refused = |problem: String| Error::Reference {
+                path: path.to_owned(),
+                reference: format!("asset {name:?}"),
+                problem,
+            };
+            let bytes = read_reference(path, Path::new(name), limits.max_input_bytes).map_err(
+                |e| match e {
+                    RefusedReference::Missing => refused("does not exist".into()),
+                    RefusedReference::Refused(problem) => refused(problem),
+                },
+            )?;
+            Asset::decode(&bytes).map_err(|e| Error::Parse {
+                path: load::files::folder_of(path).join(name),
+                format: "Chamfer asset",
+                message: e.to_string(),
+            })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let instances = scene
+        .instances
+        .iter()
+        .map(|i| (i.asset as usize, Mat4::from_cols_array(&i.transform)))
+        .collect();
+    Ok(LoadedScene { assets, instances })
 }

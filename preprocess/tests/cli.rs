@@ -893,6 +893,26 @@ fn bake_scene_keeps_a_gltf_scene_and_render_draws_it() {
         stderr.contains("sneaky.scene.json") && stderr.contains("plain file name"),
         "{stderr}"
     );
+    // So is a plain name that is a link leading out of the scene's folder.
+    #[cfg(unix)]
+    {
+        let inside = dir.path().join("inside");
+        std::fs::create_dir(&inside).expect("mkdir");
+        std::os::unix::fs::symlink(
+            out.join("two-cube-instances.mesh0.chamfer"),
+            inside.join("two-cube-instances.mesh0.chamfer"),
+        )
+        .expect("symlink");
+        let linked = inside.join("linked.scene.json");
+        std::fs::write(&linked, &scene).expect("write");
+        let run = chamfer(&["render", path_str(&linked), "-o", path_str(&png)]);
+        let stderr = text(&run.stderr);
+        assert_eq!(run.status.code(), Some(1), "{stderr}");
+        assert!(
+            stderr.contains("linked.scene.json") && stderr.contains("outside the file's folder"),
+            "{stderr}"
+        );
+    }
     // A scene needs a node graph.
     let run = chamfer(&[
         "bake",

@@ -309,7 +309,7 @@ fn read_vec3s(kind: SectionKind, bytes: &[u8]) -> Result<Vec<[f32; 3]>, DecodeEr
 
 fn read_segments(bytes: &[u8]) -> Result<Vec<[[f32; 3]; 2]>, DecodeError> {
     let kind = SectionKind::IntersectionSegments;
-    if bytes.len() % SEGMENT_BYTES != 0 {
+    if !bytes.len().is_multiple_of(SEGMENT_BYTES) {
         return Err(length_error(
             kind,
             format!("{} bytes is not a whole number of 2 × 3 × f32", bytes.len()),

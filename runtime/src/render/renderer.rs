@@ -52,6 +52,29 @@ impl<'a> Instance<'a> {
             ..self
         }
     }
+
+    /// The world-space box around the asset's bounds moved by the transform.
+    pub fn world_bounds(&self) -> [[f32; 3]; 2] {
+        let [lo, hi] = self.asset.bounds().map(Vec3::from);
+        let mut world = [Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)];
+        for k in 0..8 {
+            let corner = Vec3::select(glam::BVec3::new(k & 1 == 0, k & 2 == 0, k & 4 == 0), lo, hi);
+            let p = self.transform.transform_point3(corner);
+            world = [world[0].min(p), world[1].max(p)];
+        }
+        world.map(|v| v.to_array())
+    }
+
+    /// The box around every instance's [`world_bounds`](Self::world_bounds), to frame a scene with
+    /// [`Camera::orbit`]; `None` when there are none.
+    pub fn scene_bounds(instances: &[Instance<'_>]) -> Option<[[f32; 3]; 2]> {
+        instances.iter().map(Instance::world_bounds).reduce(|a, b| {
+            [
+                Vec3::from(a[0]).min(Vec3::from(b[0])).to_array(),
+                Vec3::from(a[1]).max(Vec3::from(b[1])).to_array(),
+            ]
+        })
+    }
 }
 
 /// What the last [`SceneRenderer::prepare`] did with its instances.

@@ -11,9 +11,8 @@ use chamfer_runtime::render::{
     Light, MeshLight, MeshRenderer, MeshStyle, Offscreen, Orbit, Pipelines, SceneRenderer,
     Technique,
 };
-use chamfer_runtime::scene::{MAX_SCENE_BYTES, SceneFile};
 use clap::{Args, ValueEnum};
-use glam::{Mat4, Vec3};
+use glam::Mat4;
 
 use crate::bake::OptionArgs;
 
@@ -372,7 +371,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let options = args.options.to_options()?;
     let name = args.input.to_string_lossy().to_ascii_lowercase();
     let (assets, instances) = if name.ends_with(".scene.json") {
-        read_scene(&args.input, &options.limits)?
+        let scene = chamfer_preprocess::scene::read_scene(&args.input, &options.limits)?;
+        (scene.assets, scene.instances)
     } else if name.ends_with(".chamfer") {
         let bytes = chamfer_preprocess::load::read(&args.input, &options.limits)?;
         let asset = Asset::decode(&bytes).with_context(|| format!("{}", args.input.display()))?;
@@ -406,33 +406,6 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     ))
 }
 
-/// A scene file's assets (read from its folder, each a regular file within the limits) and its
-/// instances.
-pub fn read_scene(
-    path: &Path,
-    limits: &chamfer_preprocess::Limits,
-) -> anyhow::Result<(Vec<Asset>, Vec<(usize, Mat4)>)> {
-    let limits = limits.with_max_input_bytes(limits.max_input_bytes.min(MAX_SCENE_BYTES));
-    let bytes = chamfer_preprocess::load::read(path, &limits)?;
-    let scene = SceneFile::parse(&bytes).with_context(|| format!("{}", path.display()))?;
-    let folder = path.parent().unwrap_or(Path::new("."));
-    let assets = scene
-        .assets
-        .iter()
-        .map(|name| {
-            let asset_path = folder.join(name);
-            let bytes = chamfer_preprocess::load::read(&asset_path, &limits)?;
-            Asset::decode(&bytes).with_context(|| format!("{}", asset_path.display()))
-        })
-        .collect::<anyhow::Result<Vec<_>>>()?;
-    let instances = scene
-        .instances
-        .iter()
-        .map(|i| (i.asset as usize, Mat4::from_cols_array(&i.transform)))
-        .collect();
-    Ok((assets, instances))
-}
-
 /// Renders `asset` as `view` says; returns the image and the adapter's name.
 pub fn render(asset: &Asset, view: &ViewArgs) -> anyhow::Result<(Image, String)> {
     render_scene(std::slice::from_ref(asset), &[(0, Mat4::IDENTITY)], view)
@@ -459,7 +432,9 @@ pub fn render_scene(
         .iter()
         .map(|&(a, transform)| Instance::new(&uploaded[a]).with_transform(transform))
         .collect();
-    let camera = view.camera.camera(scene_bounds(&drawn));
+    let camera = view
+        .camera
+        .camera(Instance::scene_bounds(&drawn).unwrap_or([[0.0; 3], [1.0; 3]]));
     let mut mesh = MeshRenderer::for_scenes(&pipelines)?;
     mesh.prepare_scene(&gpu.queue, &camera, &drawn, &view.mesh_style());
     let mut edges = SceneRenderer::new(&pipelines);
@@ -487,29 +462,6 @@ pub fn render_scene(
     gpu.submit(encoder)?;
     let adapter = format!("{} ({:?})", gpu.info.name, gpu.info.backend);
     Ok((target.read(&gpu)?, adapter))
-}
-
-/// The box around every instance's transformed bounds.
-fn scene_bounds(instances: &[Instance<'_>]) -> [[f32; 3]; 2] {
-    let mut lo = Vec3::splat(f32::INFINITY);
-    let mut hi = Vec3::splat(f32::NEG_INFINITY);
-    for instance in instances {
-        let [a, b] = instance.asset.bounds().map(Vec3::from);
-        for k in 0..8 {
-            let corner = Vec3::new(
-                if k & 1 == 0 { a.x } else { b.x },
-                if k & 2 == 0 { a.y } else { b.y },
-                if k & 4 == 0 { a.z } else { b.z },
-            );
-            let p = instance.transform.transform_point3(corner);
-            lo = lo.min(p);
-            hi = hi.max(p);
-        }
-    }
-    if lo.x > hi.x {
-        return [[0.0; 3], [1.0; 3]];
-    }
-    [lo.to_array(), hi.to_array()]
 }
 
 /// Refuses a picture larger than the device's textures or its largest buffer (the readback), so
