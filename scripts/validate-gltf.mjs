@@ -1,11 +1,12 @@
 // Validates glTF / GLB files with the Khronos glTF-Validator (npm package gltf-validator).
 // Usage: node scripts/validate-gltf.mjs VALIDATOR_DIR FILE...; exits 1 if any file has an error.
+// VALIDATOR_DIR may be relative (CI's default target folder): createRequire needs an absolute path.
 import { readFileSync } from "node:fs";
 import { createRequire } from "node:module";
-import { join, basename } from "node:path";
+import { resolve, basename } from "node:path";
 
 const [dir, ...files] = process.argv.slice(2);
-const validator = createRequire(join(dir, "package.json"))("gltf-validator");
+const validator = createRequire(resolve(dir, "package.json"))("gltf-validator");
 let failed = 0;
 for (const file of files) {
   const report = await validator.validateBytes(new Uint8Array(readFileSync(file)), {
