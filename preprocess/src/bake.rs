@@ -1,17 +1,18 @@
 //! The bake pipeline: validate → weld → drop degenerate triangles → adjacency → classify → caps →
-//! intersections (optional) → split normals → assemble the asset. Each step's time is recorded for `chamfer bake --timings`.
+//! intersections (optional) → split normals → order the edges into clusters → assemble the asset. Each step's time is recorded for `chamfer bake --timings`.
 
 use std::path::Path;
 use std::time::{Duration, Instant};
 
-use chamfer_runtime::asset::{Asset, Header, Indices, MAX_RING, Stats, pack_attributes};
+use chamfer_runtime::asset::{Asset, Header, Indices, MAX_RING, Stats, clusters, pack_attributes};
 use glam::Vec3;
+use rayon::prelude::*;
 
 use crate::corners::VertexCorners;
 use crate::mesh::{Mark, Mesh, MeshError};
 use crate::{
-    BakeOptions, Error, adjacency, caps, classify, degenerate, intersections, load, normals, radii,
-    weld,
+    BakeOptions, Error, adjacency, caps, classify, degenerate, edge_order, intersections, load,
+    normals, radii, weld,
 };
 
 /// A baked asset and what it took.
@@ -181,7 +182,7 @@ pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Er
 
     refuse_long_rings(&positions, &edges).map_err(mesh_error)?;
     let corners = VertexCorners::new(&triangles, positions.len());
-    let rings = caps::rings_around(&corners, &triangles, &edges, positions.len());
+    let mut rings = caps::rings_around(&corners, &triangles, &edges, positions.len());
     lap(&mut timings.caps);
 
     // Before the normals step, which consumes the triangles; over the welded positions, so
@@ -195,6 +196,10 @@ pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Er
     drop(triangles);
     lap(&mut timings.normals);
 
+    // Last, since the steps above find edges by their vertices: runs the runtime's clusters cull.
+    let order = edge_order::coherent_order(&positions, &edges);
+    edge_order::reorder(&mut edges, &mut rings, &order);
+    drop(order);
     let radii = edges.radii.clone();
     let intersection_stats = found.as_ref().map(|f| f.stats);
     let mut asset = assemble(source, options, stats, &positions, edges, rings, render);
@@ -202,6 +207,10 @@ pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Er
         asset.intersection_segments = found.segments;
         asset.intersection_starts = found.starts;
     }
+    asset.edge_clusters = (0..clusters::cluster_count(asset.edge_count()))
+        .into_par_iter()
+        .map(|c| clusters::cluster_of(&asset, c))
+        .collect();
     lap(&mut timings.assemble);
     Ok(Baked {
         asset,
@@ -285,5 +294,6 @@ fn assemble(
         cap_heads: Indices::with_bound(rings.heads, 2 * edge_count),
         intersection_segments: Vec::new(),
         intersection_starts: Vec::new(),
+        edge_clusters: Vec::new(),
     }
 }

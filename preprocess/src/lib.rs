@@ -31,6 +31,7 @@ pub mod classify;
 mod corners;
 pub mod degenerate;
 pub mod draw;
+mod edge_order;
 mod error;
 pub mod intersections;
 pub mod limits;

@@ -1,5 +1,6 @@
 //! Reading an asset: every length, index and float is checked before anything is trusted.
 
+use super::clusters::{self, CLUSTER_BYTES, EdgeCluster};
 use super::{
     Asset, DecodeError, EdgeFlags, FORMAT_VERSION, Header, IndexWidth, Indices, MAGIC,
     MAX_HEADER_BYTES, MAX_RING, SECTION_ALIGN, SectionKind, attribute_flags, envelope,
@@ -11,12 +12,14 @@ const SEGMENT_BYTES: usize = 24;
 impl Asset {
     /// Decodes and validates an asset.
     ///
-    /// Reads format versions 1 and 2 (a version-1 file has no intersection edges).
+    /// Reads format versions 1 to 3 (a version-1 file has no intersection edges; the clusters of a
+    /// version-1 or 2 file are computed here).
     /// Rejects, with a typed error: bad magic, another format version, a header or section table
     /// that does not fit the file, sections whose lengths disagree with each other, indices out of
     /// range, non-finite floats, unknown flag bits, next-index rings that are not closed, cap heads
     /// without rings, vertices with more kept edge ends than [`MAX_RING`] and intersection
-    /// polylines that are not chained.
+    /// polylines that are not chained, and clusters that are not one per 64 edges or whose numbers
+    /// are not finite, non-negative radii and cosines within [-1, 1].
     /// Allocates at most about twice the input's size. Never panics.
     pub fn decode(bytes: &[u8]) -> Result<Asset, DecodeError> {
         let (header, kinds) = read_header(bytes)?;
@@ -117,7 +120,12 @@ impl Asset {
             section(SectionKind::IntersectionPolylines),
         )?;
 
-        let asset = Asset {
+        let stored_clusters = ranges[SectionKind::EdgeClusters as usize - 1]
+            .is_some()
+            .then(|| read_clusters(section(SectionKind::EdgeClusters), edges))
+            .transpose()?;
+
+        let mut asset = Asset {
             header,
             render_positions,
             render_normals,
@@ -129,11 +137,13 @@ impl Asset {
             cap_heads,
             intersection_segments,
             intersection_starts,
+            edge_clusters: Vec::new(),
         };
         validate_attributes(&asset)?;
         validate_ring_lengths(&asset)?;
         validate_rings(&asset)?;
         validate_intersections(&asset)?;
+        asset.edge_clusters = stored_clusters.unwrap_or_else(|| clusters::edge_clusters(&asset));
         Ok(asset)
     }
 }
@@ -317,6 +327,54 @@ fn read_segments(bytes: &[u8]) -> Result<Vec<[[f32; 3]; 2]>, DecodeError> {
     }
     let points = read_vec3s(kind, bytes)?;
     Ok(points.chunks_exact(2).map(|p| [p[0], p[1]]).collect())
+}
+
+/// Reads the clusters of an asset of `edges` edges: one per 64, finite, radii non-negative, cosines
+/// within [-1, 1] and only known flag bits.
+fn read_clusters(bytes: &[u8], edges: usize) -> Result<Vec<EdgeCluster>, DecodeError> {
+    let kind = SectionKind::EdgeClusters;
+    let expected = clusters::cluster_count(edges);
+    if bytes.len() != expected * CLUSTER_BYTES {
+        return Err(length_error(
+            kind,
+            format!(
+                "{} bytes for {edges} edges (must be {expected} clusters of {CLUSTER_BYTES} bytes)",
+                bytes.len()
+            ),
+        ));
+    }
+    let words = read_u32s(kind, bytes)?;
+    let clusters: Vec<EdgeCluster> = words
+        .chunks_exact(CLUSTER_BYTES / 4)
+        .map(|c| bytemuck::pod_read_unaligned(bytemuck::cast_slice(c)))
+        .collect();
+    for (position, c) in clusters.iter().enumerate() {
+        let invalid = |reason: &str| DecodeError::Invalid {
+            kind,
+            position: position as u64,
+            reason: reason.to_owned(),
+        };
+        let numbers = c
+            .center
+            .iter()
+            .chain(&c.axis)
+            .chain([&c.radius, &c.cos_angle]);
+        if !numbers.into_iter().all(|v| v.is_finite()) {
+            return Err(DecodeError::NonFinite {
+                kind,
+                position: position as u64,
+            });
+        }
+        if c.radius < 0.0 || !(-1.0..=1.0).contains(&c.cos_angle) {
+            return Err(invalid(
+                "radius must be non-negative and the cone's cosine within [-1, 1]",
+            ));
+        }
+        if c.flags & !u32::from(EdgeFlags::ALL.0) != 0 {
+            return Err(invalid("unknown flag bits"));
+        }
+    }
+    Ok(clusters)
 }
 
 /// Reads an index section whose values must be below `bound`, in groups of `group`.

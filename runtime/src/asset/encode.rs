@@ -2,7 +2,9 @@
 
 use std::io::{self, Write};
 
-use super::{Asset, FORMAT_VERSION, MAGIC, SECTION_ALIGN, SectionEntry, SectionKind, envelope};
+use super::{
+    Asset, EdgeCluster, FORMAT_VERSION, MAGIC, SECTION_ALIGN, SectionEntry, SectionKind, envelope,
+};
 
 const PREAMBLE_BYTES: u64 = 16;
 
@@ -16,7 +18,7 @@ impl Asset {
     /// The output depends only on the asset's contents, so equal assets encode to equal bytes.
     /// Fails only if `out` fails (or, impossibly for real assets, if the header exceeds 1 MiB).
     pub fn encode(&self, out: &mut impl Write) -> io::Result<()> {
-        self.encode_as(FORMAT_VERSION, &SectionKind::ALL, out)
+        self.encode_as(FORMAT_VERSION, &SectionKind::ALL, &self.clusters(), out)
     }
 
     /// Writes the asset in an older layout (tests of reading old files); the sections `kinds` lacks
@@ -25,24 +27,34 @@ impl Asset {
     pub(super) fn encode_version(&self, version: u32, out: &mut impl Write) -> io::Result<()> {
         let kinds = SectionKind::of_version(version)
             .ok_or_else(|| io::Error::other(format!("no format version {version}")))?;
-        if SectionKind::ALL
-            .iter()
-            .any(|k| !kinds.contains(k) && !self.section_bytes(*k).is_empty())
-        {
+        // The clusters are derived: an older file simply lacks them.
+        if SectionKind::ALL.iter().any(|k| {
+            !kinds.contains(k)
+                && *k != SectionKind::EdgeClusters
+                && !self.section_bytes(*k).is_empty()
+        }) {
             return Err(io::Error::other(format!(
                 "version {version} cannot hold this asset's sections"
             )));
         }
-        self.encode_as(version, kinds, out)
+        self.encode_as(version, kinds, &self.clusters(), out)
+    }
+
+    /// Writes the asset with its clusters as stored, even when they do not match the edges (tests
+    /// of the decoder's checks).
+    #[cfg(test)]
+    pub(super) fn encode_as_stored(&self, out: &mut impl Write) -> io::Result<()> {
+        self.encode_as(FORMAT_VERSION, &SectionKind::ALL, &self.edge_clusters, out)
     }
 
     fn encode_as(
         &self,
         version: u32,
         kinds: &[SectionKind],
+        clusters: &[EdgeCluster],
         out: &mut impl Write,
     ) -> io::Result<()> {
-        let (header_bytes, sections) = self.layout(kinds)?;
+        let (header_bytes, sections) = self.layout(kinds, clusters)?;
         out.write_all(&MAGIC)?;
         out.write_all(&version.to_le_bytes())?;
         out.write_all(&(header_bytes.len() as u32).to_le_bytes())?;
@@ -51,7 +63,7 @@ impl Asset {
         for entry in &sections {
             write_zeros(out, entry.offset - written)?;
             let kind = SectionKind::from_u32(entry.kind).expect("layout lists only known kinds");
-            out.write_all(self.section_bytes(kind))?;
+            out.write_all(self.encoded_section(kind, clusters))?;
             written = entry.offset + entry.length;
         }
         Ok(())
@@ -69,21 +81,33 @@ impl Asset {
 
     /// The size of the encoded asset in bytes.
     pub fn encoded_len(&self) -> u64 {
-        match self.layout(&SectionKind::ALL) {
+        match self.layout(&SectionKind::ALL, &self.clusters()) {
             Ok((_, sections)) => sections.last().map_or(0, |s| s.offset + s.length),
             Err(_) => 0,
         }
     }
 
+    /// A section's bytes as written: the stored ones, or `clusters` for the clusters.
+    fn encoded_section<'a>(&'a self, kind: SectionKind, clusters: &'a [EdgeCluster]) -> &'a [u8] {
+        match kind {
+            SectionKind::EdgeClusters => bytemuck::cast_slice(clusters),
+            _ => self.section_bytes(kind),
+        }
+    }
+
     /// The section table and the header bytes that describe it.
-    fn layout(&self, kinds: &[SectionKind]) -> io::Result<(Vec<u8>, Vec<SectionEntry>)> {
+    fn layout(
+        &self,
+        kinds: &[SectionKind],
+        clusters: &[EdgeCluster],
+    ) -> io::Result<(Vec<u8>, Vec<SectionEntry>)> {
         let mut header = self.header.clone();
         header.sections = kinds
             .iter()
             .map(|&kind| SectionEntry {
                 kind: kind as u32,
                 offset: 0,
-                length: self.section_bytes(kind).len() as u64,
+                length: self.encoded_section(kind, clusters).len() as u64,
             })
             .collect();
         // The header's size does not depend on the offsets (fixed-width integers), so measure it

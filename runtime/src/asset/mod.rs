@@ -1,6 +1,6 @@
 //! The `.chamfer` edge asset: what the bake writes and the runtime uploads.
 //!
-//! # Layout (format version 2)
+//! # Layout (format version 3)
 //!
 //! All numbers are little-endian.
 //!
@@ -27,6 +27,7 @@
 //! | [`SectionKind::CapHeads`] | edge end < 2E | one per capped vertex, or empty (always empty without `NextEnds`) |
 //! | [`SectionKind::IntersectionSegments`] | `[[f32; 3]; 2]` | S segments, or empty (since version 2) |
 //! | [`SectionKind::IntersectionPolylines`] | `u32` segment index < S | P polylines, or empty (since version 2) |
+//! | [`SectionKind::EdgeClusters`] | [`EdgeCluster`] (48 bytes) | ⌈E / 64⌉ (since version 3) |
 //!
 //! An *index* section is `u16` when its values are bounded by 65 536 and `u32` otherwise
 //! ([`IndexWidth::for_bound`]); the width is implied by the counts, so it is never stored.
@@ -41,13 +42,20 @@
 //! segment (strictly increasing from 0); a polyline whose last end equals its first start is closed.
 //! Both sections are empty when the bake did not look for intersections or found none.
 //!
+//! *Edge clusters* (see [`clusters`]) bound each run of 64 edges in the file's order, so that a
+//! renderer can skip whole runs that cannot be drawn from a camera. The bake orders the edges so
+//! that runs are spatially coherent. A wrong cluster can only make a renderer skip edges it should
+//! draw: the decoder checks the section's length and numbers, not the bounds themselves.
+//!
 //! # Compatibility
 //!
 //! The version is bumped on any change to the header or to a section's meaning. Version 2 added the
-//! two intersection sections (the header is unchanged). A reader of version 2 also reads version-1
-//! files, which have no intersection sections (the asset then has no intersection edges), and reports
-//! any other version as [`DecodeError::UnsupportedVersion`]: re-bake the source mesh (bakes are
-//! deterministic, so this is cheap to automate in `build.rs`).
+//! two intersection sections, version 3 the edge clusters (the header is unchanged). A reader of
+//! version 3 also reads versions 1 and 2: a version-1 file has no intersection edges, and the
+//! clusters of a version-1 or 2 file are computed when it is decoded (over its edge order, which
+//! was not made for them: they cull less). Any other version is reported as
+//! [`DecodeError::UnsupportedVersion`]: re-bake the source mesh (bakes are deterministic, so this is
+//! cheap to automate in `build.rs`).
 
 // Sections are written and uploaded as they lie in memory.
 #[cfg(target_endian = "big")]
@@ -55,11 +63,13 @@ compile_error!(
     "the .chamfer format is little-endian and this crate maps it directly: big-endian hosts are not supported"
 );
 
+pub mod clusters;
 mod decode;
 mod encode;
 mod envelope;
 mod error;
 
+pub use clusters::{CLUSTER_EDGES, EdgeCluster};
 pub use error::DecodeError;
 
 use serde::{Deserialize, Serialize};
@@ -67,7 +77,7 @@ use serde::{Deserialize, Serialize};
 /// The eight bytes every asset starts with.
 pub const MAGIC: [u8; 8] = *b"CHAMFER\0";
 /// The format version this crate writes (and the newest it reads).
-pub const FORMAT_VERSION: u32 = 2;
+pub const FORMAT_VERSION: u32 = 3;
 /// The oldest format version this crate still reads.
 pub const OLDEST_READ_VERSION: u32 = 1;
 /// The largest header accepted; real headers are a few hundred bytes.
@@ -320,11 +330,13 @@ pub enum SectionKind {
     IntersectionSegments = 9,
     /// Index of the first segment of each intersection polyline (version 2).
     IntersectionPolylines = 10,
+    /// One [`EdgeCluster`] per 64 edges (version 3).
+    EdgeClusters = 11,
 }
 
 impl SectionKind {
     /// Every kind, in the order sections are written.
-    pub const ALL: [Self; 10] = [
+    pub const ALL: [Self; 11] = [
         Self::RenderPositions,
         Self::RenderNormals,
         Self::MeshIndices,
@@ -335,6 +347,7 @@ impl SectionKind {
         Self::CapHeads,
         Self::IntersectionSegments,
         Self::IntersectionPolylines,
+        Self::EdgeClusters,
     ];
 
     /// The kinds a file of format `version` holds (every one of them, possibly empty), or `None`
@@ -342,7 +355,8 @@ impl SectionKind {
     pub fn of_version(version: u32) -> Option<&'static [Self]> {
         match version {
             1 => Some(&Self::ALL[..8]),
-            2 => Some(&Self::ALL),
+            2 => Some(&Self::ALL[..10]),
+            3 => Some(&Self::ALL),
             _ => None,
         }
     }
@@ -365,6 +379,7 @@ impl SectionKind {
             Self::CapHeads => "cap_heads",
             Self::IntersectionSegments => "intersection_segments",
             Self::IntersectionPolylines => "intersection_polylines",
+            Self::EdgeClusters => "edge_clusters",
         }
     }
 }
@@ -491,6 +506,10 @@ pub struct Asset {
     pub intersection_segments: Vec<[[f32; 3]; 2]>,
     /// Index into [`intersection_segments`](Self::intersection_segments) of each polyline's first segment.
     pub intersection_starts: Vec<u32>,
+    /// One cluster per 64 edges, in edge order ([`clusters::edge_clusters`]). [`decode`](Self::decode)
+    /// fills it; an asset built in code may leave it empty, and [`encode`](Self::encode) and the
+    /// renderer then compute it (see [`clusters`](Self::clusters)).
+    pub edge_clusters: Vec<EdgeCluster>,
 }
 
 impl Asset {
@@ -551,7 +570,18 @@ impl Asset {
             + 0.0 // an empty sum is -0.0
     }
 
-    /// The raw bytes of one section, as written to the file.
+    /// The edge clusters: [`edge_clusters`](Self::edge_clusters) if it has one per 64 edges,
+    /// otherwise computed from the edges.
+    pub fn clusters(&self) -> std::borrow::Cow<'_, [EdgeCluster]> {
+        if self.edge_clusters.len() == clusters::cluster_count(self.edge_count()) {
+            std::borrow::Cow::Borrowed(&self.edge_clusters)
+        } else {
+            std::borrow::Cow::Owned(clusters::edge_clusters(self))
+        }
+    }
+
+    /// The raw bytes of one section, as written to the file (the clusters as stored, which
+    /// [`encode`](Self::encode) replaces by [`clusters`](Self::clusters)).
     pub fn section_bytes(&self, kind: SectionKind) -> &[u8] {
         match kind {
             SectionKind::RenderPositions => bytemuck::cast_slice(&self.render_positions),
@@ -564,6 +594,7 @@ impl Asset {
             SectionKind::CapHeads => self.cap_heads.as_bytes(),
             SectionKind::IntersectionSegments => bytemuck::cast_slice(&self.intersection_segments),
             SectionKind::IntersectionPolylines => bytemuck::cast_slice(&self.intersection_starts),
+            SectionKind::EdgeClusters => bytemuck::cast_slice(&self.edge_clusters),
         }
     }
 }

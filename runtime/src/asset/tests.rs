@@ -44,7 +44,7 @@ fn tetrahedron() -> Asset {
             )
         })
         .collect();
-    Asset {
+    let mut asset = Asset {
         header: Header {
             source: "tetra.obj".into(),
             generator: "test".into(),
@@ -70,7 +70,10 @@ fn tetrahedron() -> Asset {
         cap_heads: Indices::with_bound(heads, 12),
         intersection_segments: Vec::new(),
         intersection_starts: Vec::new(),
-    }
+        edge_clusters: Vec::new(),
+    };
+    asset.edge_clusters = super::clusters::edge_clusters(&asset);
+    asset
 }
 
 /// The tetrahedron with two intersection polylines: an open one of two segments, a closed triangle.
@@ -422,7 +425,7 @@ fn version_1_files_are_read_without_intersections() {
     assert_eq!(
         back.encode_to_vec(),
         asset.encode_to_vec(),
-        "re-encoded as version 2"
+        "re-encoded as version 3"
     );
     // A version-1 file cannot hold intersection sections: kind 9 is unknown there.
     assert!(
@@ -499,4 +502,74 @@ fn broken_intersection_polylines_are_refused() {
     let mut ragged = with_intersections().encode_to_vec();
     ragged.truncate(ragged.len() - 4); // the last polyline start, cut in half
     assert!(Asset::decode(&ragged).is_err());
+}
+
+#[test]
+fn version_2_files_get_their_clusters_computed() {
+    let asset = with_intersections();
+    let mut v2 = Vec::new();
+    asset.encode_version(2, &mut v2).expect("a v2 layout");
+    let back = Asset::decode(&v2).expect("version 2 is still read");
+    assert_eq!(back.edge_clusters, super::clusters::edge_clusters(&asset));
+    assert_eq!(back.encode_to_vec(), asset.encode_to_vec());
+    // A version-3 file must have them.
+    let mut missing = v2;
+    missing[8..12].copy_from_slice(&3u32.to_le_bytes());
+    assert!(matches!(
+        Asset::decode(&missing),
+        Err(DecodeError::BadSectionTable(reason)) if reason.contains("edge_clusters is missing")
+    ));
+}
+
+#[test]
+fn an_asset_built_without_clusters_encodes_them() {
+    let mut asset = tetrahedron();
+    let clusters = std::mem::take(&mut asset.edge_clusters);
+    assert_eq!(clusters.len(), 1);
+    assert_eq!(asset.encode_to_vec(), tetrahedron().encode_to_vec());
+    assert_eq!(decoded(&asset).edge_clusters, clusters);
+}
+
+#[test]
+fn broken_clusters_are_refused() {
+    let nan = {
+        let mut asset = tetrahedron();
+        asset.edge_clusters[0].radius = f32::NAN;
+        Asset::decode(&asset.encode_to_vec())
+    };
+    assert_eq!(
+        nan,
+        Err(DecodeError::NonFinite {
+            kind: SectionKind::EdgeClusters,
+            position: 0
+        })
+    );
+    let wide = {
+        let mut asset = tetrahedron();
+        asset.edge_clusters[0].cos_angle = 1.5;
+        Asset::decode(&asset.encode_to_vec())
+    };
+    assert!(matches!(
+        wide,
+        Err(DecodeError::Invalid {
+            kind: SectionKind::EdgeClusters,
+            ..
+        })
+    ));
+    // One cluster too many: the length disagrees with the edges (encode would recompute a wrong
+    // count, so the bytes are edited: the table says 96 bytes where there are 48).
+    let mut two = tetrahedron();
+    two.edge_clusters.push(two.edge_clusters[0]);
+    let bytes = {
+        let mut out = Vec::new();
+        two.encode_as_stored(&mut out).expect("encode");
+        out
+    };
+    assert!(matches!(
+        Asset::decode(&bytes),
+        Err(DecodeError::BadSectionLength {
+            kind: SectionKind::EdgeClusters,
+            ..
+        })
+    ));
 }

@@ -1,0 +1,144 @@
+//! The order edges are written in: runs of 64 that are small in space and whose faces look one way,
+//! so the runtime's cluster test (`chamfer_runtime::asset::clusters`, issue 14) can skip whole runs
+//! that cannot be drawn from a camera.
+//!
+//! Edges are sorted by the dominant axis of their faces' normal (six directions) and then along a
+//! Morton curve through their midpoints: a run of consecutive edges then covers a small patch of
+//! surface that faces roughly one way. The order changes nothing the runtime draws, only how much
+//! its cluster test culls.
+
+use glam::Vec3;
+use rayon::prelude::*;
+
+use crate::adjacency::Edges;
+use crate::caps::Rings;
+use chamfer_runtime::asset::EdgeFlags;
+
+/// Bits per axis of the Morton code (30 in all, plus 3 for the direction: the rest of a `u64`
+/// holds the edge index).
+const MORTON_BITS: u32 = 10;
+
+/// The new order: `order[new] = old` edge index. Deterministic for any thread count.
+pub fn coherent_order(positions: &[Vec3], edges: &Edges) -> Vec<u32> {
+    let (lo, hi) = positions
+        .iter()
+        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| {
+            (lo.min(p), hi.max(p))
+        });
+    let cells = ((1u32 << MORTON_BITS) - 1) as f32;
+    let scale = (hi - lo).max(Vec3::splat(f32::MIN_POSITIVE)).recip() * cells;
+    let mut keys: Vec<u64> = edges
+        .vertices
+        .par_iter()
+        .zip(edges.flags.par_iter())
+        .enumerate()
+        .map(|(e, (&[v0, v1, v2, v3], &flags))| {
+            let [p0, p1, p2, p3] = [v0, v1, v2, v3].map(|v| positions[v as usize]);
+            let mut normal = (p1 - p0).cross(p2 - p0).normalize_or_zero();
+            if !flags.intersects(EdgeFlags::BOUNDARY | EdgeFlags::NON_MANIFOLD) {
+                let b = (p0 - p1).cross(p3 - p1).normalize_or_zero();
+                normal += if flags.contains(EdgeFlags::FLIPPED) {
+                    -b
+                } else {
+                    b
+                };
+            }
+            let cell = ((p0 + p1) * 0.5 - lo) * scale;
+            let cell = cell.clamp(Vec3::ZERO, Vec3::splat(cells)).as_uvec3();
+            let key = (direction(normal) << (3 * MORTON_BITS)) | morton(cell.x, cell.y, cell.z);
+            (key << 31) | e as u64
+        })
+        .collect();
+    keys.par_sort_unstable();
+    keys.into_iter()
+        .map(|k| (k & ((1 << 31) - 1)) as u32)
+        .collect()
+}
+
+/// Which of six directions (±x, ±y, ±z) `n` is nearest to.
+fn direction(n: Vec3) -> u64 {
+    let a = n.abs();
+    let (axis, value) = if a.x >= a.y && a.x >= a.z {
+        (0, n.x)
+    } else if a.y >= a.z {
+        (1, n.y)
+    } else {
+        (2, n.z)
+    };
+    2 * axis + u64::from(value < 0.0)
+}
+
+/// The Morton code of a cell: the bits of `x`, `y` and `z` interleaved.
+fn morton(x: u32, y: u32, z: u32) -> u64 {
+    let spread = |v: u32| {
+        let mut v = u64::from(v) & 0x3ff;
+        v = (v | (v << 16)) & 0x0300_00ff;
+        v = (v | (v << 8)) & 0x0300_f00f;
+        v = (v | (v << 4)) & 0x030c_30c3;
+        (v | (v << 2)) & 0x0924_9249
+    };
+    spread(x) | (spread(y) << 1) | (spread(z) << 2)
+}
+
+/// Rewrites `edges` and `rings` in `order` (`order[new] = old`): every per-edge array, every edge
+/// end in the rings and heads.
+pub fn reorder(edges: &mut Edges, rings: &mut Rings, order: &[u32]) {
+    let mut new_of = vec![0u32; order.len()];
+    for (new, &old) in order.iter().enumerate() {
+        new_of[old as usize] = new as u32;
+    }
+    let end = |old_end: u32| 2 * new_of[(old_end >> 1) as usize] + (old_end & 1);
+    edges.vertices = order.iter().map(|&o| edges.vertices[o as usize]).collect();
+    edges.flags = order.iter().map(|&o| edges.flags[o as usize]).collect();
+    if !edges.radii.is_empty() {
+        edges.radii = order.iter().map(|&o| edges.radii[o as usize]).collect();
+    }
+    if !rings.next.is_empty() {
+        rings.next = order
+            .iter()
+            .flat_map(|&o| [2 * o, 2 * o + 1])
+            .map(|old_end| end(rings.next[old_end as usize]))
+            .collect();
+    }
+    for head in &mut rings.heads {
+        *head = end(*head);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn morton_interleaves_bits() {
+        assert_eq!(morton(1, 0, 0), 1);
+        assert_eq!(morton(0, 1, 0), 2);
+        assert_eq!(morton(0, 0, 1), 4);
+        assert_eq!(morton(3, 0, 0), 0b1001);
+        assert_eq!(morton(1023, 1023, 1023), (1 << 30) - 1);
+    }
+
+    #[test]
+    fn reordering_keeps_rings_pointing_at_the_same_ends() {
+        // Three edges around vertex 0 (a fan), rings 0 -> 2 -> 4 -> 0 of the v0 ends.
+        let mut edges = Edges {
+            vertices: vec![[0, 1, 2, 3], [0, 2, 3, 1], [0, 3, 1, 2]],
+            flags: vec![EdgeFlags::RIDGE, EdgeFlags::VALLEY, EdgeFlags::MARKED],
+            radii: vec![0.1, 0.2, 0.3],
+        };
+        let mut rings = Rings {
+            next: vec![2, 1, 4, 3, 0, 5],
+            heads: vec![0],
+        };
+        let before = (edges.clone(), rings.clone());
+        reorder(&mut edges, &mut rings, &[2, 0, 1]);
+        assert_eq!(edges.vertices[0], before.0.vertices[2]);
+        assert_eq!(edges.flags[1], EdgeFlags::RIDGE);
+        assert_eq!(edges.radii, vec![0.3, 0.1, 0.2]);
+        // Old end 0 (edge 0, now edge 1) -> old end 2 (edge 1, now 2) -> old end 4 (edge 2, now 0).
+        assert_eq!(rings.next[2], 4);
+        assert_eq!(rings.next[4], 0);
+        assert_eq!(rings.next[0], 2);
+        assert_eq!(rings.heads, vec![2]);
+    }
+}
