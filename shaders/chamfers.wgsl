@@ -13,10 +13,21 @@ fn chamfer_records(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let e = item.x;
-    let n1 = normalize(planes[2u * e].xyz);
-    let n2 = normalize(planes[2u * e + 1u].xyz);
+    // One dispatch per chunk of the asset's edges (gpu_asset.rs): each records its own.
+    if e < frame.first_edge || e - frame.first_edge >= frame.edge_count {
+        return;
+    }
     let p0 = position(edge_vertex(4u * e));
     let p1 = position(edge_vertex(4u * e + 1u));
+    let normals = face_normals(
+        p0,
+        p1,
+        position(edge_vertex(4u * e + 2u)),
+        position(edge_vertex(4u * e + 3u)),
+        attributes[e] & 0xffffu,
+    );
+    let n1 = normalize(normals[0]);
+    let n2 = normalize(normals[1]);
     let middle = 0.5 * (p0 + p1);
     let to_viewer = to_viewer_at(middle);
     var across = normalize(cross(to_viewer, normalize(p1 - p0)));

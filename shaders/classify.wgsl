@@ -1,30 +1,49 @@
 // Per frame, one thread per edge: which edges to draw (thesis §6.1, §10.4), appended to a compact
-// list whose length is the instance count of the indirect draw.
+// list whose length is the instance count of the indirect draw. `classify` runs over every edge of
+// the dispatch; `classify_clusters` over the edges of the clusters cull.wgsl kept, one workgroup per
+// cluster. Both draw exactly the same edges: a cluster is dropped only when none of its edges would
+// pass `classify_edge`.
 
-// Before an instance's classification: its slots start at the count so far.
+// Before an instance's classification: its slots start at the count so far, and no cluster is kept.
 @compute @workgroup_size(1)
 fn mark() {
     starts[frame.instance] = slots_filled();
+    atomicStore(&survivors.count, 0u);
 }
 
 @compute @workgroup_size(WORKGROUP)
-fn classify(
-    @builtin(global_invocation_id) id: vec3<u32>,
+fn classify(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = thread_index(id);
+    if i < frame.edge_count {
+        classify_edge(frame.first_edge + i);
+    }
+}
+
+@compute @workgroup_size(CLUSTER_EDGES)
+fn classify_clusters(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(local_invocation_index) k: u32,
 ) {
-    let e = thread_index(id);
-    if e >= frame.edge_count {
+    let g = group.y * MAX_GROUPS + group.x;
+    if g >= survivors.kept {
         return;
     }
+    let i = survivors.clusters[g] * CLUSTER_EDGES + k;
+    if i < frame.edge_count {
+        classify_edge(frame.first_edge + i);
+    }
+}
+
+fn classify_edge(e: u32) {
     let flags = attributes[e] & 0xffffu;
-    let front_a = dot(planes[2u * e], frame.eye) > 0.0;
-    let front_b = dot(planes[2u * e + 1u], frame.eye) > 0.0;
+    let front = faces_front(e, flags);
     var word = NOT_DRAWN;
-    if frame.highlight != 0u && (flags & CHAMFER) != 0u && front_a && front_b {
+    if frame.highlight != 0u && (flags & CHAMFER) != 0u && front.x && front.y {
         word = COLOR_RIDGE | DRAWN_HIGHLIGHT;
     } else {
-        word = drawn_word(flags, front_a, front_b);
+        word = drawn_word(flags, front.x, front.y);
     }
-    if word == NOT_DRAWN {
+    if word == NOT_DRAWN || edge_off_screen(e) {
         // No store: `state` may keep a stale slot from an earlier frame; readers check it (joins.wgsl).
         return;
     }

@@ -22,9 +22,11 @@ struct Frame {
     cull_back: u32,
     edges_u16: u32,
     rings_u16: u32,
+    // Edges of this dispatch: the asset's, or one chunk's when its edge section is bound in windows
+    // (`edge_vertices` then holds the chunk's edges from `first_edge` on).
     edge_count: u32,
     head_count: u32,
-    heads_offset: u32,
+    first_edge: u32,
     half_quads: u32,
     cap_capacity: u32,
     // Chamfer edges are drawn as lit rounded strips (highlight.wgsl) instead of lines.
@@ -37,6 +39,9 @@ struct Frame {
     technique: u32,
     // Technique-specific parameters (see each technique's file).
     params: vec4<f32>,
+    // Side planes of the view in model space, widened by an edge's reach in pixels: a point with
+    // dot(plane, (p, 1)) > 0 is beyond that side (cull.wgsl). All zero: no frustum test.
+    frustum: array<vec4<f32>, 4>,
     // The mesh's index width and triangle count, for the techniques that pull triangles.
     indices_u16: u32,
     triangle_count: u32,
@@ -93,15 +98,75 @@ fn drawn_word(flags: u32, front_a: bool, front_b: bool) -> u32 {
     return COLOR_VALLEY;
 }
 
+// Vertex `i % 4` of edge `i / 4`: v0 v1 (the edge), v2 (face a's third), v3 (face b's third).
 fn edge_vertex(i: u32) -> u32 {
+    let j = i - 4u * frame.first_edge;
     if frame.edges_u16 != 0u {
-        return (edge_vertices[i >> 1u] >> ((i & 1u) * 16u)) & 0xffffu;
+        return (edge_vertices[j >> 1u] >> ((j & 1u) * 16u)) & 0xffffu;
     }
-    return edge_vertices[i];
+    return edge_vertices[j];
 }
 
 fn position(v: u32) -> vec3<f32> {
     return vec3<f32>(topology[3u * v], topology[3u * v + 1u], topology[3u * v + 2u]);
+}
+
+// The normals of an edge's two faces, a = (v0, v1, v2) and b = (v1, v0, v3), unnormalized and
+// oriented alike (b negated for a FLIPPED edge); a boundary or non-manifold edge repeats a. The
+// asset's clusters bound exactly these f32 products (runtime/src/asset/clusters.rs).
+fn face_normals(v0: vec3<f32>, v1: vec3<f32>, v2: vec3<f32>, v3: vec3<f32>, flags: u32) -> array<vec3<f32>, 2> {
+    let a = cross(v1 - v0, v2 - v0);
+    if (flags & (BOUNDARY | NON_MANIFOLD)) != 0u {
+        return array<vec3<f32>, 2>(a, a);
+    }
+    let b = cross(v0 - v1, v3 - v1);
+    return array<vec3<f32>, 2>(a, select(b, -b, (flags & FLIPPED) != 0u));
+}
+
+// Whether a face of normal `n` through `p` looks at the camera (thesis §6.1): the homogeneous eye is
+// on its positive side.
+fn face_front(n: vec3<f32>, p: vec3<f32>) -> bool {
+    return dot(n, frame.eye.xyz - p * frame.eye.w) > 0.0;
+}
+
+// Whether the faces a and b of the edge (v0, v1, v2, v3) look at the camera; a boundary or
+// non-manifold edge's b is a.
+fn fronts(v0: vec3<f32>, v1: vec3<f32>, v2: vec3<f32>, v3: vec3<f32>, flags: u32) -> vec2<bool> {
+    let n = face_normals(v0, v1, v2, v3, flags);
+    let a = face_front(n[0], v0);
+    if (flags & (BOUNDARY | NON_MANIFOLD)) != 0u {
+        return vec2<bool>(a, a);
+    }
+    return vec2<bool>(a, face_front(n[1], v1));
+}
+
+// Whether edge `e`'s faces a and b look at the camera.
+fn faces_front(e: u32, flags: u32) -> vec2<bool> {
+    let v = array<vec3<f32>, 4>(
+        position(edge_vertex(4u * e)),
+        position(edge_vertex(4u * e + 1u)),
+        position(edge_vertex(4u * e + 2u)),
+        position(edge_vertex(4u * e + 3u)),
+    );
+    return fronts(v[0], v[1], v[2], v[3], flags);
+}
+
+// True if the point `p` is beyond one of the frame's widened side planes.
+fn beyond_side(p: vec3<f32>, side: u32) -> bool {
+    return dot(frame.frustum[side], vec4<f32>(p, 1.0)) > 0.0;
+}
+
+// True if edge `e` lies wholly beyond one side of the view, so far out that its quad, its caps and
+// its joins cannot reach the screen (never with the frustum test off).
+fn edge_off_screen(e: u32) -> bool {
+    let v0 = position(edge_vertex(4u * e));
+    let v1 = position(edge_vertex(4u * e + 1u));
+    for (var side = 0u; side < 4u; side++) {
+        if beyond_side(v0, side) && beyond_side(v1, side) {
+            return true;
+        }
+    }
+    return false;
 }
 
 fn cross2(a: vec2<f32>, b: vec2<f32>) -> f32 {

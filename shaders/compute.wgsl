@@ -1,8 +1,11 @@
 // Bindings of the compute passes (classify, joins): the asset's edge sections and the per-frame lists.
 
 @group(0) @binding(3) var<storage, read> attributes: array<u32>;
-// Next edge end per edge end (thesis §13), then the ring heads of the capped vertices (§10.5).
+// Next edge end per edge end (thesis §13).
 @group(0) @binding(4) var<storage, read> rings: array<u32>;
+// The ring heads of the capped vertices (§10.5), at the width of `rings`: a binding of their own, so
+// that the next ends alone may fill one.
+@group(0) @binding(20) var<storage, read> cap_heads: array<u32>;
 // Per edge: its slot in `drawn` plus one when drawn this frame; otherwise 0 or a stale slot.
 @group(0) @binding(5) var<storage, read_write> state: array<u32>;
 // Per slot: (edge, drawn word).
@@ -10,9 +13,6 @@
 // Per drawn edge end (2 * slot + end): the left and right split directions, packed snorm; 0 = none.
 @group(0) @binding(7) var<storage, read_write> joins: array<vec2<u32>>;
 @group(0) @binding(8) var<storage, read_write> out: Out;
-// Per edge, the planes of its two faces (normal, offset) oriented consistently, so one dot product
-// with the homogeneous eye says which way a face looks. Computed when the asset is uploaded.
-@group(0) @binding(9) var<storage, read> planes: array<vec4<f32>>;
 // Per drawn instance, its first slot: instances are classified and joined one after the other, so
 // an instance's drawn edges are the slots from its start to the count.
 @group(0) @binding(14) var<storage, read_write> starts: array<u32>;
@@ -64,3 +64,10 @@ fn ring(i: u32) -> u32 {
 @group(0) @binding(11) var<storage, read_write> chamfers: array<ChamferRecord>;
 @group(0) @binding(12) var<storage, read> cos_power: array<f32>;
 @group(0) @binding(13) var<uniform> lighting: Lighting;
+
+fn cap_head(t: u32) -> u32 {
+    if frame.rings_u16 != 0u {
+        return (cap_heads[t >> 1u] >> ((t & 1u) * 16u)) & 0xffffu;
+    }
+    return cap_heads[t];
+}

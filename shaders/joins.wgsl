@@ -190,7 +190,7 @@ fn joins_heads(
     if t >= frame.head_count {
         return;
     }
-    let head = ring(frame.heads_offset + t);
+    let head = cap_head(t);
     var ends: array<End, MAX_GATHER>;
     var count = 0u;
     var f = head;

@@ -28,6 +28,8 @@ wgsl! {
     DRAW = "draw.wgsl";
     /// The chamfer highlight of seed 000.
     HIGHLIGHT = "highlight.wgsl";
+    /// Per-frame cluster culling before classification.
+    CULL = "cull.wgsl";
     /// Per-frame edge classification and compaction.
     CLASSIFY = "classify.wgsl";
     /// Workgroup counts of the join pass.

@@ -25,10 +25,6 @@ struct VertexEdge {
     w: vec2<f32>,
 }
 
-fn face_front(n: vec3<f32>, p: vec3<f32>) -> bool {
-    return dot(n, frame.eye.xyz - p * frame.eye.w) > 0.0;
-}
-
 fn screen_dir(from_px: vec2<f32>, to_clip: vec4<f32>) -> vec2<f32> {
     if to_clip.w <= 0.0 {
         return vec2<f32>(0.0);
@@ -51,13 +47,8 @@ fn vertex_edge(e: u32) -> VertexEdge {
     let v1 = position(i1);
     let v2 = position(edge_vertex(4u * e + 2u));
     let v3 = position(edge_vertex(4u * e + 3u));
-    let front_a = face_front(cross(v1 - v0, v2 - v0), v0);
-    var front_b = front_a;
-    if (flags & (BOUNDARY | NON_MANIFOLD)) == 0u {
-        let nb = cross(v0 - v1, v3 - v1);
-        front_b = face_front(select(nb, -nb, (flags & FLIPPED) != 0u), v1);
-    }
-    let word = drawn_word(flags, front_a, front_b);
+    let front = fronts(v0, v1, v2, v3, flags);
+    let word = drawn_word(flags, front.x, front.y);
     if word == NOT_DRAWN {
         return out;
     }

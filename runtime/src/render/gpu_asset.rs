@@ -1,5 +1,10 @@
-//! Per asset: its sections in GPU buffers, uploaded byte for byte as the file stores them, and what
-//! every frame's classification needs that is fixed per asset (the face planes of each edge).
+//! Per asset: its sections in GPU buffers, uploaded byte for byte as the file stores them.
+//!
+//! Nothing is derived per edge for the default technique: classification computes the face planes
+//! from the positions, and the clusters come from the asset. The edge section is bound in windows
+//! ("chunks") of whole clusters that each fit a storage binding, so an asset is limited by its other
+//! per-edge sections instead: the next ends (2 indices per edge) must fit one binding, which on a
+//! 128 MiB device is about 16.7 M edges at 32 bits.
 
 use std::path::Path;
 
@@ -9,7 +14,7 @@ use wgpu::util::DeviceExt;
 use super::RenderError;
 use super::derived::{self, AssetExtras};
 use super::target::checked;
-use crate::asset::{Asset, EdgeFlags, IndexWidth, SectionKind, attribute_flags};
+use crate::asset::{Asset, IndexWidth, SectionKind};
 
 /// A validated asset on the GPU. Create it once; any number of renderers can draw from it (it is a
 /// set of shared buffer handles, cheap to clone).
@@ -26,20 +31,24 @@ pub struct GpuAsset {
     pub(crate) topology_positions: wgpu::Buffer,
     pub(crate) edge_vertices: wgpu::Buffer,
     pub(crate) edge_attributes: wgpu::Buffer,
-    /// Next ends, then cap heads.
+    /// Next ends, per edge end.
     pub(crate) rings: wgpu::Buffer,
+    /// Ring heads of the capped vertices, at the width of `rings`.
+    pub(crate) cap_heads: wgpu::Buffer,
+    /// The edge clusters ([`EdgeCluster`](crate::asset::EdgeCluster) each).
+    pub(crate) clusters: wgpu::Buffer,
+    /// Edges per window of the edge section (a multiple of the cluster size).
+    pub(crate) chunk_edges: u32,
+    /// The device's largest storage binding, in bytes.
+    pub(crate) binding_limit: u64,
     pub(crate) edge_count: u32,
     pub(crate) head_count: u32,
-    pub(crate) heads_offset: u32,
     pub(crate) edges_u16: bool,
     pub(crate) rings_u16: bool,
     pub(crate) has_rings: bool,
     pub(crate) has_chamfers: bool,
     pub(crate) bounds: [[f32; 3]; 2],
     pub(crate) radius_scale: f32,
-    /// Per edge, the planes of its two faces, oriented so that a positive dot product with the
-    /// homogeneous eye means "faces the camera" (see `face_planes`).
-    pub(crate) face_planes: wgpu::Buffer,
     /// What [`AssetExtras`] the upload derived.
     pub(crate) extras: AssetExtras,
     /// This upload's identity, shared by its clones: renderers keep per-asset state by it.
@@ -142,29 +151,43 @@ impl GpuAsset {
         let section = |kind: SectionKind, usage| {
             upload(device, kind.name(), asset.section_bytes(kind), usage)
         };
+        let clusters = asset.clusters();
+        let cluster_bytes: &[u8] = bytemuck::cast_slice(&clusters);
         for kind in [
             SectionKind::TopologyPositions,
-            SectionKind::EdgeVertices,
             SectionKind::EdgeAttributes,
             SectionKind::IntersectionSegments,
         ] {
             check(kind.name(), asset.section_bytes(kind).len())?;
         }
-        // One binding for both ring sections: they hold the same kind of value at the same width.
-        // Decoded assets store both at one width; a hand-built asset that mixes them is widened.
+        check("edge_clusters", cluster_bytes.len())?;
+        // Per-frame state is one u32 per edge (the joined technique's slots).
+        check("edge state", 4 * asset.edge_count())?;
+        // The edge section is bound in windows of whole clusters: as many as one binding holds.
+        let edge_bytes = 4 * asset.edge_vertices.width().bytes() as u64;
+        let cluster = crate::asset::CLUSTER_EDGES as u64;
+        let chunk_edges =
+            (limit / edge_bytes / cluster * cluster).min(u64::from(u32::MAX) / cluster * cluster);
+        if chunk_edges == 0 {
+            check(
+                "edge_vertices",
+                asset.section_bytes(SectionKind::EdgeVertices).len(),
+            )?;
+        }
+        // Both ring sections at one width, each in its own binding. Decoded assets store both at one
+        // width; a hand-built asset that mixes them is widened.
         let rings_u16 = asset.next_ends.width() == IndexWidth::U16
             && (asset.cap_heads.is_empty() || asset.cap_heads.width() == IndexWidth::U16);
-        let mut rings = Vec::new();
-        if rings_u16 || asset.next_ends.width() == asset.cap_heads.width() {
-            rings.extend_from_slice(asset.next_ends.as_bytes());
-            rings.extend_from_slice(asset.cap_heads.as_bytes());
-        } else {
-            let wide = asset.next_ends.iter().chain(asset.cap_heads.iter());
-            rings.extend(wide.flat_map(u32::to_le_bytes));
-        }
-        check("rings", rings.len())?;
-        let planes = face_planes(asset);
-        check("face planes", std::mem::size_of_val(planes.as_slice()))?;
+        let widen = |indices: &crate::asset::Indices| -> Vec<u8> {
+            if rings_u16 || indices.width() == IndexWidth::U32 {
+                indices.as_bytes().to_vec()
+            } else {
+                indices.iter().flat_map(u32::to_le_bytes).collect()
+            }
+        };
+        let (next_ends, cap_heads) = (widen(&asset.next_ends), widen(&asset.cap_heads));
+        check("next_ends", next_ends.len())?;
+        check("cap_heads", cap_heads.len())?;
         let index_count =
             u32::try_from(asset.mesh_indices.len()).map_err(|_| RenderError::TooLarge {
                 what: "mesh_indices",
@@ -194,10 +217,13 @@ impl GpuAsset {
             topology_positions: section(SectionKind::TopologyPositions, storage),
             edge_vertices: section(SectionKind::EdgeVertices, storage),
             edge_attributes: section(SectionKind::EdgeAttributes, storage),
-            rings: upload(device, "rings", &rings, storage),
+            rings: upload(device, "next ends", &next_ends, storage),
+            cap_heads: upload(device, "cap heads", &cap_heads, storage),
+            clusters: upload(device, "edge clusters", cluster_bytes, storage),
+            chunk_edges: chunk_edges as u32,
+            binding_limit: limit,
             edge_count,
             head_count: asset.cap_heads.len() as u32,
-            heads_offset: asset.next_ends.len() as u32,
             edges_u16: asset.edge_vertices.width() == IndexWidth::U16,
             rings_u16,
             has_rings: !asset.next_ends.is_empty(),
@@ -206,12 +232,6 @@ impl GpuAsset {
             }),
             bounds: [asset.header.bounds_min, asset.header.bounds_max],
             radius_scale: asset.header.radius_scale,
-            face_planes: upload(
-                device,
-                "face planes",
-                bytemuck::cast_slice(&planes),
-                storage,
-            ),
             extras: AssetExtras::NONE,
             key: std::sync::Arc::new(()),
             intersection_segments: upload(
@@ -283,7 +303,8 @@ impl GpuAsset {
             &self.edge_vertices,
             &self.edge_attributes,
             &self.rings,
-            &self.face_planes,
+            &self.cap_heads,
+            &self.clusters,
             &self.intersection_segments,
         ]
         .iter()
@@ -321,9 +342,45 @@ impl GpuAsset {
         &self.topology_positions
     }
 
-    /// The edges' `v0 v1 v2 v3`, 16-bit if [`GpuAsset::edges_are_16_bit`] (a storage buffer).
+    /// The edges' `v0 v1 v2 v3`, 16-bit if [`GpuAsset::edges_are_16_bit`] (a storage buffer, which
+    /// may be larger than one binding: see [`GpuAsset::edge_chunks`]).
     pub fn edge_vertices(&self) -> &wgpu::Buffer {
         &self.edge_vertices
+    }
+
+    /// The edge section in one binding, for the passes that cannot work in chunks; fails with
+    /// [`RenderError::TooLarge`] when it does not fit one.
+    pub(crate) fn whole_edge_vertices(&self) -> Result<&wgpu::Buffer, RenderError> {
+        let bytes = self.edge_vertices.size();
+        if bytes > self.binding_limit {
+            return Err(RenderError::TooLarge {
+                what: "edge_vertices",
+                bytes,
+                limit: self.binding_limit,
+            });
+        }
+        Ok(&self.edge_vertices)
+    }
+
+    /// The windows the edge section is bound in, `(first edge, edges)` each: one for any asset
+    /// whose edges fit a storage binding; each starts on a cluster boundary.
+    pub fn edge_chunks(&self) -> impl Iterator<Item = (u32, u32)> + '_ {
+        let chunk = self.chunk_edges.max(1);
+        (0..self.edge_count.div_ceil(chunk).max(1)).map(move |k| {
+            let first = k * chunk;
+            (first, chunk.min(self.edge_count - first))
+        })
+    }
+
+    /// The edge section's window of chunk `(first, edges)` (see [`GpuAsset::edge_chunks`]).
+    pub(crate) fn edge_window(&self, (first, edges): (u32, u32)) -> wgpu::BufferBinding<'_> {
+        let bytes_per_edge = if self.edges_u16 { 8 } else { 16 };
+        let size = (u64::from(edges) * bytes_per_edge).max(4);
+        wgpu::BufferBinding {
+            buffer: &self.edge_vertices,
+            offset: u64::from(first) * bytes_per_edge,
+            size: std::num::NonZeroU64::new(size.min(self.edge_vertices.size())),
+        }
     }
 
     /// True if [`GpuAsset::edge_vertices`] holds 16-bit indices, two per word.
@@ -355,30 +412,4 @@ fn upload(
         contents,
         usage,
     })
-}
-
-/// Per edge, the planes (normal, offset) of its two faces: `a` of (v0, v1, v2), `b` of (v1, v0, v3)
-/// (negated for [`EdgeFlags::FLIPPED`], so both face the same side of the surface); a boundary or
-/// non-manifold edge repeats `a`. The per-frame test then reads two contiguous vectors per edge
-/// instead of gathering four vertices. Same arithmetic, in f32, as the GPU would do.
-fn face_planes(asset: &Asset) -> Vec<[f32; 4]> {
-    let position =
-        |i: usize| Vec3::from(asset.topology_positions[asset.edge_vertices.get(i) as usize]);
-    let plane = |normal: Vec3, p: Vec3| normal.extend(-normal.dot(p)).to_array();
-    let mut planes = Vec::with_capacity(2 * asset.edge_count());
-    for (e, &word) in asset.edge_attributes.iter().enumerate() {
-        let [p0, p1, p2, p3] = [0, 1, 2, 3].map(|k| position(4 * e + k));
-        let flags = attribute_flags(word);
-        let a = plane((p1 - p0).cross(p2 - p0), p0);
-        let mut b = a;
-        if !flags.intersects(EdgeFlags::BOUNDARY | EdgeFlags::NON_MANIFOLD) {
-            b = plane((p0 - p1).cross(p3 - p1), p1);
-            if flags.contains(EdgeFlags::FLIPPED) {
-                b = b.map(|c| -c);
-            }
-        }
-        planes.push(a);
-        planes.push(b);
-    }
-    planes
 }

@@ -17,6 +17,9 @@ pub(crate) const MAX_GROUPS: u32 = 65_535;
 pub(crate) const MAX_RING: u32 = 4096;
 /// Drawn ends the cap-buffer join gathers per vertex; further drawn edges there get no join.
 pub(crate) const MAX_GATHER: u32 = 16;
+/// Edges per cluster (the asset's `EdgeClusters` section): also the workgroup size of the pass that
+/// classifies the edges of the clusters the cull pass kept, one workgroup per cluster.
+pub(crate) const CLUSTER_EDGES: u32 = crate::asset::CLUSTER_EDGES as u32;
 
 /// The per-frame contour class, beside the baked [`EdgeFlags`] bits (which use the low byte).
 pub(crate) const CONTOUR_CLASS: u32 = 1 << 8;
@@ -82,6 +85,7 @@ pub(crate) fn constants() -> Vec<(&'static str, u32)> {
         ("MAX_GROUPS", MAX_GROUPS),
         ("MAX_RING", MAX_RING),
         ("MAX_GATHER", MAX_GATHER),
+        ("CLUSTER_EDGES", CLUSTER_EDGES),
         ("COS_POWER_SAMPLES", crate::highlight::table::SAMPLES as u32),
     ]
 }
@@ -116,7 +120,7 @@ pub(crate) struct Frame {
     pub(crate) rings_u16: u32,
     pub(crate) edge_count: u32,
     pub(crate) head_count: u32,
-    pub(crate) heads_offset: u32,
+    pub(crate) first_edge: u32,
     pub(crate) half_quads: u32,
     pub(crate) cap_capacity: u32,
     pub(crate) highlight: u32,
@@ -124,6 +128,7 @@ pub(crate) struct Frame {
     pub(crate) reverse_z: u32,
     pub(crate) technique: u32,
     pub(crate) params: [f32; 4],
+    pub(crate) frustum: [[f32; 4]; 4],
     pub(crate) indices_u16: u32,
     pub(crate) triangle_count: u32,
     pub(crate) instance: u32,
@@ -215,6 +220,16 @@ pub(crate) struct ChamferRecord {
     pub(crate) viewer: [f32; 4],
 }
 
+/// The head of `Survivors` in `shaders/cull.wgsl`, before its list of kept clusters: the list's
+/// running count and its final length.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct Survivors {
+    pub(crate) count: u32,
+    pub(crate) kept: u32,
+    pub(crate) _pad: [u32; 2],
+}
+
 /// Bytes per slot of the drawn list: `vec2<u32>` (edge, word).
 pub(crate) const DRAWN_BYTES: u64 = 8;
 /// Bytes per drawn edge end of the joins list: `vec2<u32>` (packed split directions).
@@ -263,7 +278,7 @@ pub(crate) fn layouts() -> Vec<Layout> {
                 rings_u16,
                 edge_count,
                 head_count,
-                heads_offset,
+                first_edge,
                 half_quads,
                 cap_capacity,
                 highlight,
@@ -271,6 +286,7 @@ pub(crate) fn layouts() -> Vec<Layout> {
                 reverse_z,
                 technique,
                 params,
+                frustum,
                 indices_u16,
                 triangle_count,
                 instance,
@@ -301,6 +317,12 @@ pub(crate) fn layouts() -> Vec<Layout> {
         layout!("Cap", Cap, [end, color, radius, from_dir, to_dir]),
         layout!("Out", Out, [edges, caps, needed, _pad]),
         layout!("ScreenRecord", ScreenRecord, [ends, depth_w, extents]),
+        layout!(
+            "EdgeCluster",
+            crate::asset::EdgeCluster,
+            [center, radius, axis, cos_angle, flags]
+        ),
+        layout!("Survivors", Survivors, [count, kept, _pad]),
         layout!(
             "ChamferRecord",
             ChamferRecord,

@@ -15,9 +15,15 @@ fn assemble(parts: &[&str]) -> String {
     source
 }
 
-/// Edge classification, plus the per-frame reset and the final clamp.
+/// Cluster culling and edge classification.
 pub(crate) fn classify() -> String {
-    assemble(&[wgsl::COMMON, wgsl::HIGHLIGHT, wgsl::COMPUTE, wgsl::CLASSIFY])
+    assemble(&[
+        wgsl::COMMON,
+        wgsl::HIGHLIGHT,
+        wgsl::COMPUTE,
+        wgsl::CULL,
+        wgsl::CLASSIFY,
+    ])
 }
 
 /// Workgroup counts of the next-index join pass.

@@ -329,10 +329,27 @@ impl BindingSet {
         layout: &wgpu::BindGroupLayout,
         buffers: &[(u32, &wgpu::Buffer)],
     ) -> wgpu::BindGroup {
+        self.group_with_window(device, layout, buffers, None)
+    }
+
+    /// As [`group`](Self::group), with one binding bound to a window of its buffer.
+    pub(crate) fn group_with_window(
+        &self,
+        device: &wgpu::Device,
+        layout: &wgpu::BindGroupLayout,
+        buffers: &[(u32, &wgpu::Buffer)],
+        window: Option<(u32, wgpu::BufferBinding<'_>)>,
+    ) -> wgpu::BindGroup {
         let entries: Vec<wgpu::BindGroupEntry> = self
             .entries
             .iter()
             .filter_map(|&(binding, access)| {
+                if let Some((windowed, part)) = &window
+                    && *windowed == binding
+                {
+                    let resource = wgpu::BindingResource::Buffer(part.clone());
+                    return Some(wgpu::BindGroupEntry { binding, resource });
+                }
                 let (_, buffer) = buffers.iter().find(|(b, _)| *b == binding)?;
                 let resource = if access == Access::Instance {
                     // One block, placed by the dynamic offset.

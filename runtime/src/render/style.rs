@@ -154,6 +154,10 @@ pub struct EdgeStyle {
     /// Draw chamfer edges (those with a radius) as lit rounded strips (seed 000) instead of lines
     /// ([`Technique::Joined`]).
     pub highlight: Option<Highlight>,
+    /// Skip the asset's edge clusters that cannot hold a drawn edge before classifying any edge
+    /// ([`Technique::Joined`]; issue 14). The same edges are drawn either way; `false` classifies every
+    /// edge, the baseline the cluster test is measured against.
+    pub cluster_culling: bool,
 }
 
 impl Default for EdgeStyle {
@@ -170,6 +174,7 @@ impl Default for EdgeStyle {
             half_quad_contours: true,
             cull_back_facing: true,
             highlight: None,
+            cluster_culling: true,
         }
     }
 }

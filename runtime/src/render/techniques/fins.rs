@@ -94,7 +94,7 @@ impl TechniqueFrame for Frame {
                 let corners = extra(&asset.fin_corners, &technique, "AssetExtras::FIN_CORNERS")?;
                 Ok(vec![
                     (1, asset.topology_positions.clone()),
-                    (2, asset.edge_vertices.clone()),
+                    (2, asset.whole_edge_vertices()?.clone()),
                     (3, asset.edge_attributes.clone()),
                     (5, asset.render_normals.clone()),
                     (6, corners),

@@ -3,8 +3,9 @@
 //! depth-scaled widths) and the chamfer highlight of seed 000.
 //!
 //! Per frame on the GPU (`shaders/classify.wgsl`, `args.wgsl`, `joins.wgsl`, `chamfers.wgsl`, then
-//! `edges.wgsl` and `caps.wgsl` in the application's pass): classify tests every edge against the
-//! face planes computed at upload and appends the drawn ones to a compact list that is the instance
+//! `edges.wgsl` and `caps.wgsl` in the application's pass): a cull pass (`cull.wgsl`) keeps the
+//! asset's edge clusters that may hold a drawn edge (facing cone and sphere, frustum), classify tests
+//! the edges of those clusters only and appends the drawn ones to a compact list that is the instance
 //! count of an indirect draw, projecting each drawn edge once into a screen record; an args pass sizes
 //! the indirect join dispatch; joins find each drawn end's nearest drawn neighbours by screen angle
 //! (next-index walk or cap-buffer head), cut overlapping quads apart and emit round caps for outer
@@ -40,9 +41,14 @@ const CLASSIFY: BindingSet = BindingSet {
         (5, Write),
         (6, Write),
         (8, Write),
-        (9, Read),
         (10, Write),
+        (18, Write),
     ],
+};
+const CULL: BindingSet = BindingSet {
+    label: "cull",
+    stages: COMPUTE,
+    entries: &[(0, Instance), (18, Write), (19, Read), (21, Write)],
 };
 const JOINS: BindingSet = BindingSet {
     label: "joins",
@@ -56,6 +62,7 @@ const JOINS: BindingSet = BindingSet {
         (7, Write),
         (8, Write),
         (10, Write),
+        (20, Read),
     ],
 };
 const RECORDS: BindingSet = BindingSet {
@@ -68,7 +75,6 @@ const RECORDS: BindingSet = BindingSet {
         (3, Read),
         (6, Write),
         (8, Write),
-        (9, Read),
         (10, Write),
         (11, Write),
         (14, Write),
@@ -108,6 +114,7 @@ const CAP_DRAW_OFFSET: u64 = std::mem::size_of::<layout::DrawArgs>() as u64;
 #[derive(Debug)]
 pub(crate) struct Pipelines {
     classify_layout: wgpu::BindGroupLayout,
+    cull_layout: wgpu::BindGroupLayout,
     joins_layout: wgpu::BindGroupLayout,
     records_layout: wgpu::BindGroupLayout,
     args_layout: wgpu::BindGroupLayout,
@@ -115,6 +122,9 @@ pub(crate) struct Pipelines {
     reset: wgpu::ComputePipeline,
     mark: wgpu::ComputePipeline,
     classify: wgpu::ComputePipeline,
+    cull: wgpu::ComputePipeline,
+    cull_args: wgpu::ComputePipeline,
+    classify_clusters: wgpu::ComputePipeline,
     finish: wgpu::ComputePipeline,
     args: wgpu::ComputePipeline,
     joins_next: wgpu::ComputePipeline,
@@ -130,9 +140,10 @@ pub(crate) struct Pipelines {
 impl Pipelines {
     pub(crate) fn new(cache: &Cache) -> Result<Self, RenderError> {
         let layouts =
-            [CLASSIFY, JOINS, RECORDS, ARGS, DRAW, SEGMENTS].map(|set| cache.layout(&set));
+            [CLASSIFY, CULL, JOINS, RECORDS, ARGS, DRAW, SEGMENTS].map(|set| cache.layout(&set));
         let [
             classify_layout,
+            cull_layout,
             joins_layout,
             records_layout,
             args_layout,
@@ -182,6 +193,13 @@ impl Pipelines {
             reset: cache.compute_pipeline(&args_layout, &args, "reset")?,
             mark: cache.compute_pipeline(&classify_layout, &classify, "mark")?,
             classify: cache.compute_pipeline(&classify_layout, &classify, "classify")?,
+            cull: cache.compute_pipeline(&cull_layout, &classify, "cull")?,
+            cull_args: cache.compute_pipeline(&cull_layout, &classify, "cull_args")?,
+            classify_clusters: cache.compute_pipeline(
+                &classify_layout,
+                &classify,
+                "classify_clusters",
+            )?,
             finish: cache.compute_pipeline(&args_layout, &args, "finish")?,
             args: cache.compute_pipeline(&args_layout, &args, "args")?,
             joins_next: cache.compute_pipeline(&joins_layout, &joins, "joins_next")?,
@@ -203,6 +221,7 @@ impl Pipelines {
             caps,
             segments_layout,
             classify_layout,
+            cull_layout,
             joins_layout,
             records_layout,
             args_layout,
@@ -297,16 +316,59 @@ impl Lists {
     }
 }
 
-/// Per asset: the edge state (slot + 1 per edge, shared by the asset's instances in turn) and the
-/// compute groups over it, the asset's sections and the lists.
+/// Per asset: the edge state (slot + 1 per edge, shared by the asset's instances in turn), the
+/// clusters a chunk's cull pass kept, and the compute groups over them, the asset's sections and the
+/// lists; classification and chamfer records have a group per chunk of the edge section.
 #[derive(Debug)]
 struct AssetGroups {
     state: wgpu::Buffer,
-    classify: wgpu::BindGroup,
+    survivors: wgpu::Buffer,
+    /// The indirect dispatch over the kept clusters.
+    cull_dispatch: wgpu::Buffer,
+    classify: Vec<wgpu::BindGroup>,
+    cull: wgpu::BindGroup,
     joins: wgpu::BindGroup,
-    records: wgpu::BindGroup,
+    records: Vec<wgpu::BindGroup>,
     /// Over the asset's intersection segments, if it has any.
     segments: Option<wgpu::BindGroup>,
+}
+
+/// What one drawn instance's passes run over.
+#[derive(Debug)]
+struct Run {
+    /// Its asset's groups.
+    asset: usize,
+    /// Per chunk of the asset's edge section: its uniform block's offset and its edges. The first
+    /// block is the instance's.
+    chunks: Vec<(u32, u32)>,
+    /// The asset's capped vertices.
+    head_count: u32,
+}
+
+impl Run {
+    /// The instance's uniform block.
+    fn block(&self) -> u32 {
+        self.chunks.first().map_or(0, |&(block, _)| block)
+    }
+}
+
+/// The four side planes of the view through `mvp` in model space, each moved out by `reach_px`
+/// pixels and scaled to a unit normal: a point `p` with `dot(plane, (p, 1)) > 0` projects more than
+/// `reach_px` beyond that side of the viewport (whatever its depth, behind the camera included,
+/// since the test is linear in clip space). Zeros, which nothing is beyond, for a degenerate plane.
+fn side_planes(mvp: glam::Mat4, viewport: [f32; 2], reach_px: f32) -> [[f32; 4]; 4] {
+    let mvp = mvp.as_dmat4();
+    let [x, y, w] = [0, 1, 3].map(|i| mvp.row(i));
+    let pad = |size: f32| 1.0 + 2.0 * f64::from(reach_px) / f64::from(size.max(1.0));
+    let (px, py) = (pad(viewport[0]), pad(viewport[1]));
+    [x - px * w, -x - px * w, y - py * w, -y - py * w].map(|plane| {
+        let length = plane.truncate().length();
+        if length > 0.0 && length.is_finite() && plane.is_finite() {
+            (plane / length).as_vec4().to_array()
+        } else {
+            [0.0; 4]
+        }
+    })
 }
 
 /// The readback of how many slots a frame wanted, without ever waiting: copied at the end of one
@@ -393,8 +455,10 @@ pub(crate) struct Frame {
     cos_power: wgpu::Buffer,
     lighting: wgpu::Buffer,
     needed: Needed,
-    /// Per drawn instance: its asset's groups, its block, its edges and capped vertices.
-    runs: Vec<(usize, u32, u32, u32)>,
+    /// Per drawn instance, what its passes run over.
+    runs: Vec<Run>,
+    /// Cull clusters before classifying edges.
+    culling: bool,
     /// The exponent the cos-power row holds now.
     row_exponent: Option<f32>,
     highlight: bool,
@@ -439,6 +503,7 @@ impl Frame {
             ),
             needed: Needed::new(cache),
             runs: Vec::new(),
+            culling: true,
             row_exponent: None,
             highlight: false,
             caps: CapMethod::NextIndex,
@@ -553,18 +618,31 @@ impl TechniqueFrame for Frame {
             return Err(super::mismatch(cx));
         };
         let caps = cx.style.caps;
-        let mut frames: Vec<layout::Frame> = cx
-            .instances
-            .iter()
-            .enumerate()
-            .map(|(i, d)| {
-                let mut uniform = super::frame_uniform(cx, d, i, 0);
-                uniform.capacity = lists.capacity;
-                uniform.cap_capacity = lists.capacity + 64;
-                uniform.highlight = u32::from(self.highlight);
-                uniform
-            })
-            .collect();
+        self.culling = cx.style.cluster_culling;
+        // One block per chunk of each instance's edges (the first is the instance's own).
+        let mut frames: Vec<layout::Frame> = Vec::new();
+        let mut chunk_blocks: Vec<Vec<(usize, u32)>> = Vec::with_capacity(cx.instances.len());
+        for (i, d) in cx.instances.iter().enumerate() {
+            let mut uniform = super::frame_uniform(cx, d, i, 0);
+            uniform.capacity = lists.capacity;
+            uniform.cap_capacity = lists.capacity + 64;
+            uniform.highlight = u32::from(self.highlight);
+            // Off-screen edges are left out only while an edge's reach on screen is bounded: not
+            // with depth-scaled widths (unbounded near the camera) or highlight strips.
+            if !self.highlight && uniform.depth_ref == 0.0 {
+                let reach = uniform.width.max(uniform.min_width) + 2.0;
+                uniform.frustum = side_planes(d.camera.view_projection(), uniform.viewport, reach);
+            }
+            let mut blocks = Vec::new();
+            for (first, edges) in d.asset.edge_chunks() {
+                let mut chunk = uniform;
+                chunk.first_edge = first;
+                chunk.edge_count = edges;
+                blocks.push((frames.len(), edges));
+                frames.push(chunk);
+            }
+            chunk_blocks.push(blocks);
+        }
         if frames.is_empty() {
             // The bookkeeping passes still run (the draws must find empty lists).
             let mut uniform: layout::Frame = bytemuck::Zeroable::zeroed();
@@ -619,17 +697,34 @@ impl TechniqueFrame for Frame {
         }
         self.assets.retain(cx.instances);
         self.runs.clear();
-        for (i, drawn) in cx.instances.iter().enumerate() {
+        for (drawn, chunks) in cx.instances.iter().zip(chunk_blocks) {
             let made = self.assets.index(drawn.asset, |asset| {
-                let state = checked(&device, "edge state", || {
-                    device.create_buffer(&wgpu::BufferDescriptor {
-                        label: Some("edge state"),
-                        size: (4 * u64::from(asset.edge_count)).max(64),
-                        usage: wgpu::BufferUsages::STORAGE,
-                        mapped_at_creation: false,
+                let buffer = |label: &'static str, size: u64, usage: wgpu::BufferUsages| {
+                    checked(&device, label, || {
+                        device.create_buffer(&wgpu::BufferDescriptor {
+                            label: Some(label),
+                            size: size.max(64),
+                            usage: wgpu::BufferUsages::STORAGE | usage,
+                            mapped_at_creation: false,
+                        })
                     })
-                })?;
-                let buffers: [(u32, &wgpu::Buffer); 14] = [
+                };
+                let state = buffer(
+                    "edge state",
+                    4 * u64::from(asset.edge_count),
+                    wgpu::BufferUsages::empty(),
+                )?;
+                let chunk_clusters = asset
+                    .chunk_edges
+                    .min(asset.edge_count)
+                    .div_ceil(layout::CLUSTER_EDGES);
+                let survivors = buffer(
+                    "kept clusters",
+                    std::mem::size_of::<layout::Survivors>() as u64 + 4 * u64::from(chunk_clusters),
+                    wgpu::BufferUsages::empty(),
+                )?;
+                let cull_dispatch = buffer("cluster dispatch", 16, wgpu::BufferUsages::INDIRECT)?;
+                let buffers: [(u32, &wgpu::Buffer); 17] = [
                     (0, &blocks),
                     (1, &asset.topology_positions),
                     (2, &asset.edge_vertices),
@@ -639,11 +734,14 @@ impl TechniqueFrame for Frame {
                     (6, &lists.drawn),
                     (7, &lists.joins),
                     (8, &lists.out),
-                    (9, &asset.face_planes),
                     (10, &lists.screen),
                     (11, &lists.chamfer_records),
                     (14, &lists.starts),
                     (13, &self.lighting),
+                    (18, &survivors),
+                    (19, &asset.clusters),
+                    (20, &asset.cap_heads),
+                    (21, &cull_dispatch),
                 ];
                 let segments = (asset.intersection_count > 0).then(|| {
                     group(
@@ -652,20 +750,39 @@ impl TechniqueFrame for Frame {
                         &[(0, &blocks), (17, &asset.intersection_segments)],
                     )
                 });
+                // Per chunk, the edge section's window.
+                let per_chunk = |set: &BindingSet, layout: &wgpu::BindGroupLayout| {
+                    asset
+                        .edge_chunks()
+                        .map(|chunk| {
+                            set.group_with_window(
+                                &device,
+                                layout,
+                                &buffers,
+                                Some((2, asset.edge_window(chunk))),
+                            )
+                        })
+                        .collect()
+                };
                 Ok(AssetGroups {
                     segments,
-                    classify: group(&CLASSIFY, &pipelines.classify_layout, &buffers),
+                    classify: per_chunk(&CLASSIFY, &pipelines.classify_layout),
+                    cull: group(&CULL, &pipelines.cull_layout, &buffers),
                     joins: group(&JOINS, &pipelines.joins_layout, &buffers),
-                    records: group(&RECORDS, &pipelines.records_layout, &buffers),
+                    records: per_chunk(&RECORDS, &pipelines.records_layout),
                     state,
+                    survivors,
+                    cull_dispatch,
                 })
             })?;
-            self.runs.push((
-                made,
-                self.blocks.offset(i),
-                drawn.asset.edge_count,
-                drawn.asset.head_count,
-            ));
+            self.runs.push(Run {
+                asset: made,
+                chunks: chunks
+                    .into_iter()
+                    .map(|(block, edges)| (self.blocks.offset(block), edges))
+                    .collect(),
+                head_count: drawn.asset.head_count,
+            });
         }
         // Without rings there is nothing to join by.
         self.caps = if cx.instances.iter().all(|d| d.asset.has_rings) {
@@ -692,10 +809,10 @@ impl TechniqueFrame for Frame {
             pass.set_pipeline(&pipelines.caps);
             pass.draw_indirect(&lists.out, CAP_DRAW_OFFSET);
         }
-        for &(asset, offset, _, _) in &self.runs {
-            let (gpu, groups) = self.assets.get(asset);
+        for run in &self.runs {
+            let (gpu, groups) = self.assets.get(run.asset);
             if let Some(segments) = &groups.segments {
-                pass.set_bind_group(0, segments, &[offset]);
+                pass.set_bind_group(0, segments, &[run.block()]);
                 pass.set_pipeline(&pipelines.segments);
                 pass.draw(0..18, 0..gpu.intersection_count);
             }
@@ -748,14 +865,30 @@ impl Frame {
         pass.set_bind_group(0, args_group, &[0]);
         pass.set_pipeline(&pipelines.reset);
         pass.dispatch_workgroups(1, 1, 1);
-        for &(asset, offset, edge_count, head_count) in &self.runs {
-            let (_, groups) = self.assets.get(asset);
-            pass.set_bind_group(0, &groups.classify, &[offset]);
+        for run in &self.runs {
+            let (_, groups) = self.assets.get(run.asset);
+            let offset = run.block();
+            pass.set_bind_group(0, &groups.classify[0], &[offset]);
             pass.set_pipeline(&pipelines.mark);
             pass.dispatch_workgroups(1, 1, 1);
-            let [x, y] = workgroups(edge_count);
-            pass.set_pipeline(&pipelines.classify);
-            pass.dispatch_workgroups(x, y, 1);
+            for (classify, &(block, edges)) in groups.classify.iter().zip(&run.chunks) {
+                if self.culling {
+                    pass.set_bind_group(0, &groups.cull, &[block]);
+                    pass.set_pipeline(&pipelines.cull);
+                    let [x, y] = workgroups(edges.div_ceil(layout::CLUSTER_EDGES));
+                    pass.dispatch_workgroups(x, y, 1);
+                    pass.set_pipeline(&pipelines.cull_args);
+                    pass.dispatch_workgroups(1, 1, 1);
+                    pass.set_bind_group(0, classify, &[block]);
+                    pass.set_pipeline(&pipelines.classify_clusters);
+                    pass.dispatch_workgroups_indirect(&groups.cull_dispatch, 0);
+                } else {
+                    pass.set_bind_group(0, classify, &[block]);
+                    pass.set_pipeline(&pipelines.classify);
+                    let [x, y] = workgroups(edges);
+                    pass.dispatch_workgroups(x, y, 1);
+                }
+            }
             if !joins {
                 continue;
             }
@@ -766,9 +899,12 @@ impl Frame {
             pass.dispatch_workgroups(1, 1, 1);
             if self.highlight {
                 // One thread per drawn edge end: twice as many as records need; the rest return.
-                pass.set_bind_group(0, &groups.records, &[offset]);
-                pass.set_pipeline(&pipelines.chamfer_records);
-                pass.dispatch_workgroups_indirect(dispatch, 0);
+                // Each chunk records its own edges.
+                for (records, &(block, _)) in groups.records.iter().zip(&run.chunks) {
+                    pass.set_bind_group(0, records, &[block]);
+                    pass.set_pipeline(&pipelines.chamfer_records);
+                    pass.dispatch_workgroups_indirect(dispatch, 0);
+                }
             }
             pass.set_bind_group(0, &groups.joins, &[offset]);
             match self.caps {
@@ -780,7 +916,7 @@ impl Frame {
                     pass.set_pipeline(&pipelines.clear_joins);
                     pass.dispatch_workgroups_indirect(dispatch, 0);
                     pass.set_pipeline(&pipelines.joins_heads);
-                    let [x, y] = workgroups(head_count);
+                    let [x, y] = workgroups(run.head_count);
                     pass.dispatch_workgroups(x, y, 1);
                 }
                 CapMethod::None => {}

@@ -37,7 +37,7 @@ pub(crate) fn buffers(
     )?;
     Ok(vec![
         (1, asset.topology_positions.clone()),
-        (2, asset.edge_vertices.clone()),
+        (2, asset.whole_edge_vertices()?.clone()),
         (3, asset.edge_attributes.clone()),
         (4, normals),
     ])
