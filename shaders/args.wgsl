@@ -23,7 +23,9 @@ struct Out {
     edges: DrawArgs,
     caps: DrawArgs,
     needed: u32,
-    _pad: array<u32, 3>,
+    // Clusters the cull passes kept this frame (cull.wgsl).
+    kept_clusters: u32,
+    _pad: array<u32, 2>,
     cap_list: array<Cap>,
 }
 
@@ -41,6 +43,7 @@ fn reset() {
     atomicStore(&out.caps.instance_count, 0u);
     out.caps.first_vertex = 0u;
     out.caps.first_instance = 0u;
+    out.kept_clusters = 0u;
 }
 
 @compute @workgroup_size(1)

@@ -39,7 +39,9 @@ struct Out {
     caps: DrawArgs,
     // Edges the frame wanted to draw, past the lists' capacity or not (the host grows the lists).
     needed: u32,
-    _pad: array<u32, 3>,
+    // Clusters the cull passes kept this frame (cull.wgsl).
+    kept_clusters: u32,
+    _pad: array<u32, 2>,
     cap_list: array<Cap>,
 }
 

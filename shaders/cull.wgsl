@@ -50,6 +50,7 @@ fn cull_args() {
     cull_dispatch[2] = 1u;
     survivors.kept = kept;
     atomicStore(&survivors.count, 0u);
+    out.kept_clusters += kept;
 }
 
 // False only if no edge of `c` can be drawn this frame.

@@ -20,7 +20,8 @@ struct Out {
     edges: array<u32, 4>,
     caps: array<u32, 4>,
     needed: u32,
-    _pad: array<u32, 3>,
+    kept_clusters: u32,
+    _pad: array<u32, 2>,
     cap_list: array<Cap>,
 }
 

@@ -2,10 +2,10 @@
 //! so the runtime's cluster test (`chamfer_runtime::asset::clusters`, issue 14) can skip whole runs
 //! that cannot be drawn from a camera.
 //!
-//! Edges are sorted by the dominant axis of their faces' normal (six directions) and then along a
-//! Morton curve through their midpoints: a run of consecutive edges then covers a small patch of
-//! surface that faces roughly one way. The order changes nothing the runtime draws, only how much
-//! its cluster test culls.
+//! Edges are sorted by a cell of a cube map of their faces' normal (six faces of 4 × 4 cells, each
+//! at most about 25° across) and then along a Morton curve through their midpoints: a run of
+//! consecutive edges then covers a small patch of surface that faces one way, within a few tens of
+//! degrees. The order changes nothing the runtime draws, only how much its cluster test culls.
 
 use glam::Vec3;
 use rayon::prelude::*;
@@ -14,9 +14,17 @@ use crate::adjacency::Edges;
 use crate::caps::Rings;
 use chamfer_runtime::asset::EdgeFlags;
 
-/// Bits per axis of the Morton code (30 in all, plus 3 for the direction: the rest of a `u64`
-/// holds the edge index).
-const MORTON_BITS: u32 = 10;
+/// Bits per axis of the Morton code (24 in all, plus 7 for the direction cell: the low 31 bits of a
+/// `u64` hold the edge index).
+const MORTON_BITS: u32 = 8;
+/// Edges per coarse cell of space, about (see `coherent_order`).
+const REGION_EDGES: usize = 1 << 20;
+/// Cells per side of each face of the normal cube map.
+const DIRECTION_CELLS: u32 = 6;
+/// Bits of a direction cell's number.
+const DIRECTION_BITS: u32 = (6 * DIRECTION_CELLS * DIRECTION_CELLS)
+    .next_power_of_two()
+    .ilog2();
 
 /// The new order: `order[new] = old` edge index. Deterministic for any thread count.
 pub fn coherent_order(positions: &[Vec3], edges: &Edges) -> Vec<u32> {
@@ -27,6 +35,12 @@ pub fn coherent_order(positions: &[Vec3], edges: &Edges) -> Vec<u32> {
         });
     let cells = ((1u32 << MORTON_BITS) - 1) as f32;
     let scale = (hi - lo).max(Vec3::splat(f32::MIN_POSITIVE)).recip() * cells;
+    // Coarse cells of about REGION_EDGES edges each come first, so that a direction cell's edges
+    // are sorted within one region of the mesh rather than gathered from all over it.
+    let regions = edges.vertices.len() / REGION_EDGES;
+    let coarse_bits = ((regions.max(1).ilog2() / 3) as u32).min(MORTON_BITS);
+    let fine_bits = MORTON_BITS - coarse_bits;
+    let fine_mask = glam::UVec3::splat((1 << fine_bits) - 1);
     let mut keys: Vec<u64> = edges
         .vertices
         .par_iter()
@@ -45,7 +59,10 @@ pub fn coherent_order(positions: &[Vec3], edges: &Edges) -> Vec<u32> {
             }
             let cell = ((p0 + p1) * 0.5 - lo) * scale;
             let cell = cell.clamp(Vec3::ZERO, Vec3::splat(cells)).as_uvec3();
-            let key = (direction(normal) << (3 * MORTON_BITS)) | morton(cell.x, cell.y, cell.z);
+            let (coarse, fine) = (cell >> (MORTON_BITS - coarse_bits), cell & fine_mask);
+            let key = (morton(coarse.x, coarse.y, coarse.z) << (DIRECTION_BITS + 3 * fine_bits))
+                | (direction(normal) << (3 * fine_bits))
+                | morton(fine.x, fine.y, fine.z);
             (key << 31) | e as u64
         })
         .collect();
@@ -55,23 +72,35 @@ pub fn coherent_order(positions: &[Vec3], edges: &Edges) -> Vec<u32> {
         .collect()
 }
 
-/// Which of six directions (±x, ±y, ±z) `n` is nearest to.
+/// The cell of the normal cube map that `n` points into: its face (±x, ±y, ±z), then a cell of
+/// that face's `DIRECTION_CELLS` × `DIRECTION_CELLS` grid.
 fn direction(n: Vec3) -> u64 {
     let a = n.abs();
-    let (axis, value) = if a.x >= a.y && a.x >= a.z {
-        (0, n.x)
+    let (axis, value, u, v) = if a.x >= a.y && a.x >= a.z {
+        (0, n.x, n.y, n.z)
     } else if a.y >= a.z {
-        (1, n.y)
+        (1, n.y, n.z, n.x)
     } else {
-        (2, n.z)
+        (2, n.z, n.x, n.y)
     };
-    2 * axis + u64::from(value < 0.0)
+    let face = 2 * axis + u64::from(value < 0.0);
+    // u / |value| and v / |value| are in [-1, 1] on this face (0 / 0 for a zero normal: cell 0).
+    let cells = DIRECTION_CELLS as f32;
+    let cell = |c: f32| {
+        let t = (c / value.abs() * 0.5 + 0.5) * cells;
+        if t.is_nan() {
+            0
+        } else {
+            (t as u64).min(u64::from(DIRECTION_CELLS) - 1)
+        }
+    };
+    (face * u64::from(DIRECTION_CELLS) + cell(u)) * u64::from(DIRECTION_CELLS) + cell(v)
 }
 
 /// The Morton code of a cell: the bits of `x`, `y` and `z` interleaved.
 fn morton(x: u32, y: u32, z: u32) -> u64 {
     let spread = |v: u32| {
-        let mut v = u64::from(v) & 0x3ff;
+        let mut v = u64::from(v) & ((1 << MORTON_BITS) - 1);
         v = (v | (v << 16)) & 0x0300_00ff;
         v = (v | (v << 8)) & 0x0300_f00f;
         v = (v | (v << 4)) & 0x030c_30c3;
@@ -115,7 +144,12 @@ mod tests {
         assert_eq!(morton(0, 1, 0), 2);
         assert_eq!(morton(0, 0, 1), 4);
         assert_eq!(morton(3, 0, 0), 0b1001);
-        assert_eq!(morton(1023, 1023, 1023), (1 << 30) - 1);
+        assert_eq!(morton(255, 255, 255), (1 << 24) - 1);
+        let k = u64::from(DIRECTION_CELLS);
+        // +x, in the middle cell of its face; -x, near +y and -z.
+        assert_eq!(direction(Vec3::X), (k / 2) * k + k / 2);
+        assert_eq!(direction(Vec3::new(-1.0, 0.9, -0.9)), (k + k - 1) * k);
+        assert!(direction(Vec3::NEG_Z) < 6 * k * k);
     }
 
     #[test]

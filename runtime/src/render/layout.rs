@@ -186,7 +186,8 @@ pub(crate) struct Out {
     pub(crate) edges: DrawArgs,
     pub(crate) caps: DrawArgs,
     pub(crate) needed: u32,
-    pub(crate) _pad: [u32; 3],
+    pub(crate) kept_clusters: u32,
+    pub(crate) _pad: [u32; 2],
 }
 
 /// `Cap` in `shaders/compute.wgsl`: a round join.
@@ -315,7 +316,7 @@ pub(crate) fn layouts() -> Vec<Layout> {
             [vertex_count, instance_count, first_vertex, first_instance]
         ),
         layout!("Cap", Cap, [end, color, radius, from_dir, to_dir]),
-        layout!("Out", Out, [edges, caps, needed, _pad]),
+        layout!("Out", Out, [edges, caps, needed, kept_clusters, _pad]),
         layout!("ScreenRecord", ScreenRecord, [ends, depth_w, extents]),
         layout!(
             "EdgeCluster",

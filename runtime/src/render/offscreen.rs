@@ -20,6 +20,13 @@ impl Offscreen {
     /// Opens a device with the adapter's own limits (software adapters bind up to 128 MiB) and, where
     /// the adapter has it, a 32-bit float depth format with stencil (for the stencil techniques).
     pub fn new() -> Result<Self, RenderError> {
+        Self::with_limits(|_| {})
+    }
+
+    /// As [`Offscreen::new`], with the adapter's limits changed by `adjust` first: e.g. a smaller
+    /// `max_storage_buffer_binding_size`, which makes an asset's edge section bind in several
+    /// chunks. Limits past the adapter's are refused with [`RenderError::Device`].
+    pub fn with_limits(adjust: impl FnOnce(&mut wgpu::Limits)) -> Result<Self, RenderError> {
         let instance =
             wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
         let adapter =
@@ -33,10 +40,12 @@ impl Offscreen {
                 }),
             )
             .map_err(|e| RenderError::NoAdapter(e.to_string()))?;
+        let mut limits = adapter.limits();
+        adjust(&mut limits);
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("chamfer offscreen"),
             required_features: adapter.features() & wgpu::Features::DEPTH32FLOAT_STENCIL8,
-            required_limits: adapter.limits(),
+            required_limits: limits,
             experimental_features: wgpu::ExperimentalFeatures::disabled(),
             memory_hints: wgpu::MemoryHints::Performance,
             trace: wgpu::Trace::Off,

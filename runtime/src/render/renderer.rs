@@ -96,6 +96,9 @@ pub struct DrawCounts {
     /// Edges the frame wanted to draw; more than `edges` when the lists were full (they grow for
     /// later frames).
     pub wanted: u32,
+    /// Edge clusters the cull pass kept for classification, all instances together (0 with
+    /// [`EdgeStyle::cluster_culling`] off).
+    pub clusters_kept: u32,
 }
 
 /// The application's finished attachments, for the techniques that work after its pass

@@ -48,7 +48,13 @@ const CLASSIFY: BindingSet = BindingSet {
 const CULL: BindingSet = BindingSet {
     label: "cull",
     stages: COMPUTE,
-    entries: &[(0, Instance), (18, Write), (19, Read), (21, Write)],
+    entries: &[
+        (0, Instance),
+        (8, Write),
+        (18, Write),
+        (19, Read),
+        (21, Write),
+    ],
 };
 const JOINS: BindingSet = BindingSet {
     label: "joins",
@@ -837,6 +843,7 @@ impl TechniqueFrame for Frame {
                     words[5]
                 },
                 wanted: words[8],
+                clusters_kept: words[9],
             })
         };
         Some(read())
@@ -844,7 +851,11 @@ impl TechniqueFrame for Frame {
 
     fn gpu_bytes(&self) -> u64 {
         let lists = self.lists.as_ref().map_or(0, |l| l.bytes);
-        let state: u64 = self.assets.iter().map(|a| a.state.size()).sum();
+        let state: u64 = self
+            .assets
+            .iter()
+            .map(|a| a.state.size() + a.survivors.size() + a.cull_dispatch.size())
+            .sum();
         lists + state + self.blocks.gpu_bytes() + self.cos_power.size() + self.lighting.size()
     }
 }
