@@ -9,6 +9,11 @@
 //! drifts of a shared machine hit all alike) after a warm-up that compiles every pipeline; each frame is
 //! timed from encoding to the GPU finishing (`submit` + `poll(wait)`), and the table shows medians.
 //!
+//! The unculled columns are the same frames with `EdgeStyle::cluster_culling` off (every edge
+//! classified, the path before issue 14), in the same round-robin. GPU bytes per edge count the
+//! asset's edge sections ([`GpuAsset::edge_bytes`]: not the mesh's own buffers) and the renderer's
+//! per-frame state after the timed frames.
+//!
 //! The naive baseline is McGuire–Hughes' layout as the thesis measures it (§8.3): every edge is drawn
 //! as a quad of 4 vertices (6 indices), each vertex shader instance classifies its edge again, and edges
 //! that are not drawn become degenerate quads — no compaction, no indirect draw, no caps.
@@ -61,9 +66,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         gpu.info.name, gpu.info.backend, size[0], size[1]
     );
     println!(
-        "| mesh | triangles | edges | drawn edges | mesh only ms | + edges + caps ms | edges overhead | + naive edges ms | naive overhead | edge pass: naive / ours | classify + joins only ms | edge + cap draws only ms | + edges + highlight ms | highlight overhead |"
+        "| mesh | triangles | edges | drawn edges | mesh only ms | + edges + caps ms | edges overhead | + naive edges ms | naive overhead | edge pass: naive / ours | classify + joins only ms | edge + cap draws only ms | + edges + highlight ms | highlight overhead | clusters kept | + edges + caps unculled ms | unculled overhead | classify + joins unculled ms | classify + joins: unculled / culled | GPU bytes per edge (asset + frame) |"
     );
-    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!(
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+    );
     for mesh in &meshes {
         let asset =
             chamfer_preprocess::bake_file(mesh, &chamfer_preprocess::BakeOptions::DEFAULT)?.asset;
@@ -95,8 +102,16 @@ fn bench(
     let mut mesh = MeshRenderer::new(&pipelines, &uploaded)?;
     mesh.prepare(&gpu.queue, &camera, &MeshStyle::default());
     let mut edges = EdgeRenderer::new(&pipelines, &uploaded);
-    let naive = NaiveEdges::new(gpu, &target, &uploaded, &camera, &style);
+    // The naive pass binds the whole edge section: not for assets past one binding (NaN columns).
+    let limit = gpu.device.limits().max_storage_buffer_binding_size;
+    let naive = (uploaded.edge_vertices().size() <= limit)
+        .then(|| NaiveEdges::new(gpu, &target, &uploaded, &camera, &style));
     let mut lit = EdgeRenderer::new(&pipelines, &uploaded);
+    let mut unculled = EdgeRenderer::new(&pipelines, &uploaded);
+    let unculled_style = EdgeStyle {
+        cluster_culling: false,
+        ..style
+    };
 
     let mesh_only = || frame(gpu, &target, |_| Ok(()), |pass| mesh.render(pass));
     let with_edges = |edges: &mut EdgeRenderer, style: &EdgeStyle, compute: bool, draw: bool| {
@@ -116,6 +131,9 @@ fn bench(
         Ok::<f64, Box<dyn std::error::Error>>(start.elapsed().as_secs_f64() * 1e3)
     };
     let with_naive = || {
+        let Some(naive) = &naive else {
+            return Ok(f64::NAN);
+        };
         frame(
             gpu,
             &target,
@@ -126,7 +144,7 @@ fn bench(
             },
         )
     };
-    let mut times = [(); 6].map(|_| Vec::new());
+    let mut times = [(); 8].map(|_| Vec::new());
     for round in 0..frames + 2 {
         let row = [
             mesh_only()?,
@@ -135,6 +153,8 @@ fn bench(
             with_edges(&mut edges, &style, true, false)?,
             with_edges(&mut edges, &style, false, true)?,
             with_edges(&mut lit, &lit_style, true, true)?,
+            with_edges(&mut unculled, &unculled_style, true, true)?,
+            with_edges(&mut unculled, &unculled_style, true, false)?,
         ];
         // The first two rounds warm up (pipelines compile on first use).
         if round >= 2 {
@@ -143,10 +163,18 @@ fn bench(
             }
         }
     }
-    let [m, e, n, c, d, h] = times.map(median);
-    let drawn = drawn_edges(gpu, &edges)?;
+    let [m, e, n, c, d, h, u, uc] = times.map(median);
+    let counts = edges.read_counts(&gpu.device, &gpu.queue)?;
+    let unculled_drawn = drawn_edges(gpu, &unculled)?;
+    if unculled_drawn != counts.edges {
+        return Err(format!("culled frames drew {} edges, unculled {unculled_drawn}", counts.edges).into());
+    }
+    let drawn = counts.edges;
+    let clusters = asset.clusters().len().max(1);
+    let bytes_per_edge =
+        (uploaded.edge_bytes() + edges.gpu_bytes()) as f64 / asset.edge_count().max(1) as f64;
     println!(
-        "| {} | {} | {} | {drawn} | {m:.1} | {e:.1} | {:+.0}% | {n:.1} | {:+.0}% | {:.1}× | {c:.1} | {:.1} | {h:.1} | {:+.0}% |",
+        "| {} | {} | {} | {drawn} | {m:.1} | {e:.1} | {:+.0}% | {n:.1} | {:+.0}% | {:.1}× | {c:.1} | {:.1} | {h:.1} | {:+.0}% | {} of {clusters} ({:.1}%) | {u:.1} | {:+.0}% | {uc:.1} | {:.1}× | {bytes_per_edge:.1} |",
         path.file_name()
             .map(|n| n.to_string_lossy())
             .unwrap_or_default(),
@@ -157,6 +185,10 @@ fn bench(
         (n - m) / (e - m).max(1e-3),
         d - m,
         (h / m - 1.0) * 100.0,
+        counts.clusters_kept,
+        100.0 * f64::from(counts.clusters_kept) / clusters as f64,
+        (u / m - 1.0) * 100.0,
+        uc / c.max(1e-3),
     );
     Ok(())
 }

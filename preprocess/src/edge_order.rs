@@ -117,21 +117,22 @@ pub fn reorder(edges: &mut Edges, rings: &mut Rings, order: &[u32]) {
         new_of[old as usize] = new as u32;
     }
     let end = |old_end: u32| 2 * new_of[(old_end >> 1) as usize] + (old_end & 1);
-    edges.vertices = order.iter().map(|&o| edges.vertices[o as usize]).collect();
-    edges.flags = order.iter().map(|&o| edges.flags[o as usize]).collect();
+    fn gather<T: Copy + Send + Sync>(values: &[T], order: &[u32]) -> Vec<T> {
+        order.par_iter().map(|&o| values[o as usize]).collect()
+    }
+    edges.vertices = gather(&edges.vertices, order);
+    edges.flags = gather(&edges.flags, order);
     if !edges.radii.is_empty() {
-        edges.radii = order.iter().map(|&o| edges.radii[o as usize]).collect();
+        edges.radii = gather(&edges.radii, order);
     }
     if !rings.next.is_empty() {
         rings.next = order
-            .iter()
-            .flat_map(|&o| [2 * o, 2 * o + 1])
+            .par_iter()
+            .flat_map_iter(|&o| [2 * o, 2 * o + 1])
             .map(|old_end| end(rings.next[old_end as usize]))
             .collect();
     }
-    for head in &mut rings.heads {
-        *head = end(*head);
-    }
+    rings.heads.par_iter_mut().for_each(|head| *head = end(*head));
 }
 
 #[cfg(test)]

@@ -75,7 +75,8 @@ pub fn cluster_of(asset: &Asset, index: usize) -> EdgeCluster {
     let mut radius: f64 = 0.0;
     let mut flags = EdgeFlags::default();
     // The cone: the faces' unit normals, how far each may turn in f32, and their sum.
-    let mut normals = Vec::with_capacity(2 * edges.len());
+    let mut normals = [DVec3::ZERO; 2 * CLUSTER_EDGES];
+    let mut count = 0;
     let mut sum = DVec3::ZERO;
     let mut widest_error: f64 = 0.0;
     let mut bounded = true;
@@ -84,21 +85,20 @@ pub fn cluster_of(asset: &Asset, index: usize) -> EdgeCluster {
         radius = radius.max(p0.distance(center)).max(p1.distance(center));
         let edge_flags = attribute_flags(asset.edge_attributes[e]);
         flags |= edge_flags;
-        let mut faces = vec![(p0, p1, p2, 1.0)];
-        if !edge_flags.intersects(EdgeFlags::BOUNDARY | EdgeFlags::NON_MANIFOLD) {
-            let sign = if edge_flags.contains(EdgeFlags::FLIPPED) {
-                -1.0
-            } else {
-                1.0
-            };
-            faces.push((p1, p0, p3, sign));
-        }
-        for (a, b, c, sign) in faces {
+        let one_face = edge_flags.intersects(EdgeFlags::BOUNDARY | EdgeFlags::NON_MANIFOLD);
+        let sign = if edge_flags.contains(EdgeFlags::FLIPPED) {
+            -1.0
+        } else {
+            1.0
+        };
+        let faces = [(p0, p1, p2, 1.0), (p1, p0, p3, sign)];
+        for &(a, b, c, sign) in &faces[..if one_face { 1 } else { 2 }] {
             match face_normal(a, b, c) {
                 Some((normal, error)) => {
                     let normal = normal * sign;
                     sum += normal;
-                    normals.push(normal);
+                    normals[count] = normal;
+                    count += 1;
                     widest_error = widest_error.max(error);
                 }
                 None => bounded = false,
@@ -108,7 +108,7 @@ pub fn cluster_of(asset: &Asset, index: usize) -> EdgeCluster {
     let axis = sum.normalize_or_zero();
     let mut half_angle = std::f64::consts::PI;
     if bounded && axis != DVec3::ZERO {
-        let narrowest = normals
+        let narrowest = normals[..count]
             .iter()
             .map(|n| n.dot(axis))
             .fold(1.0f64, f64::min)

@@ -322,6 +322,21 @@ impl GpuAsset {
         .sum()
     }
 
+    /// GPU bytes of the edge sections alone (edge vertices, attributes, next ends, cap heads,
+    /// clusters): what the edges cost beyond the mesh.
+    pub fn edge_bytes(&self) -> u64 {
+        [
+            &self.edge_vertices,
+            &self.edge_attributes,
+            &self.rings,
+            &self.cap_heads,
+            &self.clusters,
+        ]
+        .iter()
+        .map(|b| b.size())
+        .sum()
+    }
+
     /// Chamfer radii in the edge attributes are multiples of this (the asset header's `radius_scale`).
     pub fn radius_scale(&self) -> f32 {
         self.radius_scale

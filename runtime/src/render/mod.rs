@@ -5,8 +5,8 @@
 //!
 //! - **per device and target**, [`Pipelines`]: every technique's compiled pipelines and layouts,
 //!   created once per target format and shared by all assets (cheap to clone);
-//! - **per asset**, [`GpuAsset`]: the asset's sections as uploaded, and what is fixed per asset (the
-//!   face planes every frame's classification reads, computed at upload);
+//! - **per asset**, [`GpuAsset`]: the asset's sections as uploaded (its edge clusters included, which
+//!   every frame's cull pass reads) and what a technique derives from them at upload;
 //! - **per frame**, [`EdgeRenderer`] (one per asset drawn): uniforms and lists, sized for the
 //!   technique its [`EdgeStyle`] names. [`EdgeRenderer::prepare`] records the frame's compute work
 //!   into the encoder it is given and returns the [`Prepared`] frame, the only thing that can draw it.

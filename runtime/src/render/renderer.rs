@@ -130,8 +130,8 @@ impl SceneRenderer {
     }
 
     /// A renderer whose edge lists ([`Technique::Joined`]) start with `slots` slots (at least 64);
-    /// by default they hold every edge of the first frame's instances up to 65 536, then an eighth
-    /// of them. Either way they grow when a frame wants more: that frame drops what does not fit,
+    /// by default they hold every edge of the first frame's instances up to 16 384, then a
+    /// sixteenth of them. Either way they grow when a frame wants more: that frame drops what does not fit,
     /// and a later one (once the count is read back, without waiting) gets lists a quarter larger
     /// than it wanted.
     pub fn with_first_slots(pipelines: &Pipelines, slots: u64) -> Self {

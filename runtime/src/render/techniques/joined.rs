@@ -237,7 +237,7 @@ impl Pipelines {
 }
 
 /// The slots a frame starts with: every edge of every instance up to this many, then a share.
-const FIRST_SLOTS: u64 = 1 << 16;
+const FIRST_SLOTS: u64 = 1 << 14;
 
 /// The frame's lists: drawn edges, their joins, screen and chamfer records, the cap list, each
 /// instance's first slot and colours. Sized by slots (what can be drawn), not by edges.
@@ -570,12 +570,12 @@ impl Frame {
             .iter()
             .map(|d| u64::from(d.asset.edge_count))
             .sum();
-        // Every edge up to FIRST_SLOTS, then an eighth (unless the frame was told); grown from what
-        // frames want.
+        // Every edge up to FIRST_SLOTS, then a sixteenth (unless the frame was told): far more than
+        // a view draws of a large mesh. Grown from what frames want.
         let first = if self.wanted_slots > 0 {
             0
         } else {
-            upper.min(FIRST_SLOTS.max(upper / 8))
+            upper.min(FIRST_SLOTS.max(upper / 16))
         };
         let wanted = self.wanted_slots.max(first).max(64);
         // The largest per-slot list must fit one storage binding.
