@@ -360,11 +360,11 @@ fn version_1_assets_are_still_read_without_intersections() {
         .map(|e| new_of_vertices[&edge(&old, e)])
         .collect();
     let new_end = |end: u32| 2 * new_of[end as usize / 2] as u32 + end % 2;
-    for e in 0..edges {
-        assert_eq!(old.edge_attributes[e], new.edge_attributes[new_of[e]]);
+    for (e, &n) in new_of.iter().enumerate() {
+        assert_eq!(old.edge_attributes[e], new.edge_attributes[n]);
         for side in 0..2 {
             let old_next = old.next_ends.get(2 * e + side);
-            assert_eq!(new_end(old_next), new.next_ends.get(2 * new_of[e] + side));
+            assert_eq!(new_end(old_next), new.next_ends.get(2 * n + side));
         }
     }
     let old_heads: Vec<u32> = old.cap_heads.iter().map(new_end).collect();

@@ -167,7 +167,11 @@ fn bench(
     let counts = edges.read_counts(&gpu.device, &gpu.queue)?;
     let unculled_drawn = drawn_edges(gpu, &unculled)?;
     if unculled_drawn != counts.edges {
-        return Err(format!("culled frames drew {} edges, unculled {unculled_drawn}", counts.edges).into());
+        return Err(format!(
+            "culled frames drew {} edges, unculled {unculled_drawn}",
+            counts.edges
+        )
+        .into());
     }
     let drawn = counts.edges;
     let clusters = asset.clusters().len().max(1);

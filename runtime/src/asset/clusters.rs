@@ -150,7 +150,8 @@ fn face_normal(a: DVec3, b: DVec3, c: DVec3) -> Option<(DVec3, f64)> {
         + (a.length() + c.length()) * u.length()
         + u.length() * v.length();
     let error = 8.0 * epsilon * spread;
-    if !(length > 2.0 * error) {
+    // (Also refuses a NaN length.)
+    if length.partial_cmp(&(2.0 * error)) != Some(std::cmp::Ordering::Greater) {
         return None;
     }
     // asin(x) <= x * pi / 2 for x in [0, 1]; x <= 1/2 here.
