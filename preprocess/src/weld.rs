@@ -268,11 +268,12 @@ const MOST_COMPARED: usize = 32;
 /// Which positions may have another within `epsilon` ([`within`]): every one that does, and a few
 /// that do not. Computed in parallel, the same for any thread count.
 ///
-/// Cells of a coarse grid (about one position each on a surface) are hashed into buckets; each
-/// position goes into the bucket of every cell its box of half-width `epsilon` (slightly padded)
-/// overlaps, one cell for all but the few near a cell's side. Two positions within `epsilon` then
-/// share the bucket of either's own cell, so comparing the positions of each bucket pairwise finds
-/// them; a bucket of more than [`MOST_COMPARED`] is crowded as a whole, which keeps the work linear.
+/// Each position is listed under the hash of every cell of a coarse grid (about one position per
+/// cell on a surface) that its box of half-width `epsilon` (slightly padded) overlaps: one cell for
+/// all but the few near a cell's side. Two positions within `epsilon` are then both listed under
+/// the cell of either, so sorting the list and comparing the positions that share a hash pairwise
+/// finds them; a run of more than [`MOST_COMPARED`] is crowded as a whole, which keeps the work
+/// linear.
 fn crowded(positions: &[Vec3], epsilon: f32) -> Vec<bool> {
     let n = positions.len();
     if n < 2 * MOST_COMPARED {
@@ -293,17 +294,16 @@ fn crowded(positions: &[Vec3], epsilon: f32) -> Vec<bool> {
     // The box is padded past any rounding of the distance test, so no pair within it is missed.
     let pad = epsilon * 1.001;
     let cell = (diagonal / (n as f64).sqrt()).max(4.0 * pad);
-    let bits = (n.next_power_of_two().trailing_zeros()).max(4);
-    let bucket_of = |c: [i64; 3]| {
+    let cell_hash = |c: [i64; 3]| {
         let h = c.iter().fold(0x9e37_79b9_7f4a_7c15u64, |h, &v| {
             (h ^ v as u64)
                 .wrapping_mul(0xff51_afd7_ed55_8ccd)
                 .rotate_left(29)
         });
-        (h.wrapping_mul(0xc4ce_b9fe_1a85_ec53) >> (64 - bits)) as usize
+        h.wrapping_mul(0xc4ce_b9fe_1a85_ec53) >> 32
     };
-    // The buckets of the cells a position's padded box overlaps: 1 to 8 of them.
-    let buckets = |p: Vec3, out: &mut [usize; 8]| -> usize {
+    // (cell hash << 32 | position) for the 1 to 8 cells a position's padded box overlaps.
+    let entries_of = |(i, &p): (usize, &Vec3)| {
         let p = p.as_dvec3().to_array();
         let range = p.map(|x| {
             let margin = pad + x.abs() * 1e-12;
@@ -311,57 +311,45 @@ fn crowded(positions: &[Vec3], epsilon: f32) -> Vec<bool> {
             let last = ((x + margin) / cell).floor() as i64;
             (first, last.min(first.saturating_add(1)))
         });
+        let mut out = [0u64; 8];
         let mut count = 0;
         for x in range[0].0..=range[0].1 {
             for y in range[1].0..=range[1].1 {
                 for z in range[2].0..=range[2].1 {
-                    out[count] = bucket_of([x, y, z]);
+                    out[count] = cell_hash([x, y, z]) << 32 | i as u64;
                     count += 1;
                 }
             }
         }
-        count
+        out.into_iter().take(count)
     };
-    // A counting sort of (bucket, position) entries.
-    let mut starts = vec![0u32; (1 << bits) + 1];
-    let mut scratch = [0usize; 8];
-    for &p in positions {
-        let count = buckets(p, &mut scratch);
-        for &b in &scratch[..count] {
-            starts[b + 1] += 1;
-        }
-    }
-    for b in 1..starts.len() {
-        starts[b] += starts[b - 1];
-    }
-    let mut members = vec![0u32; starts[starts.len() - 1] as usize];
-    let mut cursor = starts.clone();
-    for (i, &p) in positions.iter().enumerate() {
-        let count = buckets(p, &mut scratch);
-        for &b in &scratch[..count] {
-            members[cursor[b] as usize] = i as u32;
-            cursor[b] += 1;
-        }
-    }
-    drop(cursor);
+    let mut entries: Vec<u64> = positions
+        .par_iter()
+        .enumerate()
+        .flat_map_iter(entries_of)
+        .collect();
+    entries.par_sort_unstable();
     let epsilon_sq = epsilon * epsilon;
     let crowded: Vec<AtomicBool> = (0..n).map(|_| AtomicBool::new(false)).collect();
     let mark = |i: u32| crowded[i as usize].store(true, Ordering::Relaxed);
-    starts.par_windows(2).with_min_len(4096).for_each(|range| {
-        let bucket = &members[range[0] as usize..range[1] as usize];
-        if bucket.len() > MOST_COMPARED {
-            bucket.iter().for_each(|&i| mark(i));
-            return;
-        }
-        for (k, &a) in bucket.iter().enumerate() {
-            for &b in &bucket[k + 1..] {
-                if a != b && within(positions[a as usize], positions[b as usize], epsilon_sq) {
-                    mark(a);
-                    mark(b);
+    entries
+        .par_chunk_by(|a, b| a >> 32 == b >> 32)
+        .filter(|run| run.len() > 1)
+        .for_each(|run| {
+            let members = run.iter().map(|&e| e as u32);
+            if run.len() > MOST_COMPARED {
+                members.for_each(mark);
+                return;
+            }
+            for (k, a) in members.clone().enumerate() {
+                for b in members.clone().skip(k + 1) {
+                    if a != b && within(positions[a as usize], positions[b as usize], epsilon_sq) {
+                        mark(a);
+                        mark(b);
+                    }
                 }
             }
-        }
-    });
+        });
     crowded.into_iter().map(AtomicBool::into_inner).collect()
 }
 
