@@ -7,6 +7,8 @@
 //! surface that faces roughly one way. The order changes nothing the runtime draws, only how much
 //! its cluster test culls.
 
+use std::sync::atomic::{AtomicU32, Ordering};
+
 use glam::Vec3;
 use rayon::prelude::*;
 
@@ -83,26 +85,39 @@ fn morton(x: u32, y: u32, z: u32) -> u64 {
 /// Rewrites `edges` and `rings` in `order` (`order[new] = old`): every per-edge array, every edge
 /// end in the rings and heads.
 pub fn reorder(edges: &mut Edges, rings: &mut Rings, order: &[u32]) {
-    let mut new_of = vec![0u32; order.len()];
-    for (new, &old) in order.iter().enumerate() {
-        new_of[old as usize] = new as u32;
-    }
+    // The inverse permutation, filled in parallel: every slot is written exactly once.
+    let new_of: Vec<AtomicU32> = (0..order.len()).map(|_| AtomicU32::new(0)).collect();
+    order
+        .par_iter()
+        .enumerate()
+        .for_each(|(new, &old)| new_of[old as usize].store(new as u32, Ordering::Relaxed));
+    let new_of: Vec<u32> = new_of.into_iter().map(AtomicU32::into_inner).collect();
     let end = |old_end: u32| 2 * new_of[(old_end >> 1) as usize] + (old_end & 1);
-    edges.vertices = order.iter().map(|&o| edges.vertices[o as usize]).collect();
-    edges.flags = order.iter().map(|&o| edges.flags[o as usize]).collect();
+    edges.vertices = gather(&edges.vertices, order);
+    edges.flags = gather(&edges.flags, order);
     if !edges.radii.is_empty() {
-        edges.radii = order.iter().map(|&o| edges.radii[o as usize]).collect();
+        edges.radii = gather(&edges.radii, order);
     }
     if !rings.next.is_empty() {
-        rings.next = order
-            .iter()
-            .flat_map(|&o| [2 * o, 2 * o + 1])
-            .map(|old_end| end(rings.next[old_end as usize]))
-            .collect();
+        let mut next = vec![0u32; rings.next.len()];
+        next.par_chunks_mut(2)
+            .zip(order.par_iter())
+            .for_each(|(pair, &o)| {
+                for (k, slot) in pair.iter_mut().enumerate() {
+                    *slot = end(rings.next[2 * o as usize + k]);
+                }
+            });
+        rings.next = next;
     }
-    for head in &mut rings.heads {
-        *head = end(*head);
-    }
+    rings
+        .heads
+        .par_iter_mut()
+        .for_each(|head| *head = end(*head));
+}
+
+/// `values` in `order` (`order[new] = old`).
+fn gather<T: Copy + Send + Sync>(values: &[T], order: &[u32]) -> Vec<T> {
+    order.par_iter().map(|&o| values[o as usize]).collect()
 }
 
 #[cfg(test)]
