@@ -114,10 +114,13 @@ const VERTICES_PER_CHUNK: usize = 16 * 1024;
 /// first appearances in order, so the result is the same for any thread count.
 fn weld_exact(positions: &[Vec3]) -> Weld {
     let n = positions.len();
-    // At most about two thirds full, so probe sequences stay short.
-    let size = (n + n / 2).next_power_of_two().max(16);
+    // At most four fifths full (meshoptimizer's sizing), so probe sequences stay short.
+    let size = (n + n / 4).next_power_of_two().max(16);
     let mask = size - 1;
-    let table: Vec<AtomicU32> = (0..size).map(|_| AtomicU32::new(EMPTY)).collect();
+    let table: Vec<AtomicU32> = (0..size)
+        .into_par_iter()
+        .map(|_| AtomicU32::new(EMPTY))
+        .collect();
     // First the slot of each vertex, then (once every vertex is in) its first appearance.
     let mut first: Vec<u32> = vec![0; n];
     first
@@ -146,7 +149,10 @@ fn weld_exact(positions: &[Vec3]) -> Weld {
                     };
                     // A slot, once filled, only ever holds indices of one position.
                     if key(positions[held as usize]) == own {
-                        table[slot].fetch_min(i, Ordering::Relaxed);
+                        // Later copies (the usual case) leave the slot alone, without a write.
+                        if i < held {
+                            table[slot].fetch_min(i, Ordering::Relaxed);
+                        }
                         break;
                     }
                     step += 1;
