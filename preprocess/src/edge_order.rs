@@ -134,6 +134,26 @@ mod tests {
     }
 
     #[test]
+    fn rings_built_on_reordered_edges_are_the_reordered_rings() {
+        // The bake reorders the edges before building rings: that must equal building the rings
+        // first and renumbering them. A cube with its coplanar diagonals dropped, so rings skip
+        // edges, in a scrambled order.
+        let (p, t) = crate::classify::tests::cube();
+        let mut edges = crate::adjacency::adjacency(&t, &[], p.len());
+        crate::classify::classify(&p, &mut edges, &[], 0.01, 30.0);
+        let mut order: Vec<u32> = (0..edges.len() as u32).collect();
+        order.sort_by_key(|&e| (e * 7) % edges.len() as u32);
+        let mut renumbered = crate::caps::rings(&t, &edges, p.len());
+        let mut reordered = edges.clone();
+        reorder(&mut reordered, &mut renumbered, &order);
+        let mut edges_only = edges.clone();
+        reorder(&mut edges_only, &mut Rings::default(), &order);
+        assert_eq!(edges_only, reordered);
+        assert_eq!(crate::caps::rings(&t, &edges_only, p.len()), renumbered);
+        assert_ne!(order, (0..edges.len() as u32).collect::<Vec<_>>());
+    }
+
+    #[test]
     fn reordering_keeps_rings_pointing_at_the_same_ends() {
         // Three edges around vertex 0 (a fan), rings 0 -> 2 -> 4 -> 0 of the v0 ends.
         let mut edges = Edges {

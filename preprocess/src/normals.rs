@@ -131,7 +131,8 @@ impl SplitLookup {
                 }
             }
         }
-        // Edges come sorted by (lower, higher) vertex already.
+        // Few, and the edges may come in any order (the bake writes them in cluster order).
+        split.sort_unstable();
         Self { touched, split }
     }
 
@@ -290,6 +291,19 @@ mod tests {
             let n = r.normals[tri[0] as usize];
             assert!(tri.iter().all(|&i| r.normals[i as usize] == n));
         }
+    }
+
+    #[test]
+    fn edges_in_any_order_give_the_same_render_mesh() {
+        // The bake hands the edges over in cluster order, not sorted by vertex.
+        let (p, t) = crate::classify::tests::cube();
+        let mut edges = adjacency(&t, &[], p.len());
+        classify(&p, &mut edges, &[], 0.01, 30.0);
+        let sorted = split_normals(&p, &t, &edges);
+        edges.vertices.reverse();
+        edges.flags.reverse();
+        assert_eq!(split_normals(&p, &t, &edges), sorted);
+        assert_eq!(sorted.positions.len(), 24);
     }
 
     #[test]
