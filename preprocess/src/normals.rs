@@ -44,9 +44,8 @@ const VERTICES_PER_CHUNK: usize = 4096;
 /// Edges missing from `edges` (dropped as coplanar) are smooth.
 ///
 /// Contract: `triangles` index `positions` and have no degenerate triangle; `edges` are the
-/// classified edges of `triangles` (sorted as [`adjacency`](crate::adjacency::adjacency) leaves
-/// them). Render vertices are numbered by topology vertex, then by each fan's first corner, so the
-/// output is the same for any thread count.
+/// classified edges of `triangles`, in any order. Render vertices are numbered by topology vertex,
+/// then by each fan's first corner, so the output is the same for any thread count.
 pub fn split_normals(positions: &[Vec3], triangles: &[[u32; 3]], edges: &Edges) -> RenderMesh {
     let corners = VertexCorners::new(triangles, positions.len());
     split_normals_around(corners, positions, triangles, edges)
