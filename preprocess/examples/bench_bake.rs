@@ -2,6 +2,7 @@
 //!
 //! ```text
 //! cargo run --release -p chamfer-preprocess --example bench_bake -- [--runs 5] [MESH...]
+//! cargo run --release -p chamfer-preprocess --example bench_bake -- --write-torus 10000000
 //! ```
 //! With no mesh it benches `fixtures/meshes/bunny-loop2.ply.gz` and a generated faceted torus of
 //! 2,000,000 triangles (written once as binary PLY under `target/bench/`). Every measurement runs in a
@@ -32,6 +33,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     while let Some(arg) = iter.next() {
         if arg == "--runs" {
             runs = iter.next().ok_or("--runs needs a number")?.parse()?;
+        } else if arg == "--write-torus" {
+            // Only writes the generated torus of that many triangles and prints its path.
+            let triangles = iter.next().ok_or("--write-torus needs a number")?.parse()?;
+            let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/bench");
+            println!("{}", generated_torus(&dir, triangles)?.display());
+            return Ok(());
         } else {
             meshes.push(PathBuf::from(arg));
         }

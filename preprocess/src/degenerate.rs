@@ -2,6 +2,7 @@
 //! would only add zero-length or doubled edges, so the bake drops them before building adjacency.
 
 use glam::{DVec3, Vec3};
+use rayon::prelude::*;
 
 /// True if the triangle repeats a vertex or its three positions are collinear.
 ///
@@ -26,6 +27,10 @@ pub fn remove_degenerate(
     materials: &mut Vec<u32>,
     positions: &[Vec3],
 ) -> usize {
+    // Most meshes have none: the test alone runs in parallel, the compaction only when needed.
+    if !triangles.par_iter().any(|&t| is_degenerate(t, positions)) {
+        return 0;
+    }
     let before = triangles.len();
     let mut write = 0;
     for read in 0..before {

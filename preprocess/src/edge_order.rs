@@ -7,6 +7,8 @@
 //! consecutive edges then covers a small patch of surface that faces one way, within a few tens of
 //! degrees. The order changes nothing the runtime draws, only how much its cluster test culls.
 
+use std::sync::atomic::{AtomicU32, Ordering};
+
 use glam::Vec3;
 use rayon::prelude::*;
 
@@ -103,30 +105,39 @@ fn morton(x: u32, y: u32, z: u32) -> u64 {
 /// Rewrites `edges` and `rings` in `order` (`order[new] = old`): every per-edge array, every edge
 /// end in the rings and heads.
 pub fn reorder(edges: &mut Edges, rings: &mut Rings, order: &[u32]) {
-    let mut new_of = vec![0u32; order.len()];
-    for (new, &old) in order.iter().enumerate() {
-        new_of[old as usize] = new as u32;
-    }
+    // The inverse permutation, filled in parallel: every slot is written exactly once.
+    let new_of: Vec<AtomicU32> = (0..order.len()).map(|_| AtomicU32::new(0)).collect();
+    order
+        .par_iter()
+        .enumerate()
+        .for_each(|(new, &old)| new_of[old as usize].store(new as u32, Ordering::Relaxed));
+    let new_of: Vec<u32> = new_of.into_iter().map(AtomicU32::into_inner).collect();
     let end = |old_end: u32| 2 * new_of[(old_end >> 1) as usize] + (old_end & 1);
-    fn gather<T: Copy + Send + Sync>(values: &[T], order: &[u32]) -> Vec<T> {
-        order.par_iter().map(|&o| values[o as usize]).collect()
-    }
     edges.vertices = gather(&edges.vertices, order);
     edges.flags = gather(&edges.flags, order);
     if !edges.radii.is_empty() {
         edges.radii = gather(&edges.radii, order);
     }
     if !rings.next.is_empty() {
-        rings.next = order
-            .par_iter()
-            .flat_map_iter(|&o| [2 * o, 2 * o + 1])
-            .map(|old_end| end(rings.next[old_end as usize]))
-            .collect();
+        let mut next = vec![0u32; rings.next.len()];
+        next.par_chunks_mut(2)
+            .zip(order.par_iter())
+            .for_each(|(pair, &o)| {
+                for (k, slot) in pair.iter_mut().enumerate() {
+                    *slot = end(rings.next[2 * o as usize + k]);
+                }
+            });
+        rings.next = next;
     }
     rings
         .heads
         .par_iter_mut()
         .for_each(|head| *head = end(*head));
+}
+
+/// `values` in `order` (`order[new] = old`).
+fn gather<T: Copy + Send + Sync>(values: &[T], order: &[u32]) -> Vec<T> {
+    order.par_iter().map(|&o| values[o as usize]).collect()
 }
 
 #[cfg(test)]
@@ -145,6 +156,26 @@ mod tests {
         assert_eq!(direction(Vec3::X), (k / 2) * k + k / 2);
         assert_eq!(direction(Vec3::new(-1.0, 0.9, -0.9)), (k + k - 1) * k);
         assert!(direction(Vec3::NEG_Z) < 6 * k * k);
+    }
+
+    #[test]
+    fn rings_built_on_reordered_edges_are_the_reordered_rings() {
+        // The bake reorders the edges before building rings: that must equal building the rings
+        // first and renumbering them. A cube with its coplanar diagonals dropped, so rings skip
+        // edges, in a scrambled order.
+        let (p, t) = crate::classify::tests::cube();
+        let mut edges = crate::adjacency::adjacency(&t, &[], p.len());
+        crate::classify::classify(&p, &mut edges, &[], 0.01, 30.0);
+        let mut order: Vec<u32> = (0..edges.len() as u32).collect();
+        order.sort_by_key(|&e| (e * 7) % edges.len() as u32);
+        let mut renumbered = crate::caps::rings(&t, &edges, p.len());
+        let mut reordered = edges.clone();
+        reorder(&mut reordered, &mut renumbered, &order);
+        let mut edges_only = edges.clone();
+        reorder(&mut edges_only, &mut Rings::default(), &order);
+        assert_eq!(edges_only, reordered);
+        assert_eq!(crate::caps::rings(&t, &edges_only, p.len()), renumbered);
+        assert_ne!(order, (0..edges.len() as u32).collect::<Vec<_>>());
     }
 
     #[test]

@@ -44,9 +44,8 @@ const VERTICES_PER_CHUNK: usize = 4096;
 /// Edges missing from `edges` (dropped as coplanar) are smooth.
 ///
 /// Contract: `triangles` index `positions` and have no degenerate triangle; `edges` are the
-/// classified edges of `triangles` (sorted as [`adjacency`](crate::adjacency::adjacency) leaves
-/// them). Render vertices are numbered by topology vertex, then by each fan's first corner, so the
-/// output is the same for any thread count.
+/// classified edges of `triangles`, in any order. Render vertices are numbered by topology vertex,
+/// then by each fan's first corner, so the output is the same for any thread count.
 pub fn split_normals(positions: &[Vec3], triangles: &[[u32; 3]], edges: &Edges) -> RenderMesh {
     let corners = VertexCorners::new(triangles, positions.len());
     split_normals_around(corners, positions, triangles, edges)
@@ -131,7 +130,8 @@ impl SplitLookup {
                 }
             }
         }
-        // Edges come sorted by (lower, higher) vertex already.
+        // Few, and the edges may come in any order (the bake writes them in cluster order).
+        split.sort_unstable();
         Self { touched, split }
     }
 
@@ -290,6 +290,19 @@ mod tests {
             let n = r.normals[tri[0] as usize];
             assert!(tri.iter().all(|&i| r.normals[i as usize] == n));
         }
+    }
+
+    #[test]
+    fn edges_in_any_order_give_the_same_render_mesh() {
+        // The bake hands the edges over in cluster order, not sorted by vertex.
+        let (p, t) = crate::classify::tests::cube();
+        let mut edges = adjacency(&t, &[], p.len());
+        classify(&p, &mut edges, &[], 0.01, 30.0);
+        let sorted = split_normals(&p, &t, &edges);
+        edges.vertices.reverse();
+        edges.flags.reverse();
+        assert_eq!(split_normals(&p, &t, &edges), sorted);
+        assert_eq!(sorted.positions.len(), 24);
     }
 
     #[test]

@@ -9,6 +9,7 @@ pub(crate) mod files;
 pub(crate) mod gltf;
 mod obj;
 pub(crate) mod ply;
+mod ply_bulk;
 
 use std::path::Path;
 

@@ -7,6 +7,9 @@
 //! strips with `-1` restarts, as Cyberware and Stanford scans store them) and `edge` (`vertex1
 //! vertex2`, optional `radius`) as marked edges. Other elements and properties are skipped.
 //!
+//! Binary bodies of the common layout are read in bulk by `ply_bulk`, which leaves every other
+//! file, and every file it finds wrong, to the per-element reader here.
+//!
 //! Header lines that are not PLY keywords (Blender 2.4x wrote an unprefixed "Created by Blender"
 //! line) are read as comments, with a warning, as other readers do.
 
@@ -30,6 +33,18 @@ pub(crate) fn parse(
     limits: &Limits,
     warnings: &mut Vec<String>,
 ) -> Result<Mesh, Error> {
+    parse_with(path, bytes, limits, warnings, true)
+}
+
+/// [`parse`], with the bulk reader of `ply_bulk` tried first when `bulk` (false in the tests
+/// that compare the two readers).
+pub(crate) fn parse_with(
+    path: &Path,
+    bytes: &[u8],
+    limits: &Limits,
+    warnings: &mut Vec<String>,
+    bulk: bool,
+) -> Result<Mesh, Error> {
     let parse_error = |message: String| Error::Parse {
         path: path.to_owned(),
         format: "PLY",
@@ -39,6 +54,11 @@ pub(crate) fn parse(
     let header = Parser::<Skip>::new()
         .read_header(&mut reader)
         .map_err(|e| parse_error(e.to_string()))?;
+    if bulk {
+        if let Some(mesh) = super::ply_bulk::read(&header, &bytes[body_start(bytes)..], limits) {
+            return Ok(mesh);
+        }
+    }
     let input = reader.get_mut();
 
     let mut mesh = Mesh::default();
@@ -171,6 +191,24 @@ const HEADER_KEYWORDS: [&str; 7] = [
     "property",
     "end_header",
 ];
+
+/// Where the body starts: after the line whose first word is `end_header` (the header parser has
+/// accepted the header, so there is one), as [`lenient_header`] splits the file.
+fn body_start(bytes: &[u8]) -> usize {
+    let mut at = 0;
+    while at < bytes.len() {
+        let end = bytes[at..]
+            .iter()
+            .position(|&b| b == b'\n')
+            .map_or(bytes.len(), |n| at + n + 1);
+        let line = String::from_utf8_lossy(&bytes[at..end]);
+        at = end;
+        if line.split_whitespace().next() == Some("end_header") {
+            break;
+        }
+    }
+    at
+}
 
 /// The file with every header line that is not a PLY keyword turned into a `comment` (one warning
 /// each), so the strict header parser accepts what other readers accept. The body is not copied.
