@@ -2,32 +2,7 @@
 // each instance's classification (the workgroup counts of its join pass: one thread per drawn edge
 // end, WORKGROUP per workgroup, at most MAX_GROUPS per dimension), `finish` after the last (the
 // lists' counts clamped to their capacity, and what was wanted). Included after common.wgsl, for the
-// frame uniform.
-
-struct DrawArgs {
-    vertex_count: u32,
-    instance_count: atomic<u32>,
-    first_vertex: u32,
-    first_instance: u32,
-}
-
-struct Cap {
-    end: u32,
-    color: u32,
-    radius: f32,
-    from_dir: u32,
-    to_dir: u32,
-}
-
-struct Out {
-    edges: DrawArgs,
-    caps: DrawArgs,
-    needed: u32,
-    // Clusters the cull passes kept this frame (cull.wgsl).
-    kept_clusters: u32,
-    _pad: array<u32, 2>,
-    cap_list: array<Cap>,
-}
+// frame uniform, and lists.wgsl.
 
 @group(0) @binding(8) var<storage, read_write> out: Out;
 @group(0) @binding(14) var<storage, read_write> starts: array<u32>;

@@ -17,34 +17,6 @@
 // an instance's drawn edges are the slots from its start to the count.
 @group(0) @binding(14) var<storage, read_write> starts: array<u32>;
 
-struct DrawArgs {
-    vertex_count: u32,
-    instance_count: atomic<u32>,
-    first_vertex: u32,
-    first_instance: u32,
-}
-
-// A round join filling the gap on the outside of a bend: the sector of radius `radius` around the
-// end's point, from direction `from_dir` counter-clockwise to `to_dir` (both packed snorm).
-struct Cap {
-    end: u32,
-    color: u32,
-    radius: f32,
-    from_dir: u32,
-    to_dir: u32,
-}
-
-struct Out {
-    edges: DrawArgs,
-    caps: DrawArgs,
-    // Edges the frame wanted to draw, past the lists' capacity or not (the host grows the lists).
-    needed: u32,
-    // Clusters the cull passes kept this frame (cull.wgsl).
-    kept_clusters: u32,
-    _pad: array<u32, 2>,
-    cap_list: array<Cap>,
-}
-
 // Slots filled so far, at most the capacity.
 fn slots_filled() -> u32 {
     return min(atomicLoad(&out.edges.instance_count), frame.capacity);

@@ -22,6 +22,8 @@ macro_rules! wgsl {
 wgsl! {
     /// Frame uniform, asset reads, an edge's screen quad: shared by every object-space edge pass.
     COMMON = "common.wgsl";
+    /// The draw lists' layout as the compute passes write it.
+    LISTS = "lists.wgsl";
     /// Read-write bindings of the compute passes.
     COMPUTE = "compute.wgsl";
     /// Read-only bindings of the draw passes.

@@ -20,6 +20,7 @@ pub(crate) fn classify() -> String {
     assemble(&[
         wgsl::COMMON,
         wgsl::HIGHLIGHT,
+        wgsl::LISTS,
         wgsl::COMPUTE,
         wgsl::CULL,
         wgsl::CLASSIFY,
@@ -28,17 +29,29 @@ pub(crate) fn classify() -> String {
 
 /// Workgroup counts of the next-index join pass.
 pub(crate) fn args() -> String {
-    assemble(&[wgsl::COMMON, wgsl::ARGS])
+    assemble(&[wgsl::COMMON, wgsl::LISTS, wgsl::ARGS])
 }
 
 /// Joins and caps, by next-index walk or cap buffer.
 pub(crate) fn joins() -> String {
-    assemble(&[wgsl::COMMON, wgsl::HIGHLIGHT, wgsl::COMPUTE, wgsl::JOINS])
+    assemble(&[
+        wgsl::COMMON,
+        wgsl::HIGHLIGHT,
+        wgsl::LISTS,
+        wgsl::COMPUTE,
+        wgsl::JOINS,
+    ])
 }
 
 /// Chamfer records of highlighted edges.
 pub(crate) fn chamfers() -> String {
-    assemble(&[wgsl::COMMON, wgsl::HIGHLIGHT, wgsl::COMPUTE, wgsl::CHAMFERS])
+    assemble(&[
+        wgsl::COMMON,
+        wgsl::HIGHLIGHT,
+        wgsl::LISTS,
+        wgsl::COMPUTE,
+        wgsl::CHAMFERS,
+    ])
 }
 
 /// Compacted edge quads.
