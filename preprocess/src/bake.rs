@@ -138,9 +138,9 @@ pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Er
     } = mesh;
     let welded = weld::weld(&positions, options.weld.distance(&positions));
     drop(positions);
-    for t in &mut triangles {
-        *t = t.map(|i| welded.remap[i as usize]);
-    }
+    triangles
+        .par_iter_mut()
+        .for_each(|t| *t = t.map(|i| welded.remap[i as usize]));
     let marks: Vec<Mark> = marks
         .iter()
         .map(|m| Mark {
@@ -267,7 +267,7 @@ fn assemble(
     let radius_scale = edges.radii.iter().fold(0.0f32, |m, &r| m.max(r));
     let edge_attributes = edges
         .flags
-        .iter()
+        .par_iter()
         .enumerate()
         .map(|(e, &flags)| {
             pack_attributes(

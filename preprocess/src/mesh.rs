@@ -1,6 +1,7 @@
 //! The in-memory mesh every loader produces and the bake consumes.
 
 use glam::{Vec2, Vec3};
+use rayon::prelude::*;
 
 /// An edge marked in the source file, by two vertex indices of [`Mesh::positions`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -139,11 +140,13 @@ impl Mesh {
         if self.triangles.is_empty() {
             return Err(MeshError::Empty);
         }
-        if let Some(vertex) = self.positions.iter().position(|p| !p.is_finite()) {
+        if let Some(vertex) = self.positions.par_iter().position_first(|p| !p.is_finite()) {
             let position = self.positions[vertex].to_array();
             return Err(MeshError::NonFinitePosition { vertex, position });
         }
-        for (triangle, t) in self.triangles.iter().enumerate() {
+        let out_of_range = |t: &[u32; 3]| t.iter().any(|&i| i as usize >= vertex_count);
+        if let Some(triangle) = self.triangles.par_iter().position_first(out_of_range) {
+            let t = self.triangles[triangle];
             if let Some(&index) = t.iter().find(|&&i| i as usize >= vertex_count) {
                 return Err(MeshError::IndexOutOfRange {
                     triangle,

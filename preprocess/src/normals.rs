@@ -97,11 +97,12 @@ pub(crate) fn split_normals_around(
         render_positions.extend(std::iter::repeat_n(positions[v].to_array(), count as usize));
     }
     drop(fan_count);
-    let indices: Vec<u32> = corner_fan
-        .into_par_iter()
+    // Each corner's fan becomes its render vertex in place.
+    let mut indices: Vec<u32> = corner_fan.into_iter().map(AtomicU32::into_inner).collect();
+    indices
+        .par_iter_mut()
         .enumerate()
-        .map(|(c, fan)| first_render[triangles[c / 3][c % 3] as usize] + fan.into_inner())
-        .collect();
+        .for_each(|(c, fan)| *fan += first_render[triangles[c / 3][c % 3] as usize]);
     RenderMesh {
         positions: render_positions,
         normals: chunk_normals.concat(),

@@ -81,7 +81,8 @@ pub fn cluster_of(asset: &Asset, index: usize) -> EdgeCluster {
     let mut widest_error: f64 = 0.0;
     let mut bounded = true;
     for e in edges {
-        let [p0, p1, p2, p3] = asset.edge(e).map(position);
+        let points = asset.edge(e).map(position);
+        let [p0, p1, ..] = points;
         radius = radius.max(p0.distance(center)).max(p1.distance(center));
         let edge_flags = attribute_flags(asset.edge_attributes[e]);
         flags |= edge_flags;
@@ -91,9 +92,12 @@ pub fn cluster_of(asset: &Asset, index: usize) -> EdgeCluster {
         } else {
             1.0
         };
-        let faces = [(p0, p1, p2, 1.0), (p1, p0, p3, sign)];
-        for &(a, b, c, sign) in &faces[..if one_face { 1 } else { 2 }] {
-            match face_normal(a, b, c) {
+        // Both faces' bounds use the end points' distances from the origin and the edge's length.
+        let lengths = points.map(DVec3::length);
+        let shared = (p1 - p0).length();
+        let faces = [([0, 1, 2], 1.0), ([1, 0, 3], sign)];
+        for &(corners, sign) in &faces[..if one_face { 1 } else { 2 }] {
+            match face_normal(corners.map(|k| (points[k], lengths[k])), shared) {
                 Some((normal, error)) => {
                     let normal = normal * sign;
                     sum += normal;
@@ -135,10 +139,11 @@ pub fn cluster_of(asset: &Asset, index: usize) -> EdgeCluster {
     }
 }
 
-/// The unit normal of the face `(a, b, c)` (`cross(b - a, c - a)`) and a bound, in radians, on how
-/// far the f32 cross product of the same f32 positions can point from it; `None` if it can point
-/// anywhere (a zero or sliver face).
-fn face_normal(a: DVec3, b: DVec3, c: DVec3) -> Option<(DVec3, f64)> {
+/// The unit normal of the face `(a, b, c)` (`cross(b - a, c - a)`), each point given with its
+/// distance from the origin and `ab` the length of `b - a`, and a bound, in radians, on how far the
+/// f32 cross product of the same f32 positions can point from it; `None` if it can point anywhere
+/// (a zero or sliver face).
+fn face_normal([(a, la), (b, lb), (c, lc)]: [(DVec3, f64); 3], ab: f64) -> Option<(DVec3, f64)> {
     let (u, v) = (b - a, c - a);
     let n = u.cross(v);
     let length = n.length();
@@ -146,9 +151,8 @@ fn face_normal(a: DVec3, b: DVec3, c: DVec3) -> Option<(DVec3, f64)> {
     // ulp of itself: the cross product's error is a few ulps of |a| |v| + |u| |c| terms. Eight times
     // f32's epsilon over those is a safe bound.
     let epsilon = f64::from(f32::EPSILON);
-    let spread = (a.length() + b.length()) * v.length()
-        + (a.length() + c.length()) * u.length()
-        + u.length() * v.length();
+    let ac = v.length();
+    let spread = (la + lb) * ac + (la + lc) * ab + ab * ac;
     let error = 8.0 * epsilon * spread;
     // (Also refuses a NaN length.)
     if length.partial_cmp(&(2.0 * error)) != Some(std::cmp::Ordering::Greater) {
