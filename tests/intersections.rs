@@ -370,3 +370,27 @@ fn version_1_assets_are_still_read_without_intersections() {
     let old_heads: Vec<u32> = old.cap_heads.iter().map(new_end).collect();
     assert_eq!(old_heads, new.cap_heads.to_u32_vec());
 }
+
+#[test]
+fn version_3_assets_are_still_read_and_re_encode_as_a_fresh_bake() {
+    let bytes = std::fs::read(fixture("assets/cube-v3.chamfer")).expect("fixture");
+    assert_eq!(bytes[8..12], 3u32.to_le_bytes(), "a version-3 file");
+    let old = Asset::decode(&bytes).expect("version 3 is read");
+    let new = bake_file(&fixture("shapes/cube.obj"), &BakeOptions::DEFAULT)
+        .expect("bakes")
+        .asset;
+    assert_eq!(old.render_positions, new.render_positions);
+    assert_eq!(old.render_normals, new.render_normals);
+    assert_eq!(old.edge_vertices, new.edge_vertices);
+    assert_eq!(old.next_ends, new.next_ends);
+    assert_eq!(old.edge_clusters, new.edge_clusters);
+    let fresh = new.encode_to_vec();
+    assert_eq!(old.encode_to_vec(), fresh);
+    assert_eq!(fresh[8..12], 4u32.to_le_bytes());
+    assert!(
+        fresh.len() < bytes.len(),
+        "the cube's 24 render positions are not stored: {} bytes against {}",
+        fresh.len(),
+        bytes.len()
+    );
+}

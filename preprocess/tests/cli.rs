@@ -76,6 +76,15 @@ fn bake_then_inspect_json_has_the_documented_keys() {
             "{key}: {json}"
         );
     }
+    // The 24 render vertices repeat the 8 corners' positions: the file holds a count per corner.
+    assert_eq!(
+        json["bytes"]["per_section"]["render_positions"], 0,
+        "{json}"
+    );
+    assert_eq!(
+        json["bytes"]["per_section"]["render_vertex_counts"], 8,
+        "{json}"
+    );
     assert_eq!(json["edges"]["crease"], 12);
     assert_eq!(json["edges"]["coplanar_dropped"], 6);
     assert_eq!(

@@ -12,8 +12,9 @@ const SEGMENT_BYTES: usize = 24;
 impl Asset {
     /// Decodes and validates an asset.
     ///
-    /// Reads format versions 1 to 3 (a version-1 file has no intersection edges; the clusters of a
-    /// version-1 or 2 file are computed here).
+    /// Reads format versions 1 to 4 (a version-1 file has no intersection edges; the clusters of a
+    /// version-1 or 2 file are computed here; a version-4 file's render positions may be derived
+    /// from its topology positions and render vertex counts).
     /// Rejects, with a typed error: bad magic, another format version, a header or section table
     /// that does not fit the file, sections whose lengths disagree with each other, indices out of
     /// range, non-finite floats, unknown flag bits, next-index rings that are not closed, cap heads
@@ -30,34 +31,26 @@ impl Asset {
             None => &[],
         };
 
-        let render_positions = read_vec3s(
-            SectionKind::RenderPositions,
-            section(SectionKind::RenderPositions),
-        )?;
-        let render_vertices = render_positions.len();
         let render_normals = read_vec3s(
             SectionKind::RenderNormals,
             section(SectionKind::RenderNormals),
         )?;
-        if render_normals.len() != render_vertices {
-            return Err(length_error(
-                SectionKind::RenderNormals,
-                format!(
-                    "{} normals for {} render vertices",
-                    render_normals.len(),
-                    render_vertices
-                ),
-            ));
-        }
+        let render_vertices = render_normals.len();
+        let topology_positions = read_vec3s(
+            SectionKind::TopologyPositions,
+            section(SectionKind::TopologyPositions),
+        )?;
+        let render_positions = read_render_positions(
+            section(SectionKind::RenderPositions),
+            section(SectionKind::RenderVertexCounts),
+            &topology_positions,
+            render_vertices,
+        )?;
         let mesh_indices = read_indices(
             SectionKind::MeshIndices,
             section(SectionKind::MeshIndices),
             render_vertices,
             3,
-        )?;
-        let topology_positions = read_vec3s(
-            SectionKind::TopologyPositions,
-            section(SectionKind::TopologyPositions),
         )?;
         let edge_attributes = read_u32s(
             SectionKind::EdgeAttributes,
@@ -146,6 +139,61 @@ impl Asset {
         asset.edge_clusters = stored_clusters.unwrap_or_else(|| clusters::edge_clusters(&asset));
         Ok(asset)
     }
+}
+
+/// The render positions: the stored ones, one per normal, or, when the file has render vertex
+/// counts instead (one per topology vertex, summing to the number of normals), the topology
+/// positions repeated as the counts say.
+fn read_render_positions(
+    stored: &[u8],
+    counts: &[u8],
+    topology_positions: &[[f32; 3]],
+    render_vertices: usize,
+) -> Result<Vec<[f32; 3]>, DecodeError> {
+    if counts.is_empty() {
+        let positions = read_vec3s(SectionKind::RenderPositions, stored)?;
+        if positions.len() != render_vertices {
+            return Err(length_error(
+                SectionKind::RenderNormals,
+                format!(
+                    "{render_vertices} normals for {} render vertices",
+                    positions.len()
+                ),
+            ));
+        }
+        return Ok(positions);
+    }
+    if !stored.is_empty() {
+        return Err(length_error(
+            SectionKind::RenderVertexCounts,
+            format!(
+                "present beside {} bytes of render positions (a file holds one or the other)",
+                stored.len()
+            ),
+        ));
+    }
+    if counts.len() != topology_positions.len() {
+        return Err(length_error(
+            SectionKind::RenderVertexCounts,
+            format!(
+                "{} counts for {} topology vertices",
+                counts.len(),
+                topology_positions.len()
+            ),
+        ));
+    }
+    let total: usize = counts.iter().map(|&c| usize::from(c)).sum();
+    if total != render_vertices {
+        return Err(length_error(
+            SectionKind::RenderVertexCounts,
+            format!("counts sum to {total} render vertices, the normals to {render_vertices}"),
+        ));
+    }
+    let mut positions = Vec::with_capacity(total);
+    for (p, &count) in topology_positions.iter().zip(counts) {
+        positions.extend(std::iter::repeat_n(*p, usize::from(count)));
+    }
+    Ok(positions)
 }
 
 /// The header and the section kinds of the file's version.

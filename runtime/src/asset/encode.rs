@@ -1,4 +1,6 @@
-//! Writing an asset: header, then each section on a 16-byte boundary.
+//! Writing an asset: header, then each section on a 16-byte boundary. Two sections are derived
+//! here rather than held: the edge clusters (when the asset has none) and the render vertex counts
+//! that replace the render positions when they can.
 
 use std::io::{self, Write};
 
@@ -19,6 +21,14 @@ impl Asset {
     /// Fails only if `out` fails (or, impossibly for real assets, if the header exceeds 1 MiB).
     pub fn encode(&self, out: &mut impl Write) -> io::Result<()> {
         self.encode_as(FORMAT_VERSION, &SectionKind::ALL, &self.clusters(), out)
+    }
+
+    /// The sections [`encode`](Self::encode) writes: kind, offset and length in the file.
+    pub fn encoded_sections(&self) -> Vec<SectionEntry> {
+        let clusters = self.clusters();
+        let derived = Derived::of(self, &SectionKind::ALL, &clusters);
+        self.layout(&SectionKind::ALL, &derived)
+            .map_or_else(|_| Vec::new(), |(_, sections)| sections)
     }
 
     /// Writes the asset in an older layout (tests of reading old files); the sections `kinds` lacks
@@ -47,6 +57,16 @@ impl Asset {
         self.encode_as(FORMAT_VERSION, &SectionKind::ALL, &self.edge_clusters, out)
     }
 
+    /// Writes the asset with its render positions and their counts both (tests of the decoder's
+    /// checks).
+    #[cfg(test)]
+    pub(super) fn encode_with_positions_and_counts(&self, out: &mut impl Write) -> io::Result<()> {
+        let clusters = self.clusters();
+        let mut derived = Derived::of(self, &SectionKind::ALL, &clusters);
+        derived.keep_positions = true;
+        self.write_as(FORMAT_VERSION, &SectionKind::ALL, &derived, out)
+    }
+
     fn encode_as(
         &self,
         version: u32,
@@ -54,7 +74,17 @@ impl Asset {
         clusters: &[EdgeCluster],
         out: &mut impl Write,
     ) -> io::Result<()> {
-        let (header_bytes, sections) = self.layout(kinds, clusters)?;
+        self.write_as(version, kinds, &Derived::of(self, kinds, clusters), out)
+    }
+
+    fn write_as(
+        &self,
+        version: u32,
+        kinds: &[SectionKind],
+        derived: &Derived<'_>,
+        out: &mut impl Write,
+    ) -> io::Result<()> {
+        let (header_bytes, sections) = self.layout(kinds, derived)?;
         out.write_all(&MAGIC)?;
         out.write_all(&version.to_le_bytes())?;
         out.write_all(&(header_bytes.len() as u32).to_le_bytes())?;
@@ -63,7 +93,7 @@ impl Asset {
         for entry in &sections {
             write_zeros(out, entry.offset - written)?;
             let kind = SectionKind::from_u32(entry.kind).expect("layout lists only known kinds");
-            out.write_all(self.encoded_section(kind, clusters))?;
+            out.write_all(self.encoded_section(kind, derived))?;
             written = entry.offset + entry.length;
         }
         Ok(())
@@ -81,16 +111,21 @@ impl Asset {
 
     /// The size of the encoded asset in bytes.
     pub fn encoded_len(&self) -> u64 {
-        match self.layout(&SectionKind::ALL, &self.clusters()) {
-            Ok((_, sections)) => sections.last().map_or(0, |s| s.offset + s.length),
-            Err(_) => 0,
-        }
+        self.encoded_sections()
+            .last()
+            .map_or(0, |s| s.offset + s.length)
     }
 
-    /// A section's bytes as written: the stored ones, or `clusters` for the clusters.
-    fn encoded_section<'a>(&'a self, kind: SectionKind, clusters: &'a [EdgeCluster]) -> &'a [u8] {
+    /// A section's bytes as written: the stored ones, or the derived ones.
+    fn encoded_section<'a>(&'a self, kind: SectionKind, derived: &'a Derived<'a>) -> &'a [u8] {
         match kind {
-            SectionKind::EdgeClusters => bytemuck::cast_slice(clusters),
+            SectionKind::EdgeClusters => bytemuck::cast_slice(derived.clusters),
+            SectionKind::RenderVertexCounts => derived.render_counts.as_deref().unwrap_or(&[]),
+            SectionKind::RenderPositions
+                if derived.render_counts.is_some() && !derived.keep_positions =>
+            {
+                &[]
+            }
             _ => self.section_bytes(kind),
         }
     }
@@ -99,7 +134,7 @@ impl Asset {
     fn layout(
         &self,
         kinds: &[SectionKind],
-        clusters: &[EdgeCluster],
+        derived: &Derived<'_>,
     ) -> io::Result<(Vec<u8>, Vec<SectionEntry>)> {
         let mut header = self.header.clone();
         header.sections = kinds
@@ -107,7 +142,7 @@ impl Asset {
             .map(|&kind| SectionEntry {
                 kind: kind as u32,
                 offset: 0,
-                length: self.encoded_section(kind, clusters).len() as u64,
+                length: self.encoded_section(kind, derived).len() as u64,
             })
             .collect();
         // The header's size does not depend on the offsets (fixed-width integers), so measure it
@@ -127,4 +162,51 @@ impl Asset {
 fn write_zeros(out: &mut impl Write, count: u64) -> io::Result<()> {
     const ZEROS: [u8; SECTION_ALIGN] = [0; SECTION_ALIGN];
     out.write_all(&ZEROS[..count as usize])
+}
+
+/// What `encode` writes without holding it.
+struct Derived<'a> {
+    clusters: &'a [EdgeCluster],
+    /// The render vertex counts, when `kinds` has them and they reproduce the render positions.
+    render_counts: Option<Vec<u8>>,
+    /// Write the render positions even with the counts (only tests make such a file).
+    keep_positions: bool,
+}
+
+impl<'a> Derived<'a> {
+    fn of(asset: &Asset, kinds: &[SectionKind], clusters: &'a [EdgeCluster]) -> Self {
+        let render_counts = kinds
+            .contains(&SectionKind::RenderVertexCounts)
+            .then(|| render_vertex_counts(asset))
+            .flatten();
+        Self {
+            clusters,
+            render_counts,
+            keep_positions: false,
+        }
+    }
+}
+
+/// How many render vertices repeat each topology vertex's position, in order, if that reproduces
+/// every render position bit for bit with at most 255 per vertex; `None` otherwise, and for an
+/// asset without topology vertices (nothing to save).
+///
+/// Greedy matching is enough: if a render position could belong to this vertex or to a later one
+/// with the same position, giving it to this one leaves the same positions for the rest.
+fn render_vertex_counts(asset: &Asset) -> Option<Vec<u8>> {
+    let render = &asset.render_positions;
+    let mut counts = Vec::with_capacity(asset.topology_positions.len());
+    let mut next = 0;
+    for p in &asset.topology_positions {
+        let bits = p.map(f32::to_bits);
+        let start = next;
+        while next < render.len() && next - start < usize::from(u8::MAX) {
+            if render[next].map(f32::to_bits) != bits {
+                break;
+            }
+            next += 1;
+        }
+        counts.push((next - start) as u8);
+    }
+    (next == render.len() && !counts.is_empty()).then_some(counts)
 }

@@ -1,6 +1,6 @@
 //! The `.chamfer` edge asset: what the bake writes and the runtime uploads.
 //!
-//! # Layout (format version 3)
+//! # Layout (format version 4)
 //!
 //! All numbers are little-endian.
 //!
@@ -17,7 +17,7 @@
 //!
 //! | section | element | count |
 //! |---|---|---|
-//! | [`SectionKind::RenderPositions`] | `[f32; 3]` | R render vertices |
+//! | [`SectionKind::RenderPositions`] | `[f32; 3]` | R render vertices, or empty (see below) |
 //! | [`SectionKind::RenderNormals`] | `[f32; 3]` | R (crease-split, unit length) |
 //! | [`SectionKind::MeshIndices`] | index < R | 3 × T triangles |
 //! | [`SectionKind::TopologyPositions`] | `[f32; 3]` | V welded vertices |
@@ -28,6 +28,7 @@
 //! | [`SectionKind::IntersectionSegments`] | `[[f32; 3]; 2]` | S segments, or empty (since version 2) |
 //! | [`SectionKind::IntersectionPolylines`] | `u32` segment index < S | P polylines, or empty (since version 2) |
 //! | [`SectionKind::EdgeClusters`] | [`EdgeCluster`] (48 bytes) | ⌈E / 64⌉ (since version 3) |
+//! | [`SectionKind::RenderVertexCounts`] | `u8` | V, or empty (since version 4) |
 //!
 //! An *index* section is `u16` when its values are bounded by 65 536 and `u32` otherwise
 //! ([`IndexWidth::for_bound`]); the width is implied by the counts, so it is never stored.
@@ -42,6 +43,14 @@
 //! segment (strictly increasing from 0); a polyline whose last end equals its first start is closed.
 //! Both sections are empty when the bake did not look for intersections or found none.
 //!
+//! *Render vertices* copy the position of a topology vertex: the split normals give a vertex one
+//! render vertex per fan of faces between creases. The bake numbers them topology vertex by
+//! topology vertex, so the file need not store their positions: [`SectionKind::RenderVertexCounts`]
+//! says how many render vertices each topology vertex has (0 to 255), and the render positions are
+//! those of the topology vertices, each repeated that many times, in order. The encoder writes the
+//! counts whenever they reproduce the render positions exactly, and the positions themselves
+//! otherwise (then the counts section is empty); a file never holds both.
+//!
 //! *Edge clusters* (see [`clusters`]) bound each run of 64 edges in the file's order, so that a
 //! renderer can skip whole runs that cannot be drawn from a camera. The bake orders the edges so
 //! that runs are spatially coherent. A wrong cluster can only make a renderer skip edges it should
@@ -50,10 +59,11 @@
 //! # Compatibility
 //!
 //! The version is bumped on any change to the header or to a section's meaning. Version 2 added the
-//! two intersection sections, version 3 the edge clusters (the header is unchanged). A reader of
-//! version 3 also reads versions 1 and 2: a version-1 file has no intersection edges, and the
-//! clusters of a version-1 or 2 file are computed when it is decoded (over its edge order, which
-//! was not made for them: they cull less). Any other version is reported as
+//! two intersection sections, version 3 the edge clusters, version 4 the render vertex counts (the
+//! header is unchanged). A reader of version 4 also reads versions 1 to 3: a version-1 file has no
+//! intersection edges, the clusters of a version-1 or 2 file are computed when it is decoded (over
+//! its edge order, which was not made for them: they cull less), and files before version 4 store
+//! every render position. Any other version is reported as
 //! [`DecodeError::UnsupportedVersion`]: re-bake the source mesh (bakes are deterministic, so this is
 //! cheap to automate in `build.rs`).
 
@@ -77,7 +87,7 @@ use serde::{Deserialize, Serialize};
 /// The eight bytes every asset starts with.
 pub const MAGIC: [u8; 8] = *b"CHAMFER\0";
 /// The format version this crate writes (and the newest it reads).
-pub const FORMAT_VERSION: u32 = 3;
+pub const FORMAT_VERSION: u32 = 4;
 /// The oldest format version this crate still reads.
 pub const OLDEST_READ_VERSION: u32 = 1;
 /// The largest header accepted; real headers are a few hundred bytes.
@@ -332,11 +342,14 @@ pub enum SectionKind {
     IntersectionPolylines = 10,
     /// One [`EdgeCluster`] per 64 edges (version 3).
     EdgeClusters = 11,
+    /// One `u8` per topology vertex: how many render vertices copy its position, in order; or
+    /// empty (version 4). When present, [`RenderPositions`](Self::RenderPositions) is empty.
+    RenderVertexCounts = 12,
 }
 
 impl SectionKind {
     /// Every kind, in the order sections are written.
-    pub const ALL: [Self; 11] = [
+    pub const ALL: [Self; 12] = [
         Self::RenderPositions,
         Self::RenderNormals,
         Self::MeshIndices,
@@ -348,6 +361,7 @@ impl SectionKind {
         Self::IntersectionSegments,
         Self::IntersectionPolylines,
         Self::EdgeClusters,
+        Self::RenderVertexCounts,
     ];
 
     /// The kinds a file of format `version` holds (every one of them, possibly empty), or `None`
@@ -356,7 +370,8 @@ impl SectionKind {
         match version {
             1 => Some(&Self::ALL[..8]),
             2 => Some(&Self::ALL[..10]),
-            3 => Some(&Self::ALL),
+            3 => Some(&Self::ALL[..11]),
+            4 => Some(&Self::ALL),
             _ => None,
         }
     }
@@ -380,6 +395,7 @@ impl SectionKind {
             Self::IntersectionSegments => "intersection_segments",
             Self::IntersectionPolylines => "intersection_polylines",
             Self::EdgeClusters => "edge_clusters",
+            Self::RenderVertexCounts => "render_vertex_counts",
         }
     }
 }
@@ -580,8 +596,10 @@ impl Asset {
         }
     }
 
-    /// The raw bytes of one section, as written to the file (the clusters as stored, which
-    /// [`encode`](Self::encode) replaces by [`clusters`](Self::clusters)).
+    /// The raw bytes of one section as held in memory (the clusters as stored, which
+    /// [`encode`](Self::encode) replaces by [`clusters`](Self::clusters); the render positions, which
+    /// it may replace by [`SectionKind::RenderVertexCounts`]). [`encoded_sections`](Self::encoded_sections)
+    /// gives what the file holds.
     pub fn section_bytes(&self, kind: SectionKind) -> &[u8] {
         match kind {
             SectionKind::RenderPositions => bytemuck::cast_slice(&self.render_positions),
@@ -595,6 +613,8 @@ impl Asset {
             SectionKind::IntersectionSegments => bytemuck::cast_slice(&self.intersection_segments),
             SectionKind::IntersectionPolylines => bytemuck::cast_slice(&self.intersection_starts),
             SectionKind::EdgeClusters => bytemuck::cast_slice(&self.edge_clusters),
+            // Derived when encoding, never held.
+            SectionKind::RenderVertexCounts => &[],
         }
     }
 }

@@ -573,3 +573,147 @@ fn broken_clusters_are_refused() {
         })
     ));
 }
+
+/// The tetrahedron with its render vertices numbered as the bake numbers them: topology vertex by
+/// topology vertex (three each, one per face at it), so their positions need not be stored.
+fn tetrahedron_split_by_vertex() -> Asset {
+    let asset = tetrahedron();
+    let tris = [[0u32, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]];
+    let mut seen = [0u32; 4];
+    let mut indices = Vec::new();
+    for v in tris.into_iter().flatten() {
+        indices.push(3 * v + seen[v as usize]);
+        seen[v as usize] += 1;
+    }
+    let render_positions = asset
+        .topology_positions
+        .iter()
+        .flat_map(|&p| [p; 3])
+        .collect();
+    Asset {
+        render_positions,
+        mesh_indices: Indices::with_bound(indices, 12),
+        ..asset
+    }
+}
+
+fn section_length(asset: &Asset, kind: SectionKind) -> Option<u64> {
+    asset
+        .header
+        .sections
+        .iter()
+        .find(|s| s.kind == kind as u32)
+        .map(|s| s.length)
+}
+
+#[test]
+fn render_positions_the_topology_repeats_are_not_stored() {
+    let asset = tetrahedron_split_by_vertex();
+    let bytes = asset.encode_to_vec();
+    let back = Asset::decode(&bytes).expect("decodes");
+    assert_eq!(back.render_positions, asset.render_positions);
+    assert_eq!(
+        back.encode_to_vec(),
+        bytes,
+        "re-encoding gives the same bytes"
+    );
+    assert_eq!(section_length(&back, SectionKind::RenderPositions), Some(0));
+    assert_eq!(
+        section_length(&back, SectionKind::RenderVertexCounts),
+        Some(4)
+    );
+    assert_eq!(asset.encoded_sections(), back.header.sections);
+    assert_eq!(asset.encoded_len(), bytes.len() as u64);
+
+    // Positions the topology does not give in order are stored, and the counts are not.
+    let explicit = decoded(&tetrahedron());
+    assert_eq!(
+        section_length(&explicit, SectionKind::RenderPositions),
+        Some(12 * 12)
+    );
+    assert_eq!(
+        section_length(&explicit, SectionKind::RenderVertexCounts),
+        Some(0)
+    );
+
+    // A version-3 file stores every render position, and still reads.
+    let mut v3 = Vec::new();
+    asset.encode_version(3, &mut v3).expect("a v3 layout");
+    let old = Asset::decode(&v3).expect("version 3 is still read");
+    assert_eq!(old.render_positions, asset.render_positions);
+    assert_eq!(
+        section_length(&old, SectionKind::RenderPositions),
+        Some(12 * 12)
+    );
+    assert_eq!(old.encode_to_vec(), bytes, "re-encoded as version 4");
+
+    // More than 255 render vertices at one topology vertex: stored, not counted.
+    let mut crowded = tetrahedron_split_by_vertex();
+    let extra = 300;
+    crowded.render_positions.splice(0..0, vec![[0.0; 3]; extra]);
+    crowded.render_normals.extend(vec![[0.0, 0.0, 1.0]; extra]);
+    let back = decoded(&crowded);
+    assert_eq!(back.render_positions, crowded.render_positions);
+    assert_eq!(
+        section_length(&back, SectionKind::RenderVertexCounts),
+        Some(0)
+    );
+}
+
+#[test]
+fn broken_render_vertex_counts_are_refused() {
+    let asset = tetrahedron_split_by_vertex();
+    let bytes = asset.encode_to_vec();
+    let entry = asset
+        .encoded_sections()
+        .into_iter()
+        .find(|s| s.kind == SectionKind::RenderVertexCounts as u32)
+        .expect("a counts section");
+    let mut short = bytes.clone();
+    short[entry.offset as usize] = 2; // 11 render vertices for 12 normals
+    let error = Asset::decode(&short).expect_err("counts disagree with the normals");
+    assert!(
+        matches!(
+            error,
+            DecodeError::BadSectionLength {
+                kind: SectionKind::RenderVertexCounts,
+                ..
+            }
+        ),
+        "{error:?}"
+    );
+    assert!(
+        error.to_string().contains("render_vertex_counts"),
+        "{error}"
+    );
+
+    // A count beyond what the normals hold.
+    let mut long = bytes.clone();
+    long[entry.offset as usize + 3] = 255;
+    assert!(matches!(
+        Asset::decode(&long),
+        Err(DecodeError::BadSectionLength {
+            kind: SectionKind::RenderVertexCounts,
+            ..
+        })
+    ));
+
+    // Counts beside stored positions: a file holds one or the other.
+    let mut both = Vec::new();
+    asset
+        .encode_with_positions_and_counts(&mut both)
+        .expect("encodes");
+    let error = Asset::decode(&both).expect_err("both are present");
+    assert!(error.to_string().contains("one or the other"), "{error}");
+
+    // Every truncation and every single-bit flip of a file with counts is handled.
+    let bytes = asset.encode_to_vec();
+    for len in 0..bytes.len() {
+        assert!(Asset::decode(&bytes[..len]).is_err(), "truncated to {len}");
+    }
+    for at in 0..bytes.len() {
+        let mut bad = bytes.clone();
+        bad[at] ^= 0x80;
+        let _ = Asset::decode(&bad);
+    }
+}

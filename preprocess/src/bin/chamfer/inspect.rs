@@ -64,9 +64,21 @@ pub fn edge_bytes(asset: &Asset) -> u64 {
 pub fn summary(asset: &Asset, total_bytes: u64) -> serde_json::Value {
     let s = &asset.header.stats;
     let e = &s.edges;
+    // The file's own table when the asset was read from one, else what encoding it writes.
+    let table = if asset.header.sections.is_empty() {
+        asset.encoded_sections()
+    } else {
+        asset.header.sections.clone()
+    };
+    let length = |k: SectionKind| {
+        table
+            .iter()
+            .find(|s| s.kind == k as u32)
+            .map_or(0, |s| s.length)
+    };
     let per_section: serde_json::Map<String, serde_json::Value> = SectionKind::ALL
         .iter()
-        .map(|&k| (k.name().to_owned(), json!(asset.section_bytes(k).len())))
+        .map(|&k| (k.name().to_owned(), json!(length(k))))
         .collect();
     let per_edge = if asset.edge_count() == 0 {
         0.0
@@ -191,10 +203,16 @@ fn table(out: &mut String, name: &str, asset: &Asset, r: &serde_json::Value) -> 
         b["total"],
         b["per_edge"].as_f64().unwrap_or(0.0)
     )?;
+    let derived = b["per_section"][SectionKind::RenderVertexCounts.name()].as_u64() > Some(0);
     for kind in SectionKind::ALL {
+        let note = if derived && kind == SectionKind::RenderPositions {
+            "  (repeated from topology_positions by render_vertex_counts)"
+        } else {
+            ""
+        };
         writeln!(
             out,
-            "    {:<18} {}",
+            "    {:<18} {}{note}",
             kind.name(),
             b["per_section"][kind.name()]
         )?;
