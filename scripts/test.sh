@@ -12,4 +12,11 @@ RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --release --locked
 # Every crate users depend on, as crates.io would get it: cargo packs the workspace's crates into a
 # local registry overlay so each tarball builds against the others' tarballs (dependencies from
 # crates.io). --allow-dirty: a developer's uncommitted work is what gets checked (CI's clone is clean).
+# The overlay's unpacked sources (under CARGO_HOME) and their builds are keyed by name and version only,
+# so an earlier run's copies of our crates would be reused as they were: clear them first.
+target=${CARGO_TARGET_DIR:-target}
+rm -rf "${CARGO_HOME:-$HOME/.cargo}"/registry/src/*/chamfer-{shaders,runtime,preprocess}-[0-9]* "$target/package"
+if [ -d "$target/debug/.fingerprint" ]; then
+    find "$target/debug/.fingerprint" -maxdepth 1 -name 'chamfer-*' -exec rm -rf {} +
+fi
 cargo package --workspace --locked --allow-dirty --exclude chamfer-tests --exclude chamfer-build-script-example
