@@ -195,19 +195,30 @@ const HEADER_KEYWORDS: [&str; 7] = [
 /// Where the body starts: after the line whose first word is `end_header` (the header parser has
 /// accepted the header, so there is one), as [`lenient_header`] splits the file.
 fn body_start(bytes: &[u8]) -> usize {
+    lines(bytes)
+        .find(|line| first_word(&bytes[line.clone()]) == "end_header")
+        .map_or(bytes.len(), |line| line.end)
+}
+
+/// The lines of `bytes` as byte ranges, each with its `\n` (the last one may have none).
+fn lines(bytes: &[u8]) -> impl Iterator<Item = std::ops::Range<usize>> + '_ {
     let mut at = 0;
-    while at < bytes.len() {
-        let end = bytes[at..]
-            .iter()
-            .position(|&b| b == b'\n')
-            .map_or(bytes.len(), |n| at + n + 1);
-        let line = String::from_utf8_lossy(&bytes[at..end]);
-        at = end;
-        if line.split_whitespace().next() == Some("end_header") {
-            break;
-        }
-    }
-    at
+    std::iter::from_fn(move || {
+        (at < bytes.len()).then(|| {
+            let end = bytes[at..]
+                .iter()
+                .position(|&b| b == b'\n')
+                .map_or(bytes.len(), |n| at + n + 1);
+            let line = at..end;
+            at = end;
+            line
+        })
+    })
+}
+
+fn first_word(line: &[u8]) -> String {
+    let text = String::from_utf8_lossy(line);
+    text.split_whitespace().next().unwrap_or("").to_owned()
 }
 
 /// The file with every header line that is not a PLY keyword turned into a `comment` (one warning
@@ -215,18 +226,14 @@ fn body_start(bytes: &[u8]) -> usize {
 pub(crate) fn lenient_header<'a>(bytes: &'a [u8], warnings: &mut Vec<String>) -> impl Read + 'a {
     let mut header: Cow<'a, [u8]> = Cow::Borrowed(&[]);
     let mut at = 0;
-    while at < bytes.len() {
-        let end = bytes[at..]
-            .iter()
-            .position(|&b| b == b'\n')
-            .map_or(bytes.len(), |n| at + n + 1);
-        let line = &bytes[at..end];
+    for range in lines(bytes) {
+        let line = &bytes[range.clone()];
         let text = String::from_utf8_lossy(line);
         let keyword = text.split_whitespace().next().unwrap_or("");
         if !text.trim().is_empty() && !HEADER_KEYWORDS.contains(&keyword) {
             let owned = header.to_mut();
             if owned.is_empty() {
-                owned.extend_from_slice(&bytes[..at]);
+                owned.extend_from_slice(&bytes[..range.start]);
             }
             warnings.push(format!(
                 "header line {:?} is not a PLY keyword; read as a comment",
@@ -237,7 +244,7 @@ pub(crate) fn lenient_header<'a>(bytes: &'a [u8], warnings: &mut Vec<String>) ->
         } else if let Cow::Owned(owned) = &mut header {
             owned.extend_from_slice(line);
         }
-        at = end;
+        at = range.end;
         if keyword == "end_header" {
             break;
         }

@@ -236,6 +236,21 @@ mod tests {
     }
 
     impl Body {
+        /// `VERTICES` as `float x y z`, then `faces` as `uchar int` lists.
+        fn plain_mesh(&mut self, faces: &[&[i32]]) {
+            for v in VERTICES {
+                for &c in v.iter() {
+                    self.f32(c);
+                }
+            }
+            for f in faces {
+                self.u8(f.len() as u8);
+                for &i in f.iter() {
+                    self.i32(i);
+                }
+            }
+        }
+
         fn put<const N: usize>(&mut self, le: [u8; N], be: [u8; N]) -> &mut Self {
             self.bytes
                 .extend_from_slice(if self.big_endian { &be } else { &le });
@@ -307,19 +322,7 @@ mod tests {
                 big_endian,
                 "element vertex 5\nproperty float x\nproperty float y\nproperty float z\n\
                  element face 4\nproperty list uchar int vertex_indices\n",
-                |b| {
-                    for v in VERTICES {
-                        for &c in v.iter() {
-                            b.f32(c);
-                        }
-                    }
-                    for f in FACES {
-                        b.u8(f.len() as u8);
-                        for &i in f.iter() {
-                            b.i32(i);
-                        }
-                    }
-                },
+                |b| b.plain_mesh(&FACES),
             );
             assert!(
                 same_as_general(&plain, &Limits::DEFAULT),
@@ -371,21 +374,7 @@ mod tests {
     fn files_the_bulk_reader_finds_wrong_get_the_general_readers_error() {
         let header = "element vertex 5\nproperty float x\nproperty float y\nproperty float z\n\
                       element face 4\nproperty list uchar int vertex_indices\n";
-        let with_faces = |faces: &[&[i32]]| {
-            ply(false, header, |b| {
-                for v in VERTICES {
-                    for &c in v.iter() {
-                        b.f32(c);
-                    }
-                }
-                for f in faces {
-                    b.u8(f.len() as u8);
-                    for &i in f.iter() {
-                        b.i32(i);
-                    }
-                }
-            })
-        };
+        let with_faces = |faces: &[&[i32]]| ply(false, header, |b| b.plain_mesh(faces));
         let negative = with_faces(&[&[0, 1, 2], &[0, -1, 2], &[1, 2, 3], &[1, 2, 4]]);
         assert!(!same_as_general(&negative, &Limits::DEFAULT));
         let full = with_faces(&FACES);

@@ -101,9 +101,16 @@ impl Asset {
 
     /// The encoded asset in a new vector.
     pub fn encode_to_vec(&self) -> Vec<u8> {
-        let mut bytes = Vec::with_capacity(self.encoded_len() as usize);
+        let clusters = self.clusters();
+        let derived = Derived::of(self, &SectionKind::ALL, &clusters);
+        let capacity = self
+            .layout(&SectionKind::ALL, &derived)
+            .ok()
+            .and_then(|(_, sections)| sections.last().map(|s| s.offset + s.length))
+            .unwrap_or(0);
+        let mut bytes = Vec::with_capacity(capacity as usize);
         // Writing to a Vec cannot fail; the header limit is far above any real header.
-        if let Err(e) = self.encode(&mut bytes) {
+        if let Err(e) = self.write_as(FORMAT_VERSION, &SectionKind::ALL, &derived, &mut bytes) {
             panic!("chamfer: encoding into memory failed ({e}); please report this");
         }
         bytes

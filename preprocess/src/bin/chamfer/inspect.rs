@@ -203,7 +203,9 @@ fn table(out: &mut String, name: &str, asset: &Asset, r: &serde_json::Value) -> 
         b["total"],
         b["per_edge"].as_f64().unwrap_or(0.0)
     )?;
-    let derived = b["per_section"][SectionKind::RenderVertexCounts.name()].as_u64() > Some(0);
+    let derived = b["per_section"][SectionKind::RenderVertexCounts.name()]
+        .as_u64()
+        .is_some_and(|n| n > 0);
     for kind in SectionKind::ALL {
         let note = if derived && kind == SectionKind::RenderPositions {
             "  (repeated from topology_positions by render_vertex_counts)"
