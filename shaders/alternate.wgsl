@@ -1,6 +1,6 @@
 // The thesis' alternate drawable edge types (§9.3): one pass of six points (four triangles) per edge
 // that carries the edge and its caps together, each built from the McGuire–Hughes screen values.
-// `frame.technique` picks the shape:
+// `params.shape` picks the shape:
 //   1 half hex: the half quad on the side of m0 plus the two half caps; contours only (on other
 //     edges the side flips with the projected normal);
 //   2 plug: the full quad plus a triangle at each end reaching to s + m; creases and boundaries;
@@ -12,6 +12,15 @@ const HALF_HEX: u32 = 1u;
 const PLUG: u32 = 2u;
 const HALF_HEX_PLUG: u32 = 3u;
 const HOUSE: u32 = 4u;
+
+struct AlternateParams {
+    shape: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+}
+
+@group(0) @binding(15) var<uniform> params: AlternateParams;
 
 // Point k (0..5) of each shape; techniques/alternate.rs draws them indexed into four triangles, so
 // each point is shaded once (the thesis' six output vertices per edge).
@@ -66,7 +75,7 @@ fn alternate_vertex(@builtin(vertex_index) k: u32, @builtin(instance_index) e: u
     var edge = vertex_edge(e);
     let contour = (edge.word & DRAWN_CONTOUR) != 0u;
     var position: vec4<f32>;
-    switch frame.technique {
+    switch params.shape {
         case HALF_HEX: {
             if !contour {
                 edge.word = NOT_DRAWN;

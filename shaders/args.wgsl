@@ -4,9 +4,9 @@
 // lists' counts clamped to their capacity, and what was wanted). Included after common.wgsl, for the
 // frame uniform, and lists.wgsl.
 
-@group(0) @binding(8) var<storage, read_write> out: Out;
-@group(0) @binding(14) var<storage, read_write> starts: array<u32>;
-@group(0) @binding(16) var<storage, read_write> dispatch: array<u32, 4>;
+@group(0) @binding(19) var<storage, read_write> out: Out;
+@group(0) @binding(24) var<storage, read_write> starts: array<u32>;
+@group(0) @binding(26) var<storage, read_write> dispatch: array<u32, 4>;
 
 @compute @workgroup_size(1)
 fn reset() {

@@ -35,10 +35,7 @@ struct Frame {
     radius_scale: f32,
     // Depth 1 is near and 0 far (reverse Z): the near plane is z = w in clip space, not z = 0.
     reverse_z: u32,
-    // Technique-specific variant of the pass (see each technique's file).
-    technique: u32,
-    // Technique-specific parameters (see each technique's file).
-    params: vec4<f32>,
+    _pad: u32,
     // Side planes of the view in model space, widened by an edge's reach in pixels: a point with
     // dot(plane, (p, 1)) > 0 is beyond that side (cull.wgsl). All zero: no frustum test.
     frustum: array<vec4<f32>, 4>,

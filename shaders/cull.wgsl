@@ -21,11 +21,11 @@ struct Survivors {
     clusters: array<u32>,
 }
 
-@group(0) @binding(18) var<storage, read_write> survivors: Survivors;
-@group(0) @binding(19) var<storage, read> clusters: array<EdgeCluster>;
+@group(0) @binding(27) var<storage, read_write> survivors: Survivors;
+@group(0) @binding(6) var<storage, read> clusters: array<EdgeCluster>;
 // The indirect dispatch of classify_clusters: one workgroup per kept cluster. (Not in `survivors`:
 // that dispatch reads the list, and a buffer cannot be both there.)
-@group(0) @binding(21) var<storage, read_write> cull_dispatch: array<u32, 4>;
+@group(0) @binding(28) var<storage, read_write> cull_dispatch: array<u32, 4>;
 
 @compute @workgroup_size(WORKGROUP)
 fn cull(@builtin(global_invocation_id) id: vec3<u32>) {

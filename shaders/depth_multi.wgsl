@@ -1,5 +1,5 @@
 // The application's depth, multisampled: its first sample.
-@group(0) @binding(1) var depth_texture: texture_depth_multisampled_2d;
+@group(0) @binding(16) var depth_texture: texture_depth_multisampled_2d;
 
 fn scene_depth(p: vec2<i32>) -> f32 {
     return textureLoad(depth_texture, p, 0);

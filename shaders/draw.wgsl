@@ -1,12 +1,12 @@
 // Bindings of the draw passes (edges, caps): the lists the compute passes wrote this frame, read-only.
 
-@group(0) @binding(6) var<storage, read> drawn: array<vec2<u32>>;
-@group(0) @binding(7) var<storage, read> joins: array<vec2<u32>>;
-@group(0) @binding(8) var<storage, read> out: Out;
-@group(0) @binding(10) var<storage, read> screen: array<ScreenRecord>;
-@group(0) @binding(11) var<storage, read> chamfers: array<ChamferRecord>;
-@group(0) @binding(12) var<storage, read> cos_power: array<f32>;
-@group(0) @binding(13) var<uniform> lighting: Lighting;
+@group(0) @binding(17) var<storage, read> drawn: array<vec2<u32>>;
+@group(0) @binding(18) var<storage, read> joins: array<vec2<u32>>;
+@group(0) @binding(19) var<storage, read> out: Out;
+@group(0) @binding(20) var<storage, read> screen: array<ScreenRecord>;
+@group(0) @binding(21) var<storage, read> chamfers: array<ChamferRecord>;
+@group(0) @binding(22) var<storage, read> cos_power: array<f32>;
+@group(0) @binding(23) var<uniform> lighting: Lighting;
 
 struct Cap {
     end: u32,
@@ -26,7 +26,7 @@ struct Out {
 }
 
 // Per drawn instance, its COLOR_COUNT class colours (the drawn word's instance bits pick them).
-@group(0) @binding(15) var<storage, read> instance_colors: array<vec4<f32>>;
+@group(0) @binding(25) var<storage, read> instance_colors: array<vec4<f32>>;
 
 fn drawn_color(word: u32) -> vec4<f32> {
     return instance_colors[(word >> INSTANCE_SHIFT) * COLOR_COUNT + (word & 0xffu)];

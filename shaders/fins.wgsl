@@ -7,14 +7,23 @@
 // - a gap where a silhouette passes a hard edge, as the extrusion direction jumps between faces;
 // - on a valley near 90° the normal lies in the other face, so its fin is coplanar with it and
 //   z-fights; Listing 3 moves crease fins `z_bias` towards the camera in view space.
-// Parameters: params.x thickness (world units, or pixels if params.y > 0), params.z the z-bias (world
-// units, crease fins only).
+
+struct FinParams {
+    // The fin's length: world units, or pixels at the vertex's depth if `in_pixels` is 1.
+    thickness: f32,
+    in_pixels: u32,
+    // How far crease fins move towards the camera, world units.
+    z_bias: f32,
+    _pad: u32,
+}
+
+@group(0) @binding(15) var<uniform> params: FinParams;
 
 @group(0) @binding(3) var<storage, read> attributes: array<u32>;
 // The render vertices' normals (crease-split), xyz per vertex.
-@group(0) @binding(5) var<storage, read> render_normals: array<f32>;
+@group(0) @binding(8) var<storage, read> render_normals: array<f32>;
 // Per edge: the render vertices at v0 and v1 of face a, then of face b (0xffffffff: no face).
-@group(0) @binding(6) var<storage, read> fin_corners: array<vec4<u32>>;
+@group(0) @binding(13) var<storage, read> fin_corners: array<vec4<u32>>;
 
 fn render_normal(r: u32) -> vec3<f32> {
     return vec3<f32>(render_normals[3u * r], render_normals[3u * r + 1u], render_normals[3u * r + 2u]);
@@ -52,15 +61,15 @@ fn fin_vertex(@builtin(vertex_index) i: u32, @builtin(instance_index) e: u32) ->
     let tip = ((0x34u >> (i % 6u)) & 1u) == 1u;
     let base = select(v0, v1, k);
     let normal = normalize(render_normal(select(c0, c1, k)));
-    var thickness = frame.params.x;
-    if frame.params.y > 0.0 {
+    var thickness = params.thickness;
+    if params.in_pixels == 1u {
         // Pixels: the world length that covers that many pixels at this vertex's depth.
-        thickness = frame.params.x * frame.pixel_scale * (frame.mvp * vec4<f32>(base, 1.0)).w;
+        thickness = params.thickness * frame.pixel_scale * (frame.mvp * vec4<f32>(base, 1.0)).w;
     }
     var clip = frame.mvp * vec4<f32>(base + select(0.0, thickness, tip) * normal, 1.0);
     if (word & DRAWN_CONTOUR) == 0u {
         // Listing 3: crease fins move towards the camera in view space.
-        clip = clip + frame.params.z * frame.proj_z;
+        clip = clip + params.z_bias * frame.proj_z;
     }
     return flat_vertex(word, clip);
 }

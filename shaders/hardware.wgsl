@@ -3,10 +3,10 @@
 // shader (triangles.wgsl: instance = triangle) and draws lines as screen-space quads. Each entry point
 // is one pass of one method; techniques/hardware.rs strings them together with their pipeline state:
 //   §4.1 Rossignac–van Emmerik: the mesh into depth, then every triangle's wireframe, thick, pushed
-//        back by a depth offset (hw_wire_vertex, params.x = 0, params.y = offset px);
-//   §4.1 Gooch: back faces in wireframe with LessEqual (hw_wire_vertex, params.x = 1, no offset);
-//   §4.2 back faces filled with LessEqual (hw_back_vertex, params.y = 0);
-//   §4.3 back faces filled, pulled towards the camera (hw_back_vertex, params.y = offset px);
+//        back by a depth offset (hw_wire_vertex, `offset_px`);
+//   §4.1 Gooch: back faces in wireframe with LessEqual (hw_wire_vertex, `back_only`, no offset);
+//   §4.2 back faces filled with LessEqual (hw_back_vertex, no offset);
+//   §4.3 back faces filled, pulled towards the camera (hw_back_vertex, `offset_px`);
 //   §4.4 back faces "fattened": each edge pushed out by the line width in screen space, the polygon
 //        closed as a fan of 2N triangles around its centre (hw_fat_vertex);
 //   §4.5 the mesh (front faces) drawn four times one step off in x and y into the stencil (increment), then a
@@ -18,10 +18,21 @@
 //        hw_crease_vertex, instances below the triangle count), or rotated the other way and drawn
 //        only where it lies between the front surface and a second depth buffer of the back faces
 //        (valleys, the instances above it, valley_fragment).
-// Common parameters: params.w the crease angle in radians (§4.7).
+
+struct HardwareParams {
+    // 1: the wireframe of back faces only (Gooch).
+    back_only: u32,
+    // How far lines and faces move in depth, in pixels' worth (positive: towards the camera).
+    offset_px: f32,
+    // §4.7's crease angle, radians.
+    crease_angle: f32,
+    _pad: u32,
+}
+
+@group(0) @binding(15) var<uniform> params: HardwareParams;
 
 // The back faces' depth, a second depth buffer for §4.7's valleys (our own texture).
-@group(0) @binding(9) var back_depth: texture_depth_2d;
+@group(0) @binding(16) var back_depth: texture_depth_2d;
 
 // Triangle t's clip corners; `ok` false if a corner is behind the camera.
 struct ClipTriangle {
@@ -74,17 +85,17 @@ fn segment_quad(tri: ClipTriangle, k0: u32, k1: u32, i: u32, h: f32, offset_px: 
 fn hw_wire_vertex(@builtin(vertex_index) i: u32, @builtin(instance_index) t: u32) -> FlatVarying {
     let tri = clip_triangle(t);
     let edge = i / 6u;
-    let back_only = frame.params.x > 0.0;
+    let back_only = params.back_only == 1u;
     let ok = tri.ok && !(back_only && tri.front);
     let h = half_width(tri.c[edge].w);
-    let position = segment_quad(tri, edge, (edge + 1u) % 3u, i % 6u, h, -frame.params.y);
+    let position = segment_quad(tri, edge, (edge + 1u) % 3u, i % 6u, h, -params.offset_px);
     return contour_out(ok, position);
 }
 
 @vertex
 fn hw_back_vertex(@builtin(vertex_index) i: u32, @builtin(instance_index) t: u32) -> FlatVarying {
     let tri = clip_triangle(t);
-    return contour_out(tri.ok && !tri.front, at_corner(tri, i, tri.s[i], frame.params.y));
+    return contour_out(tri.ok && !tri.front, at_corner(tri, i, tri.s[i], params.offset_px));
 }
 
 // The fattened polygon of a back face: corner k's two pushed-out copies (one per edge at k), as a
@@ -186,7 +197,7 @@ fn hw_crease_vertex(@builtin(vertex_index) i: u32, @builtin(instance_index) inst
     if dot(out_dir, tri.p[k2] - tri.p[k0]) > 0.0 {
         out_dir = -out_dir;
     }
-    let angle = frame.params.w;
+    let angle = params.crease_angle;
     let dir = cos(angle) * out_dir - select(-1.0, 1.0, ridge) * sin(angle) * normal;
     let end = (0x16u >> corner) & 1u;
     let far = ((0x34u >> corner) & 1u) == 1u;

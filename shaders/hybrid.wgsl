@@ -10,16 +10,31 @@
 // bleached (eq. 5, dp (2 - dp / L)), shifted by the brightness and turned into a shade 1 / (1 + t²)
 // (Appendix A); the average of four, raised to the contrast, multiplies the scene colour (§3.1).
 // The same code gives edges, ambient shading or both: only the parameters differ (§4).
-// params: x r (pixels), y bleach L, z contrast, w brightness; more.x range (view units);
-// variant 1: only over the object (its mask's Laplacian outline and its pixels, §3.1).
 
-@group(0) @binding(3) var mask: texture_2d<f32>;
+struct HybridParams {
+    // r, the neighbours' distance.
+    step_px: f32,
+    // L, the bleach factor of eq. 5.
+    bleach: f32,
+    contrast: f32,
+    brightness: f32,
+    // What a depth difference is divided by, view units.
+    range: f32,
+    // 1: only over the object (its mask's Laplacian outline and its pixels, §3.1).
+    object_only: u32,
+    _pad0: u32,
+    _pad1: u32,
+}
+
+@group(0) @binding(15) var<uniform> params: HybridParams;
+
+@group(0) @binding(17) var mask: texture_2d<f32>;
 
 fn shade(z0: f32, p: vec2<i32>) -> f32 {
-    let bleach = max(post.params.y, 1e-4);
-    var dp = (z0 - view_depth(p)) / max(post.more.x, 1e-12);
+    let bleach = max(params.bleach, 1e-4);
+    var dp = (z0 - view_depth(p)) / max(params.range, 1e-12);
     dp = dp * (2.0 - dp / bleach);
-    let t = 0.5 * max(dp + post.params.w, 0.0);
+    let t = 0.5 * max(dp + params.brightness, 0.0);
     return 1.0 / (1.0 + t * t);
 }
 
@@ -30,12 +45,12 @@ fn masked(p: vec2<i32>) -> f32 {
 @fragment
 fn hybrid_fragment(v: PostVarying) -> @location(0) vec4<f32> {
     let p = vec2<i32>(v.position.xy);
-    let r = i32(max(round(post.params.x), 1.0));
+    let r = i32(max(round(params.step_px), 1.0));
     let z0 = view_depth(p);
     var o = shade(z0, p + vec2<i32>(r, 0)) + shade(z0, p - vec2<i32>(r, 0))
         + shade(z0, p + vec2<i32>(0, r)) + shade(z0, p - vec2<i32>(0, r));
-    o = pow(o / 4.0, max(post.params.z, 0.0));
-    if post.variant == 1u {
+    o = pow(o / 4.0, max(params.contrast, 0.0));
+    if params.object_only == 1u {
         // §3.1: the object alone, white on black; the Laplacian of that picture is its outline.
         let m = masked(p);
         let laplacian = masked(p + vec2<i32>(0, r)) + masked(p - vec2<i32>(0, r))

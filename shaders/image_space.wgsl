@@ -5,10 +5,25 @@
 // our own normal pass writes. The kernel's taps are `step` pixels apart: half the line width, and
 // scaled with depth if the style asks (nearer is thicker; the thesis' §5.5 notes thickness is
 // otherwise fixed by the resolution).
-// variant: operator 0 Sobel, 1 Prewitt, 2 Scharr, 3 Roberts. params: x depth threshold (0: off),
-// y normal threshold (0: off), z step (pixels), w > 0 scale the step with depth.
 
-@group(0) @binding(2) var normals: texture_2d<f32>;
+struct ImageParams {
+    // The operator's kernel: 0 Sobel, 1 Prewitt, 2 Scharr, 3 Roberts.
+    kernel: u32,
+    // Thresholds of the depth and normal gradients (0: that buffer is not used).
+    depth_threshold: f32,
+    normal_threshold: f32,
+    // The kernel's taps are this many pixels apart...
+    step_px: f32,
+    // ...scaled with depth if 1.
+    depth_scaled: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+}
+
+@group(0) @binding(15) var<uniform> params: ImageParams;
+
+@group(0) @binding(17) var normals: texture_2d<f32>;
 
 fn normal_at(p: vec2<i32>) -> vec3<f32> {
     return textureLoad(normals, clamp_pixel(p), 0).xyz;
@@ -21,7 +36,7 @@ struct Gradients {
 
 // The 3×3 kernel's weights: the column (and row) weights (a, b, a) of Gx = [-a 0 a; -b 0 b; -a 0 a].
 fn weights() -> vec2<f32> {
-    switch post.variant {
+    switch params.kernel {
         case 1u: { return vec2<f32>(1.0, 1.0); }
         case 2u: { return vec2<f32>(3.0, 10.0); }
         default: { return vec2<f32>(1.0, 2.0); }
@@ -33,7 +48,7 @@ fn gradients(p: vec2<i32>, s: i32) -> Gradients {
     var gy_d = 0.0;
     var gx_n = vec3<f32>(0.0);
     var gy_n = vec3<f32>(0.0);
-    if post.variant == 3u {
+    if params.kernel == 3u {
         // Roberts' cross: [x A; B C], Gx = x - C, Gy = A - B.
         let x = p;
         let a = p + vec2<i32>(s, 0);
@@ -66,7 +81,7 @@ fn gradients(p: vec2<i32>, s: i32) -> Gradients {
     }
     // Divided by the kernel's positive weights, so a step of size h reads h for every operator.
     var norm = 1.0;
-    if post.variant != 3u {
+    if params.kernel != 3u {
         let w = weights();
         norm = 2.0 * w.x + w.y;
     }
@@ -80,17 +95,17 @@ fn gradients(p: vec2<i32>, s: i32) -> Gradients {
 fn image_fragment(v: PostVarying) -> @location(0) vec4<f32> {
     let p = vec2<i32>(v.position.xy);
     let z0 = view_depth(p);
-    var step = max(post.params.z, 1.0);
-    if post.params.w > 0.0 && post.depth_ref > 0.0 {
+    var step = max(params.step_px, 1.0);
+    if params.depth_scaled == 1u && post.depth_ref > 0.0 {
         step = max(step * post.depth_ref / max(z0, 1e-6), 1.0);
     }
     let g = gradients(p, i32(round(step)));
     var edge = 0.0;
-    if post.params.x > 0.0 {
-        edge = max(edge, smoothstep(0.8, 1.2, g.depth / max(abs(z0), 1e-6) / post.params.x));
+    if params.depth_threshold > 0.0 {
+        edge = max(edge, smoothstep(0.8, 1.2, g.depth / max(abs(z0), 1e-6) / params.depth_threshold));
     }
-    if post.params.y > 0.0 {
-        edge = max(edge, smoothstep(0.8, 1.2, g.normal / post.params.y));
+    if params.normal_threshold > 0.0 {
+        edge = max(edge, smoothstep(0.8, 1.2, g.normal / params.normal_threshold));
     }
     if edge <= 0.0 {
         discard;

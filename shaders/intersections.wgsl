@@ -3,7 +3,7 @@
 // per segment and a round disc at each end so the polylines' joints close. Instance = segment,
 // vertices 0-5 its quad, 6-11 and 12-17 the discs at its ends.
 
-@group(0) @binding(17) var<storage, read> segments: array<f32>;
+@group(0) @binding(10) var<storage, read> segments: array<f32>;
 
 struct SegmentVarying {
     @builtin(position) position: vec4<f32>,

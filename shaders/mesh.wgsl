@@ -6,8 +6,12 @@ struct MeshFrame {
     // Towards the light (w = 0, unit) or the light's position (w = 1), model space.
     light: vec4<f32>,
     color: vec4<f32>,
-    // x: ambient share of the colour, y: specular reflectance, z: shininess.
-    params: vec4<f32>,
+    // Share of the colour lit regardless of the light.
+    ambient: f32,
+    // Specular reflectance and exponent (Blinn).
+    specular: f32,
+    shininess: f32,
+    _pad: u32,
     // The camera in model space: a point (w = 1) or a direction towards the viewer (w = 0).
     eye: vec4<f32>,
 }
@@ -31,7 +35,7 @@ fn mesh_fragment(v: MeshVarying, @builtin(front_facing) front: bool) -> @locatio
     let to_light = normalize(mesh.light.xyz - v.model_position * mesh.light.w);
     let to_viewer = normalize(mesh.eye.xyz - v.model_position * mesh.eye.w);
     let diffuse = max(dot(n, to_light), 0.0);
-    let specular = mesh.params.y * pow(max(dot(n, normalize(to_light + to_viewer)), 0.0), mesh.params.z);
-    let ambient = mesh.params.x;
+    let specular = mesh.specular * pow(max(dot(n, normalize(to_light + to_viewer)), 0.0), mesh.shininess);
+    let ambient = mesh.ambient;
     return vec4<f32>(mesh.color.rgb * (ambient + (1.0 - ambient) * diffuse) + specular, mesh.color.a);
 }

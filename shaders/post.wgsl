@@ -8,13 +8,10 @@ struct Post {
     // The mesh pass of the techniques that draw their own buffers (normals, object mask).
     mvp: mat4x4<f32>,
     color: vec4<f32>,
-    // Technique parameters (see each technique's file).
-    params: vec4<f32>,
-    more: vec4<f32>,
     viewport: vec2<f32>,
     // Clip w of the model's centre, for depth-scaled steps; 0: constant.
     depth_ref: f32,
-    variant: u32,
+    _pad: u32,
 }
 
 @group(0) @binding(0) var<uniform> post: Post;

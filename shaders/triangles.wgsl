@@ -1,8 +1,8 @@
 // Shared by the techniques that pull the mesh's triangles in the vertex shader (instance = triangle,
 // no geometry shader): the render positions and indices as storage buffers.
 
-@group(0) @binding(5) var<storage, read> render_positions: array<f32>;
-@group(0) @binding(7) var<storage, read> mesh_indices: array<u32>;
+@group(0) @binding(7) var<storage, read> render_positions: array<f32>;
+@group(0) @binding(9) var<storage, read> mesh_indices: array<u32>;
 
 fn mesh_index(i: u32) -> u32 {
     if frame.indices_u16 != 0u {

@@ -7,7 +7,7 @@
 
 @group(0) @binding(3) var<storage, read> attributes: array<u32>;
 // A smooth normal per topology vertex (xyz; w unused), the n0, n1 of §8.1.
-@group(0) @binding(4) var<storage, read> vertex_normals: array<vec4<f32>>;
+@group(0) @binding(11) var<storage, read> vertex_normals: array<vec4<f32>>;
 
 struct VertexEdge {
     // NOT_DRAWN, or the drawn word (colour index, contour bit).

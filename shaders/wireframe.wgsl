@@ -5,13 +5,22 @@
 // and "balance edge angles" steps), interpolated linearly in screen space; a pixel is on the edge
 // opposite corner k where coordinate k exceeds 1, that is within d pixels of it. d is half the line
 // width (each triangle draws its half of a shared edge), scaled with depth if the style asks.
-// params: x > 0 the seed's first, naive attempt (unit barycentrics, edge where a coordinate is below
-// params.w: its width follows the triangle's size; kept as the comparison the seed shows), y > 0
-// smooth (anti-aliased inner border), z > 0 only the asset's feature edges (not the diagonals of
-// flat or smooth regions).
+
+struct WireParams {
+    // 1: the seed's first, naive attempt (unit barycentrics, edge where a coordinate is below
+    // `naive_threshold`: its width follows the triangle's size; kept as the comparison the seed shows).
+    naive: u32,
+    // 1: anti-aliased inner border.
+    smooth_border: u32,
+    // 1: only the asset's feature edges (not the diagonals of flat or smooth regions).
+    feature_only: u32,
+    naive_threshold: f32,
+}
+
+@group(0) @binding(15) var<uniform> params: WireParams;
 
 // Per triangle, bit k: the edge from corner k to k + 1 is a feature edge.
-@group(0) @binding(8) var<storage, read> triangle_edges: array<u32>;
+@group(0) @binding(14) var<storage, read> triangle_edges: array<u32>;
 
 struct WireVarying {
     @builtin(position) position: vec4<f32>,
@@ -39,7 +48,7 @@ fn wire_vertex(@builtin(vertex_index) k: u32, @builtin(instance_index) t: u32) -
         s[i] = to_pixels(c[i]);
     }
     var shown = 7u;
-    if frame.params.z > 0.0 {
+    if params.feature_only == 1u {
         // Mask bit j is the edge from corner j to j + 1, opposite corner j + 2.
         let mask = triangle_edges[t];
         shown = ((mask & 1u) << 2u) | ((mask & 2u) >> 1u) | ((mask & 4u) >> 1u);
@@ -49,7 +58,7 @@ fn wire_vertex(@builtin(vertex_index) k: u32, @builtin(instance_index) t: u32) -
     let a = s[(k + 2u) % 3u] - s[k];
     let lb = length(b);
     let la = length(a);
-    if frame.params.x > 0.0 {
+    if params.naive == 1u {
         out.coords = vec3<f32>(select(0.0, 1.0, k == 0u), select(0.0, 1.0, k == 1u), select(0.0, 1.0, k == 2u));
     } else {
         // The corner's angle, from the sides that meet there.
@@ -76,9 +85,9 @@ fn wire_fragment(v: WireVarying) -> @location(0) vec4<f32> {
         }
         let e = v.coords[k];
         var on = 0.0;
-        if frame.params.x > 0.0 {
-            on = select(0.0, 1.0, e < frame.params.w);
-        } else if frame.params.y > 0.0 {
+        if params.naive == 1u {
+            on = select(0.0, 1.0, e < params.naive_threshold);
+        } else if params.smooth_border == 1u {
             // A one-pixel ramp at the band's inner border, from how fast the coordinate changes.
             on = clamp((e - 1.0) / max(fwidth(e), 1e-6) + 0.5, 0.0, 1.0);
         } else {

@@ -31,6 +31,20 @@ impl AssetExtras {
     /// Everything.
     pub const ALL: Self = Self(7);
 
+    /// The extras a pass over `bindings` reads.
+    pub(crate) fn read_by(bindings: &super::bindings::Bindings) -> Self {
+        use super::bindings::asset;
+        [
+            (asset::VERTEX_NORMALS, Self::VERTEX_NORMALS),
+            (asset::RENDER_TO_TOPOLOGY, Self::VERTEX_NORMALS),
+            (asset::FIN_CORNERS, Self::FIN_CORNERS),
+            (asset::TRIANGLE_EDGES, Self::TRIANGLE_EDGES),
+        ]
+        .into_iter()
+        .filter(|(binding, _)| bindings.contains(*binding))
+        .fold(Self::NONE, |all, (_, extra)| all | extra)
+    }
+
     /// True if every extra of `other` is in `self`.
     pub const fn contains(self, other: Self) -> bool {
         self.0 & other.0 == other.0

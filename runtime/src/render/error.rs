@@ -71,6 +71,9 @@ pub enum RenderError {
         /// What the upload left out.
         needs: &'static str,
     },
+    /// A bug in the renderer: two of its parts disagree. Please report it with the message.
+    #[error("internal error in the renderer (please report it): {0}")]
+    Internal(String),
     /// The asset cannot be drawn by this technique.
     #[error("{technique} cannot draw this asset: {why}")]
     Unsupported {

@@ -12,6 +12,7 @@ use glam::Vec3;
 use wgpu::util::DeviceExt;
 
 use super::RenderError;
+use super::bindings::{self, Binding};
 use super::derived::{self, AssetExtras};
 use super::target::checked;
 use crate::asset::{Asset, IndexWidth, SectionKind};
@@ -398,6 +399,61 @@ impl GpuAsset {
         }
     }
 
+    /// The resource of the section `binding` names (see [`bindings::asset`]), for `technique`'s
+    /// bind groups: the edge section whole (or [`RenderError::TooLarge`]), an extra the upload did
+    /// not derive is [`RenderError::MissingAssetData`].
+    pub(crate) fn resource(
+        &self,
+        binding: Binding,
+        technique: &'static str,
+    ) -> Result<wgpu::BindingResource<'_>, RenderError> {
+        use bindings::asset::*;
+        fn extra<'b>(
+            buffer: &'b Option<wgpu::Buffer>,
+            technique: &'static str,
+            needs: &'static str,
+        ) -> Result<&'b wgpu::Buffer, RenderError> {
+            buffer
+                .as_ref()
+                .ok_or(RenderError::MissingAssetData { technique, needs })
+        }
+        let buffer = match binding {
+            TOPOLOGY => &self.topology_positions,
+            EDGE_VERTICES => self.whole_edge_vertices()?,
+            ATTRIBUTES => &self.edge_attributes,
+            RINGS => &self.rings,
+            CAP_HEADS => &self.cap_heads,
+            CLUSTERS => &self.clusters,
+            RENDER_POSITIONS => &self.render_positions,
+            RENDER_NORMALS => &self.render_normals,
+            MESH_INDICES => &self.mesh_indices,
+            SEGMENTS => &self.intersection_segments,
+            VERTEX_NORMALS => extra(
+                &self.vertex_normals,
+                technique,
+                "AssetExtras::VERTEX_NORMALS",
+            )?,
+            RENDER_TO_TOPOLOGY => extra(
+                &self.render_to_topology,
+                technique,
+                "AssetExtras::VERTEX_NORMALS",
+            )?,
+            FIN_CORNERS => extra(&self.fin_corners, technique, "AssetExtras::FIN_CORNERS")?,
+            TRIANGLE_EDGES => extra(
+                &self.triangle_edges,
+                technique,
+                "AssetExtras::TRIANGLE_EDGES",
+            )?,
+            other => {
+                return Err(RenderError::Internal(format!(
+                    "{technique} binds {} as a section of the asset",
+                    other.name
+                )));
+            }
+        };
+        Ok(buffer.as_entire_binding())
+    }
+
     /// True if [`GpuAsset::edge_vertices`] holds 16-bit indices, two per word.
     pub fn edges_are_16_bit(&self) -> bool {
         self.edges_u16
@@ -407,6 +463,21 @@ impl GpuAsset {
     pub fn edge_attributes(&self) -> &wgpu::Buffer {
         &self.edge_attributes
     }
+}
+
+/// The vertex buffers of the passes that draw the mesh with vertex buffers: the render positions
+/// at location 0 and the render normals at location 1.
+pub(crate) fn vertex_layouts() -> [Option<wgpu::VertexBufferLayout<'static>>; 2] {
+    const POSITION: [wgpu::VertexAttribute; 1] = wgpu::vertex_attr_array![0 => Float32x3];
+    const NORMAL: [wgpu::VertexAttribute; 1] = wgpu::vertex_attr_array![1 => Float32x3];
+    let layout = |attributes: &'static [wgpu::VertexAttribute]| {
+        Some(wgpu::VertexBufferLayout {
+            array_stride: 12,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes,
+        })
+    };
+    [layout(&POSITION), layout(&NORMAL)]
 }
 
 /// A buffer holding `bytes` (wgpu pads it to a multiple of four; an empty section gets four zero

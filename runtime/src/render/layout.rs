@@ -126,8 +126,7 @@ pub(crate) struct Frame {
     pub(crate) highlight: u32,
     pub(crate) radius_scale: f32,
     pub(crate) reverse_z: u32,
-    pub(crate) technique: u32,
-    pub(crate) params: [f32; 4],
+    pub(crate) _pad: u32,
     pub(crate) frustum: [[f32; 4]; 4],
     pub(crate) indices_u16: u32,
     pub(crate) triangle_count: u32,
@@ -142,11 +141,9 @@ pub(crate) struct Post {
     pub(crate) inv_projection: [[f32; 4]; 4],
     pub(crate) mvp: [[f32; 4]; 4],
     pub(crate) color: [f32; 4],
-    pub(crate) params: [f32; 4],
-    pub(crate) more: [f32; 4],
     pub(crate) viewport: [f32; 2],
     pub(crate) depth_ref: f32,
-    pub(crate) variant: u32,
+    pub(crate) _pad: u32,
 }
 
 /// `Lighting` in `shaders/highlight.wgsl`.
@@ -165,7 +162,10 @@ pub(crate) struct MeshFrame {
     pub(crate) mvp: [[f32; 4]; 4],
     pub(crate) light: [f32; 4],
     pub(crate) color: [f32; 4],
-    pub(crate) params: [f32; 4],
+    pub(crate) ambient: f32,
+    pub(crate) specular: f32,
+    pub(crate) shininess: f32,
+    pub(crate) _pad: u32,
     pub(crate) eye: [f32; 4],
 }
 
@@ -236,18 +236,20 @@ pub(crate) const DRAWN_BYTES: u64 = 8;
 /// Bytes per drawn edge end of the joins list: `vec2<u32>` (packed split directions).
 pub(crate) const JOIN_BYTES_PER_END: u64 = 8;
 
-/// A Rust struct's layout as the WGSL side must see it: member names with byte offsets, and size.
-#[cfg(test)]
+/// A Rust struct's layout as the WGSL side must see it: member names with byte offsets, and size
+/// (compared with naga's layout of the WGSL twin by the CPU test in `modules.rs`).
+#[derive(Debug)]
+#[cfg_attr(not(test), allow(dead_code))]
 pub(crate) struct Layout {
     pub(crate) wgsl: &'static str,
     pub(crate) size: usize,
     pub(crate) members: Vec<(&'static str, usize)>,
 }
 
-#[cfg(test)]
+/// The [`Layout`] of `$ty`, the WGSL struct `$wgsl`, with these members.
 macro_rules! layout {
     ($wgsl:literal, $ty:ty, [$($field:ident),* $(,)?]) => {
-        Layout {
+        $crate::render::layout::Layout {
             wgsl: $wgsl,
             size: std::mem::size_of::<$ty>(),
             members: vec![$((stringify!($field), std::mem::offset_of!($ty, $field))),*],
@@ -255,7 +257,10 @@ macro_rules! layout {
     };
 }
 
-/// Every struct shared with WGSL.
+pub(crate) use layout;
+
+/// Every struct the shared WGSL files declare (each technique lists its own:
+/// `Module::structs`).
 #[cfg(test)]
 pub(crate) fn layouts() -> Vec<Layout> {
     vec![
@@ -285,8 +290,7 @@ pub(crate) fn layouts() -> Vec<Layout> {
                 highlight,
                 radius_scale,
                 reverse_z,
-                technique,
-                params,
+                _pad,
                 frustum,
                 indices_u16,
                 triangle_count,
@@ -298,18 +302,13 @@ pub(crate) fn layouts() -> Vec<Layout> {
         layout!(
             "Post",
             Post,
-            [
-                inv_projection,
-                mvp,
-                color,
-                params,
-                more,
-                viewport,
-                depth_ref,
-                variant
-            ]
+            [inv_projection, mvp, color, viewport, depth_ref, _pad]
         ),
-        layout!("MeshFrame", MeshFrame, [mvp, light, color, params, eye]),
+        layout!(
+            "MeshFrame",
+            MeshFrame,
+            [mvp, light, color, ambient, specular, shininess, _pad, eye]
+        ),
         layout!(
             "DrawArgs",
             DrawArgs,

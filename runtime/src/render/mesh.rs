@@ -4,10 +4,13 @@ use std::sync::Arc;
 
 use glam::Vec3;
 
+use super::bindings::{Binding, Bindings, Kind};
+use super::gpu_asset::vertex_layouts;
 use super::layout::MeshFrame;
-use super::pipelines::{Access, BindingSet, RenderPipeline};
+use super::modules::{Program, Shader};
+use super::pipelines::{PipelineSet, Raster};
 use super::techniques::Blocks;
-use super::{Camera, GpuAsset, Instance, Light, Pipelines, RenderError, modules};
+use super::{Camera, GpuAsset, Instance, Light, Pipelines, RenderError};
 
 /// Where the mesh's light comes from.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -46,39 +49,39 @@ impl Default for MeshStyle {
     }
 }
 
-const MESH: BindingSet = BindingSet {
-    label: "mesh",
-    stages: wgpu::ShaderStages::VERTEX_FRAGMENT,
-    entries: &[(0, Access::Instance)],
-};
+const MESH: Bindings = Bindings::draw("mesh", &[Binding::new(0, "mesh", Kind::Block)]);
+
+/// The mesh pass's module.
+pub(crate) fn shader() -> Shader {
+    Shader::new(
+        "mesh.wgsl",
+        &[chamfer_shaders::MESH],
+        vec![Program::draw("mesh_vertex", "mesh_fragment", &MESH)],
+    )
+}
 
 /// The mesh pipeline, per device and target.
 #[derive(Debug)]
 pub(crate) struct Pipeline {
-    layout: wgpu::BindGroupLayout,
     pipeline: wgpu::RenderPipeline,
 }
 
-impl Pipeline {
-    pub(crate) fn new(cache: &Pipelines) -> Result<Self, RenderError> {
-        let layout = cache.layout(&MESH);
-        let module = cache.module("mesh.wgsl", &modules::mesh())?;
+impl PipelineSet for Pipeline {
+    fn new(cache: &Pipelines) -> Result<Self, RenderError> {
+        let shader = shader();
         let target = cache.target();
-        let pipeline = cache.render_pipeline(
-            &[&layout],
-            RenderPipeline {
-                label: "mesh",
-                module: &module,
-                vertex: "mesh_vertex",
-                fragment: Some("mesh_fragment"),
-                buffers: &super::techniques::surface_angle::mesh_buffers(),
+        let pipeline = cache.compile(&shader)?.render(
+            "mesh_vertex",
+            Some("mesh_fragment"),
+            Raster {
+                buffers: &vertex_layouts(),
                 primitive: wgpu::PrimitiveState::default(),
                 depth_stencil: target.depth(true, wgpu::CompareFunction::Less),
                 multisample: target.multisample(),
                 color: Some(target.blended_color()),
             },
         )?;
-        Ok(Self { layout, pipeline })
+        Ok(Self { pipeline })
     }
 }
 
@@ -106,7 +109,7 @@ impl MeshRenderer {
     /// A mesh pass for the instances given to [`prepare_scene`](Self::prepare_scene).
     pub fn for_scenes(pipelines: &Pipelines) -> Result<Self, RenderError> {
         Ok(Self {
-            pipeline: pipelines.mesh()?,
+            pipeline: pipelines.get::<Pipeline>()?,
             cache: pipelines.clone(),
             blocks: Blocks::new(pipelines, "mesh frame", std::mem::size_of::<MeshFrame>()),
             group: None,
@@ -145,19 +148,14 @@ impl MeshRenderer {
         if self.blocks.write(&self.cache, queue, &frames) {
             self.group = None;
         }
-        let blocks = &self.blocks;
-        let layout = &self.pipeline.layout;
-        let device = self.cache.device();
-        self.group.get_or_insert_with(|| {
-            device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("mesh"),
-                layout,
-                entries: &[wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: blocks.binding(),
-                }],
-            })
-        });
+        if self.group.is_none() {
+            let layout = self.cache.layout(&MESH);
+            let blocks = &self.blocks;
+            // A group of one block binding cannot fail to be made.
+            self.group = MESH
+                .group(self.cache.device(), &layout, |_| Ok(blocks.binding()))
+                .ok();
+        }
         self.draws = instances
             .iter()
             .enumerate()
@@ -196,12 +194,10 @@ fn mesh_frame(camera: &Camera, style: &MeshStyle) -> MeshFrame {
         mvp: camera.view_projection().to_cols_array_2d(),
         light: light.to_array(),
         color: style.color,
-        params: [
-            style.ambient.clamp(0.0, 1.0),
-            style.specular.max(0.0),
-            style.shininess.max(0.0),
-            0.0,
-        ],
+        ambient: style.ambient.clamp(0.0, 1.0),
+        specular: style.specular.max(0.0),
+        shininess: style.shininess.max(0.0),
+        _pad: 0,
         eye: camera.eye().to_array(),
     }
 }

@@ -44,6 +44,7 @@
 //! `techniques/` with their own shader files. [`Offscreen`] renders without a window (tests,
 //! thumbnails, the `chamfer render` command).
 
+mod bindings;
 mod camera;
 mod derived;
 mod error;

@@ -1,16 +1,21 @@
 //! Per device and target: the compiled pipelines and bind-group layouts of every technique, created
 //! once and shared by every asset and renderer drawn into that target (glyphon's `Cache`).
 //!
-//! A technique's pipelines are compiled the first time a frame uses it, then kept; every creation goes
-//! through [`Pipelines::render_pipeline`] or [`Pipelines::compute_pipeline`], which count it (so a test
-//! can tell two assets share one set) and turn a device error into a [`RenderError`].
+//! The cache knows no technique: each keeps its pipelines in a [`PipelineSet`] of its own, made the
+//! first time a frame asks for it ([`Pipelines::get`], keyed by type). Every pipeline is compiled from
+//! a declared [`Shader`] through [`Compiled`], which builds its layout from the bindings the
+//! declaration names, counts it (so a test can tell two assets share one set) and turns a device
+//! error into a [`RenderError`].
 
+use std::any::{Any, TypeId};
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::{Arc, OnceLock};
+use std::sync::{Arc, Mutex, PoisonError};
 
+use super::bindings::Bindings;
 use super::layout::{MAX_GROUPS, WORKGROUP};
+use super::modules::{Program, Shader};
 use super::target::checked;
-use super::{RenderError, Target, mesh, techniques};
+use super::{RenderError, Target};
 
 /// The compiled pipelines of every technique for one device and one [`Target`]. Cheap to clone
 /// (a shared handle); create one per target format and share it between all assets.
@@ -24,17 +29,16 @@ struct Inner {
     device: wgpu::Device,
     target: Target,
     compiled: AtomicUsize,
-    joined: OnceLock<Arc<techniques::joined::Pipelines>>,
-    mesh: OnceLock<Arc<mesh::Pipeline>>,
-    mcguire_hughes: OnceLock<Arc<techniques::mcguire_hughes::Pipelines>>,
-    alternate: OnceLock<Arc<techniques::alternate::Pipelines>>,
-    fins: OnceLock<Arc<techniques::fins::Pipelines>>,
-    wireframe: OnceLock<Arc<techniques::wireframe::Pipelines>>,
-    hardware: OnceLock<Arc<techniques::hardware::Pipelines>>,
-    surface_angle: OnceLock<Arc<techniques::surface_angle::Pipelines>>,
-    inverted_hull: OnceLock<Arc<techniques::inverted_hull::Pipelines>>,
-    hybrid: OnceLock<Arc<techniques::hybrid::Pipelines>>,
-    image_space: OnceLock<Arc<techniques::image_space::Pipelines>>,
+    /// Each technique's pipeline set, by its type.
+    sets: Mutex<Vec<(TypeId, Arc<dyn Any + Send + Sync>)>>,
+    /// One layout per binding set, shared by every pipeline declared with it.
+    layouts: Mutex<Vec<(&'static Bindings, wgpu::BindGroupLayout)>>,
+}
+
+/// The pipelines a technique (or the mesh pass) keeps per device and target.
+pub(crate) trait PipelineSet: Send + Sync + std::fmt::Debug + Sized + 'static {
+    /// Compiles the set for `cache`'s device and target.
+    fn new(cache: &Pipelines) -> Result<Self, RenderError>;
 }
 
 impl Pipelines {
@@ -49,17 +53,8 @@ impl Pipelines {
                 device: device.clone(),
                 target: *target,
                 compiled: AtomicUsize::new(0),
-                joined: OnceLock::new(),
-                mesh: OnceLock::new(),
-                mcguire_hughes: OnceLock::new(),
-                alternate: OnceLock::new(),
-                fins: OnceLock::new(),
-                wireframe: OnceLock::new(),
-                hardware: OnceLock::new(),
-                surface_angle: OnceLock::new(),
-                inverted_hull: OnceLock::new(),
-                hybrid: OnceLock::new(),
-                image_space: OnceLock::new(),
+                sets: Mutex::new(Vec::new()),
+                layouts: Mutex::new(Vec::new()),
             }),
         })
     }
@@ -84,124 +79,132 @@ impl Pipelines {
         Arc::ptr_eq(&self.inner, &other.inner)
     }
 
-    pub(crate) fn joined(&self) -> Result<Arc<techniques::joined::Pipelines>, RenderError> {
-        get_or_create(&self.inner.joined, || {
-            techniques::joined::Pipelines::new(self)
+    /// The pipeline set `T`, compiled the first time it is asked for. (Two threads asking at once
+    /// may both compile it; one is kept. No lock is held while compiling, so a set may ask for
+    /// another.)
+    pub(crate) fn get<T: PipelineSet>(&self) -> Result<Arc<T>, RenderError> {
+        let find = |sets: &[(TypeId, Arc<dyn Any + Send + Sync>)]| {
+            sets.iter()
+                .find(|(id, _)| *id == TypeId::of::<T>())
+                .and_then(|(_, set)| set.clone().downcast::<T>().ok())
+        };
+        let sets = || {
+            self.inner
+                .sets
+                .lock()
+                .unwrap_or_else(PoisonError::into_inner)
+        };
+        if let Some(set) = find(&sets()) {
+            return Ok(set);
+        }
+        let made = Arc::new(T::new(self)?);
+        let mut sets = sets();
+        if let Some(set) = find(&sets) {
+            return Ok(set);
+        }
+        sets.push((TypeId::of::<T>(), made.clone()));
+        Ok(made)
+    }
+
+    /// The layout of `bindings` (one per set and cache).
+    pub(crate) fn layout(&self, bindings: &'static Bindings) -> wgpu::BindGroupLayout {
+        let mut layouts = self
+            .inner
+            .layouts
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner);
+        if let Some((_, layout)) = layouts.iter().find(|(b, _)| std::ptr::eq(*b, bindings)) {
+            return layout.clone();
+        }
+        let layout = bindings.layout(self.device(), self.target());
+        layouts.push((bindings, layout.clone()));
+        layout
+    }
+
+    /// Compiles `shader`'s module; its declared programs become pipelines through [`Compiled`].
+    pub(crate) fn compile<'s>(&self, shader: &'s Shader) -> Result<Compiled<'s>, RenderError> {
+        let device = self.device();
+        let module = checked(device, shader.label, || {
+            device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(shader.label),
+                source: wgpu::ShaderSource::Wgsl(shader.source.as_str().into()),
+            })
+        })?;
+        Ok(Compiled {
+            cache: self.clone(),
+            shader,
+            module,
         })
     }
+}
 
-    pub(crate) fn mcguire_hughes(
-        &self,
-    ) -> Result<Arc<techniques::mcguire_hughes::Pipelines>, RenderError> {
-        get_or_create(&self.inner.mcguire_hughes, || {
-            techniques::mcguire_hughes::Pipelines::new(self)
-        })
+/// How a render pipeline draws; its shader side (entry points, bindings) is the declared
+/// [`Program`]'s.
+pub(crate) struct Raster<'a> {
+    pub(crate) buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
+    pub(crate) primitive: wgpu::PrimitiveState,
+    pub(crate) depth_stencil: Option<wgpu::DepthStencilState>,
+    pub(crate) multisample: wgpu::MultisampleState,
+    /// `None`: no colour attachment (a depth-only pass of the renderer's own).
+    pub(crate) color: Option<wgpu::ColorTargetState>,
+}
+
+impl Raster<'_> {
+    /// Triangles pulled in the vertex shader (no vertex buffers), depth-tested with LessEqual
+    /// without writes and alpha-blended into the target: how every edge is drawn over the mesh.
+    pub(crate) fn over_mesh(target: &Target) -> Self {
+        Raster {
+            buffers: &[],
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: target.depth(false, wgpu::CompareFunction::LessEqual),
+            multisample: target.multisample(),
+            color: Some(target.blended_color()),
+        }
     }
+}
 
-    pub(crate) fn alternate(&self) -> Result<Arc<techniques::alternate::Pipelines>, RenderError> {
-        get_or_create(&self.inner.alternate, || {
-            techniques::alternate::Pipelines::new(self)
-        })
-    }
+/// A compiled shader module and its declaration: pipelines are made of its declared programs only.
+pub(crate) struct Compiled<'s> {
+    cache: Pipelines,
+    shader: &'s Shader,
+    module: wgpu::ShaderModule,
+}
 
-    pub(crate) fn fins(&self) -> Result<Arc<techniques::fins::Pipelines>, RenderError> {
-        get_or_create(&self.inner.fins, || techniques::fins::Pipelines::new(self))
-    }
-
-    pub(crate) fn wireframe(&self) -> Result<Arc<techniques::wireframe::Pipelines>, RenderError> {
-        get_or_create(&self.inner.wireframe, || {
-            techniques::wireframe::Pipelines::new(self)
-        })
-    }
-
-    pub(crate) fn hardware(&self) -> Result<Arc<techniques::hardware::Pipelines>, RenderError> {
-        get_or_create(&self.inner.hardware, || {
-            techniques::hardware::Pipelines::new(self)
-        })
-    }
-
-    pub(crate) fn surface_angle(
-        &self,
-    ) -> Result<Arc<techniques::surface_angle::Pipelines>, RenderError> {
-        get_or_create(&self.inner.surface_angle, || {
-            techniques::surface_angle::Pipelines::new(self)
-        })
-    }
-
-    pub(crate) fn inverted_hull(
-        &self,
-    ) -> Result<Arc<techniques::inverted_hull::Pipelines>, RenderError> {
-        get_or_create(&self.inner.inverted_hull, || {
-            techniques::inverted_hull::Pipelines::new(self)
-        })
-    }
-
-    pub(crate) fn hybrid(&self) -> Result<Arc<techniques::hybrid::Pipelines>, RenderError> {
-        get_or_create(&self.inner.hybrid, || {
-            techniques::hybrid::Pipelines::new(self)
-        })
-    }
-
-    pub(crate) fn image_space(
-        &self,
-    ) -> Result<Arc<techniques::image_space::Pipelines>, RenderError> {
-        get_or_create(&self.inner.image_space, || {
-            techniques::image_space::Pipelines::new(self)
-        })
-    }
-
-    pub(crate) fn mesh(&self) -> Result<Arc<mesh::Pipeline>, RenderError> {
-        get_or_create(&self.inner.mesh, || mesh::Pipeline::new(self))
-    }
-
-    /// A shader module of `source`.
-    pub(crate) fn module(
-        &self,
-        label: &str,
-        source: &str,
-    ) -> Result<wgpu::ShaderModule, RenderError> {
-        checked(self.device(), label, || {
-            self.device()
-                .create_shader_module(wgpu::ShaderModuleDescriptor {
-                    label: Some(label),
-                    source: wgpu::ShaderSource::Wgsl(source.into()),
-                })
-        })
-    }
-
-    /// A bind-group layout of `set`.
-    pub(crate) fn layout(&self, set: &BindingSet) -> wgpu::BindGroupLayout {
-        let entries: Vec<wgpu::BindGroupLayoutEntry> = set
-            .entries
+impl Compiled<'_> {
+    fn program(&self, entry: &str, fragment: Option<&str>) -> Result<&Program, RenderError> {
+        self.shader
+            .programs
             .iter()
-            .map(|&(binding, access)| access.entry(binding, set.stages))
-            .collect();
-        self.device()
-            .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some(set.label),
-                entries: &entries,
+            .find(|p| p.entry == entry && p.fragment == fragment)
+            .ok_or_else(|| {
+                RenderError::Internal(format!(
+                    "{} declares no program {entry} {fragment:?}",
+                    self.shader.label
+                ))
             })
     }
 
-    /// A compute pipeline of `entry` in `module` over one bind group of `layout`.
-    pub(crate) fn compute_pipeline(
-        &self,
-        layout: &wgpu::BindGroupLayout,
-        module: &wgpu::ShaderModule,
-        entry: &str,
-    ) -> Result<wgpu::ComputePipeline, RenderError> {
-        let device = self.device();
-        self.inner.compiled.fetch_add(1, Ordering::Relaxed);
-        checked(device, entry, || {
-            let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some(entry),
-                bind_group_layouts: &[Some(layout)],
+    fn pipeline_layout(&self, program: &Program) -> wgpu::PipelineLayout {
+        let layout = self.cache.layout(program.bindings);
+        self.cache.inner.compiled.fetch_add(1, Ordering::Relaxed);
+        self.cache
+            .device()
+            .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some(program.entry),
+                bind_group_layouts: &[Some(&layout)],
                 immediate_size: 0,
-            });
+            })
+    }
+
+    /// The compute pipeline of the declared program `entry`.
+    pub(crate) fn compute(&self, entry: &str) -> Result<wgpu::ComputePipeline, RenderError> {
+        let program = self.program(entry, None)?;
+        let device = self.cache.device();
+        checked(device, entry, || {
             device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some(entry),
-                layout: Some(&pipeline_layout),
-                module,
+                layout: Some(&self.pipeline_layout(program)),
+                module: &self.module,
                 entry_point: Some(entry),
                 compilation_options: Default::default(),
                 cache: None,
@@ -209,38 +212,32 @@ impl Pipelines {
         })
     }
 
-    /// A render pipeline from `descriptor` (its layout made of `layouts`).
-    pub(crate) fn render_pipeline(
+    /// The render pipeline of the declared program `vertex` + `fragment`, drawn as `raster` says.
+    pub(crate) fn render(
         &self,
-        layouts: &[&wgpu::BindGroupLayout],
-        descriptor: RenderPipeline<'_>,
+        vertex: &str,
+        fragment: Option<&str>,
+        raster: Raster<'_>,
     ) -> Result<wgpu::RenderPipeline, RenderError> {
-        let device = self.device();
-        self.inner.compiled.fetch_add(1, Ordering::Relaxed);
-        checked(device, descriptor.label, || {
-            let layouts: Vec<Option<&wgpu::BindGroupLayout>> =
-                layouts.iter().map(|&l| Some(l)).collect();
-            let targets: Vec<Option<wgpu::ColorTargetState>> =
-                descriptor.color.into_iter().map(Some).collect();
-            let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some(descriptor.label),
-                bind_group_layouts: &layouts,
-                immediate_size: 0,
-            });
+        let program = self.program(vertex, fragment)?;
+        let device = self.cache.device();
+        let targets: Vec<Option<wgpu::ColorTargetState>> =
+            raster.color.into_iter().map(Some).collect();
+        checked(device, vertex, || {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(descriptor.label),
-                layout: Some(&pipeline_layout),
+                label: Some(vertex),
+                layout: Some(&self.pipeline_layout(program)),
                 vertex: wgpu::VertexState {
-                    module: descriptor.module,
-                    entry_point: Some(descriptor.vertex),
+                    module: &self.module,
+                    entry_point: Some(vertex),
                     compilation_options: Default::default(),
-                    buffers: descriptor.buffers,
+                    buffers: raster.buffers,
                 },
-                primitive: descriptor.primitive,
-                depth_stencil: descriptor.depth_stencil,
-                multisample: descriptor.multisample,
-                fragment: descriptor.fragment.map(|entry| wgpu::FragmentState {
-                    module: descriptor.module,
+                primitive: raster.primitive,
+                depth_stencil: raster.depth_stencil,
+                multisample: raster.multisample,
+                fragment: fragment.map(|entry| wgpu::FragmentState {
+                    module: &self.module,
                     entry_point: Some(entry),
                     compilation_options: Default::default(),
                     targets: &targets,
@@ -248,129 +245,6 @@ impl Pipelines {
                 multiview_mask: None,
                 cache: None,
             })
-        })
-    }
-}
-
-/// What a render pipeline differs in; everything else is shared by all of the renderer's pipelines.
-pub(crate) struct RenderPipeline<'a> {
-    pub(crate) label: &'a str,
-    pub(crate) module: &'a wgpu::ShaderModule,
-    pub(crate) vertex: &'a str,
-    /// `None`: a depth-only pipeline for a pass of the renderer's own without colour.
-    pub(crate) fragment: Option<&'a str>,
-    pub(crate) buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
-    pub(crate) primitive: wgpu::PrimitiveState,
-    pub(crate) depth_stencil: Option<wgpu::DepthStencilState>,
-    pub(crate) multisample: wgpu::MultisampleState,
-    pub(crate) color: Option<wgpu::ColorTargetState>,
-}
-
-/// `cell`'s value, created by `create` the first time. (A race may create it twice; one is kept.)
-fn get_or_create<T>(
-    cell: &OnceLock<Arc<T>>,
-    create: impl FnOnce() -> Result<T, RenderError>,
-) -> Result<Arc<T>, RenderError> {
-    if let Some(value) = cell.get() {
-        return Ok(value.clone());
-    }
-    let value = Arc::new(create()?);
-    Ok(cell.get_or_init(|| value).clone())
-}
-
-/// How a pass uses a binding.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Access {
-    /// A read-only storage buffer.
-    Read,
-    /// A read-write storage buffer.
-    Write,
-    /// A uniform buffer.
-    Uniform,
-    /// A uniform buffer of per-instance blocks, bound at a dynamic offset.
-    Instance,
-}
-
-impl Access {
-    fn entry(self, binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
-        let ty = match self {
-            Self::Read => wgpu::BufferBindingType::Storage { read_only: true },
-            Self::Write => wgpu::BufferBindingType::Storage { read_only: false },
-            Self::Uniform | Self::Instance => wgpu::BufferBindingType::Uniform,
-        };
-        wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility,
-            ty: wgpu::BindingType::Buffer {
-                ty,
-                has_dynamic_offset: self == Self::Instance,
-                min_binding_size: None,
-            },
-            count: None,
-        }
-    }
-}
-
-/// The buffer bindings of one pass: the layout is made once per device ([`Pipelines::layout`]), the
-/// group once per renderer ([`BindingSet::group`]) from buffers found by binding number.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct BindingSet {
-    pub(crate) label: &'static str,
-    pub(crate) stages: wgpu::ShaderStages,
-    pub(crate) entries: &'static [(u32, Access)],
-}
-
-impl BindingSet {
-    /// The bind group of this set over `buffers` (binding number, buffer), which must hold every
-    /// binding of the set.
-    pub(crate) fn group(
-        &self,
-        device: &wgpu::Device,
-        layout: &wgpu::BindGroupLayout,
-        buffers: &[(u32, &wgpu::Buffer)],
-    ) -> wgpu::BindGroup {
-        self.group_with_window(device, layout, buffers, None)
-    }
-
-    /// As [`group`](Self::group), with one binding bound to a window of its buffer.
-    pub(crate) fn group_with_window(
-        &self,
-        device: &wgpu::Device,
-        layout: &wgpu::BindGroupLayout,
-        buffers: &[(u32, &wgpu::Buffer)],
-        window: Option<(u32, wgpu::BufferBinding<'_>)>,
-    ) -> wgpu::BindGroup {
-        let entries: Vec<wgpu::BindGroupEntry> = self
-            .entries
-            .iter()
-            .filter_map(|&(binding, access)| {
-                if let Some((windowed, part)) = &window
-                    && *windowed == binding
-                {
-                    let resource = wgpu::BindingResource::Buffer(part.clone());
-                    return Some(wgpu::BindGroupEntry { binding, resource });
-                }
-                let (_, buffer) = buffers.iter().find(|(b, _)| *b == binding)?;
-                let resource = if access == Access::Instance {
-                    // One block, placed by the dynamic offset.
-                    wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                        buffer,
-                        offset: 0,
-                        size: std::num::NonZeroU64::new(
-                            std::mem::size_of::<super::layout::Frame>() as u64,
-                        ),
-                    })
-                } else {
-                    buffer.as_entire_binding()
-                };
-                Some(wgpu::BindGroupEntry { binding, resource })
-            })
-            .collect();
-        debug_assert_eq!(entries.len(), self.entries.len(), "{}", self.label);
-        device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some(self.label),
-            layout,
-            entries: &entries,
         })
     }
 }

@@ -16,7 +16,7 @@
 use glam::{Mat4, Vec3};
 
 use super::layout::MAX_INSTANCES;
-use super::techniques::{self, Drawn, FrameContext, TechniqueFrame};
+use super::techniques::{self, Drawn, FrameContext, FrameOptions, Module, TechniqueFrame};
 use super::{Camera, EdgeColors, EdgeStyle, GpuAsset, Pipelines, RenderError, Technique};
 
 /// One drawn copy of an asset: where it is and, optionally, its own colours.
@@ -117,7 +117,10 @@ pub struct FrameViews<'a> {
 #[derive(Debug)]
 pub struct SceneRenderer {
     pipelines: Pipelines,
-    frame: Option<(Technique, Box<dyn TechniqueFrame>)>,
+    /// The frame state of the module in use (by its id).
+    frame: Option<(std::any::TypeId, Box<dyn TechniqueFrame>)>,
+    /// The technique of the last frame prepared.
+    technique: Option<Technique>,
     first_slots: u64,
     stats: SceneStats,
 }
@@ -138,6 +141,7 @@ impl SceneRenderer {
         Self {
             pipelines: pipelines.clone(),
             frame: None,
+            technique: None,
             first_slots: slots,
             stats: SceneStats::default(),
         }
@@ -157,6 +161,24 @@ impl SceneRenderer {
         instances: &[Instance<'_>],
         style: &EdgeStyle,
     ) -> Result<Prepared<'_>, RenderError> {
+        let module = techniques::module(&style.technique);
+        self.prepare_module(module, queue, encoder, camera, instances, style)
+    }
+
+    /// [`prepare`](Self::prepare) with the technique of `module`: the one path every technique
+    /// takes, and the extension point a technique outside [`Technique`]'s list uses.
+    pub(crate) fn prepare_module(
+        &mut self,
+        module: &'static dyn Module,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        camera: &Camera,
+        instances: &[Instance<'_>],
+        style: &EdgeStyle,
+    ) -> Result<Prepared<'_>, RenderError> {
+        // What the technique needs of the target is checked every frame, whether its state is
+        // made or kept: a frame kept from another technique of the module proves nothing.
+        techniques::check_target(module, &style.technique, self.pipelines.target())?;
         let view_projection = camera.view_projection();
         let drawn: Vec<Drawn<'_>> = instances
             .iter()
@@ -184,29 +206,19 @@ impl SceneRenderer {
             instances: instances.len() as u32,
             culled: (instances.len() - drawn.len()) as u32,
         };
-        // A frame serves every parameter of its technique that needs the same per-asset data.
-        let same_kind = self.frame.as_ref().is_some_and(|(t, _)| {
-            std::mem::discriminant(t) == std::mem::discriminant(&style.technique)
-                && t.needs() == style.technique.needs()
-        });
-        if !same_kind {
+        // A module's frame serves every technique of the module.
+        if self.frame.as_ref().is_none_or(|(id, _)| *id != module.id()) {
             // Free the old technique's state before making the new one.
             self.frame = None;
-            let frame = match style.technique {
-                Technique::Joined if self.first_slots > 0 => Box::new(
-                    techniques::joined::Frame::with_capacity(&self.pipelines, self.first_slots)?,
-                ),
-                technique => techniques::new_frame(&self.pipelines, &technique)?,
+            let options = FrameOptions {
+                first_slots: self.first_slots,
             };
-            self.frame = Some((style.technique, frame));
+            self.frame = Some((module.id(), module.new_frame(&self.pipelines, &options)?));
         }
-        let Some((technique, frame)) = self.frame.as_mut() else {
-            return Err(RenderError::Unsupported {
-                technique: style.technique.name(),
-                why: "its frame state could not be made".into(),
-            });
+        let Some((_, frame)) = self.frame.as_mut() else {
+            return Err(RenderError::Internal("the frame state was not made".into()));
         };
-        *technique = style.technique;
+        self.technique = Some(style.technique);
         let cx = FrameContext {
             pipelines: &self.pipelines,
             queue,
@@ -233,7 +245,7 @@ impl SceneRenderer {
         device: &wgpu::Device,
         queue: &wgpu::Queue,
     ) -> Result<DrawCounts, RenderError> {
-        let Some((technique, frame)) = &self.frame else {
+        let (Some((_, frame)), Some(technique)) = (&self.frame, &self.technique) else {
             return Err(RenderError::Unsupported {
                 technique: "SceneRenderer::read_counts",
                 why: "no frame was prepared yet".into(),

@@ -1,12 +1,12 @@
 //! The one switch between edge techniques: [`Technique`], set in [`EdgeStyle::technique`].
 //!
-//! Each variant is drawn by its own module in `techniques/` with its own shader file; the core
-//! knows only what each technique declares it needs ([`Technique::needs`]: per-asset data; a stencil
-//! buffer; a pass after the application's).
+//! Each variant is drawn by its own module in `techniques/` with its own shader file, which declares
+//! what it needs ([`Technique::needs`]: per-asset data; a stencil buffer; a pass after the
+//! application's). `docs/techniques.md` lists the four files a new technique touches.
 //!
 //! [`EdgeStyle::technique`]: super::EdgeStyle::technique
 
-use super::AssetExtras;
+use super::{AssetExtras, techniques};
 
 /// Which technique draws the edges. [`Technique::Joined`] is the default and the one the asset is
 /// made for; the others are the seeds' alternatives, kept so they can be chosen and compared.
@@ -430,36 +430,18 @@ impl Technique {
     /// What an asset must be uploaded with for this technique (see [`GpuAsset::for_techniques`]).
     ///
     /// [`GpuAsset::for_techniques`]: super::GpuAsset::for_techniques
-    pub const fn needs(&self) -> AssetExtras {
-        match self {
-            Self::Joined => AssetExtras::NONE,
-            Self::McGuireHughes | Self::HalfHex | Self::Plug | Self::HalfHexPlug | Self::House => {
-                AssetExtras::VERTEX_NORMALS
-            }
-            Self::Fins { .. } => AssetExtras::FIN_CORNERS,
-            Self::Wireframe {
-                feature_only: true, ..
-            } => AssetExtras::TRIANGLE_EDGES,
-            Self::InvertedHull { .. } => AssetExtras::VERTEX_NORMALS,
-            Self::Wireframe { .. }
-            | Self::Hardware(_)
-            | Self::SurfaceAngle { .. }
-            | Self::Hybrid(_)
-            | Self::ImageSpace(_) => AssetExtras::NONE,
-        }
+    pub fn needs(&self) -> AssetExtras {
+        techniques::module(self).needs(self)
     }
 
     /// True if the technique works after the application's pass, in
     /// [`Prepared::finish`](super::Prepared::finish), and reads its depth.
-    pub const fn is_post_process(&self) -> bool {
-        matches!(self, Self::Hybrid(_) | Self::ImageSpace(_))
+    pub fn is_post_process(&self) -> bool {
+        techniques::module(self).is_post_process()
     }
 
     /// True if the technique needs a stencil aspect in the target's depth format.
-    pub const fn needs_stencil(&self) -> bool {
-        match self {
-            Self::Hardware(method) => method.needs_stencil(),
-            _ => false,
-        }
+    pub fn needs_stencil(&self) -> bool {
+        techniques::module(self).needs_stencil(self)
     }
 }

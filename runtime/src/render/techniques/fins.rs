@@ -3,115 +3,108 @@
 //! face whose edge is a silhouette or a crease, extruded along that face's corner normals, crease
 //! fins biased towards the camera (Listing 3).
 
-use std::sync::Arc;
+use super::pulled::{Pull, PullModule};
+use super::{Drawn, FrameContext};
+use crate::render::bindings::{Bindings, FRAME, PARAMS, asset};
+use crate::render::layout::{Layout, layout};
+use crate::render::modules::{Program, Shader};
+use crate::render::pipelines::{PipelineSet, Raster};
+use crate::render::{GpuAsset, Pipelines, RenderError, Target, Technique};
 
-use super::{FrameContext, Pulled, TechniqueFrame, extra, pulled_pipeline};
-use crate::render::pipelines::{Access, BindingSet};
-use crate::render::{Pipelines as Cache, RenderError, Technique, modules};
+pub(crate) static MODULE: PullModule<Fins> = PullModule::new();
 
-const SET: BindingSet = BindingSet {
-    label: "fins",
-    stages: wgpu::ShaderStages::VERTEX_FRAGMENT,
-    entries: &[
-        (0, Access::Instance),
-        (1, Access::Read),
-        (2, Access::Read),
-        (3, Access::Read),
-        (5, Access::Read),
-        (6, Access::Read),
+const BINDINGS: Bindings = Bindings::draw(
+    "fins",
+    &[
+        FRAME,
+        PARAMS,
+        asset::TOPOLOGY,
+        asset::EDGE_VERTICES,
+        asset::ATTRIBUTES,
+        asset::RENDER_NORMALS,
+        asset::FIN_CORNERS,
     ],
-};
+);
+
+/// `FinParams` in `shaders/fins.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct FinParams {
+    thickness: f32,
+    in_pixels: u32,
+    z_bias: f32,
+    _pad: u32,
+}
+
+pub(crate) struct Fins;
+
+fn shader() -> Shader {
+    use chamfer_shaders as wgsl;
+    Shader::new(
+        "fins.wgsl",
+        &[wgsl::COMMON, wgsl::FLAT, wgsl::FINS],
+        vec![Program::draw("fin_vertex", "flat_fragment", &BINDINGS)],
+    )
+}
 
 /// The fin pipeline, per device and target.
 #[derive(Debug)]
-pub(crate) struct Pipelines {
-    layout: wgpu::BindGroupLayout,
+pub(crate) struct FinPipelines {
     fins: wgpu::RenderPipeline,
 }
 
-impl Pipelines {
-    pub(crate) fn new(cache: &Cache) -> Result<Self, RenderError> {
-        let layout = cache.layout(&SET);
-        let module = cache.module("fins.wgsl", &modules::fins())?;
-        let fins = pulled_pipeline(
-            cache,
-            &layout,
-            "fins",
-            &module,
-            "fin_vertex",
-            "flat_fragment",
-        )?;
-        Ok(Self { layout, fins })
-    }
-}
-
-/// A frame.
-#[derive(Debug)]
-pub(crate) struct Frame {
-    pipelines: Arc<Pipelines>,
-    pulled: Pulled,
-}
-
-impl Frame {
-    pub(crate) fn new(cache: &Cache) -> Result<Self, RenderError> {
+impl PipelineSet for FinPipelines {
+    fn new(cache: &Pipelines) -> Result<Self, RenderError> {
+        let shader = shader();
+        let compiled = cache.compile(&shader)?;
         Ok(Self {
-            pipelines: cache.fins()?,
-            pulled: Pulled::new(cache, "fins"),
+            fins: compiled.render(
+                "fin_vertex",
+                Some("flat_fragment"),
+                Raster::over_mesh(cache.target()),
+            )?,
         })
     }
 }
 
-impl TechniqueFrame for Frame {
-    fn prepare(
-        &mut self,
-        cx: &FrameContext<'_>,
-        _encoder: &mut wgpu::CommandEncoder,
-    ) -> Result<(), RenderError> {
-        let technique = cx.style.technique;
+impl Pull for Fins {
+    type Params = FinParams;
+    type Pipelines = FinPipelines;
+    type Draw = ();
+    const BINDINGS: &'static Bindings = &BINDINGS;
+
+    fn shaders(_target: &Target) -> Vec<Shader> {
+        vec![shader()]
+    }
+
+    fn structs() -> Vec<Layout> {
+        vec![layout!(
+            "FinParams",
+            FinParams,
+            [thickness, in_pixels, z_bias, _pad]
+        )]
+    }
+
+    fn params(cx: &FrameContext<'_>, drawn: &Drawn<'_>) -> Option<FinParams> {
         let Technique::Fins {
             world_thickness,
             z_bias,
-        } = technique
+        } = cx.style.technique
         else {
-            return Err(super::mismatch(cx));
+            return None;
         };
         let finite = |v: f32| if v.is_finite() { v } else { 0.0 };
-        self.pulled.prepare(
-            cx,
-            &self.pipelines.layout,
-            &SET,
-            |d, i| {
-                let [lo, hi] = d.asset.bounds().map(glam::Vec3::from);
-                let mut uniform = super::frame_uniform(cx, d, i, 0);
-                uniform.params = match world_thickness {
-                    Some(t) => [finite(t), 0.0, 0.0, 0.0],
-                    None => [cx.style.width(), 1.0, 0.0, 0.0],
-                };
-                uniform.params[2] = finite(z_bias.unwrap_or(2e-3 * (hi - lo).length()));
-                uniform
-            },
-            |asset| {
-                let corners = extra(&asset.fin_corners, &technique, "AssetExtras::FIN_CORNERS")?;
-                Ok(vec![
-                    (1, asset.topology_positions.clone()),
-                    (2, asset.whole_edge_vertices()?.clone()),
-                    (3, asset.edge_attributes.clone()),
-                    (5, asset.render_normals.clone()),
-                    (6, corners),
-                ])
-            },
-        )
+        let [lo, hi] = drawn.asset.bounds().map(glam::Vec3::from);
+        Some(FinParams {
+            thickness: finite(world_thickness.unwrap_or(cx.style.width())),
+            in_pixels: u32::from(world_thickness.is_none()),
+            z_bias: finite(z_bias.unwrap_or(2e-3 * (hi - lo).length())),
+            _pad: 0,
+        })
     }
 
-    fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
-        let pipeline = &self.pipelines.fins;
-        self.pulled.each(pass, |pass, asset| {
-            pass.set_pipeline(pipeline);
-            pass.draw(0..12, 0..asset.edge_count);
-        });
-    }
-
-    fn gpu_bytes(&self) -> u64 {
-        self.pulled.gpu_bytes()
+    fn draw(set: &FinPipelines, _: (), pass: &mut wgpu::RenderPass<'_>, asset: &GpuAsset) {
+        pass.set_pipeline(&set.fins);
+        pass.draw(0..12, 0..asset.edge_count);
     }
 }

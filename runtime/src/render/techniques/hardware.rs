@@ -8,46 +8,113 @@
 
 use std::sync::Arc;
 
-use super::surface_angle::mesh_buffers;
-use super::{FrameContext, PerAsset, Pulled, TechniqueFrame};
-use crate::render::pipelines::{Access, BindingSet, RenderPipeline};
+use super::pulled::Instances;
+use super::{FrameContext, FrameOptions, Module, PerAsset, TechniqueFrame};
+use crate::render::bindings::{Binding, Bindings, FRAME, Kind, PARAMS, asset};
+use crate::render::gpu_asset::vertex_layouts;
+use crate::render::layout::{Layout, layout};
+use crate::render::modules::{Program, Shader};
+use crate::render::pipelines::{PipelineSet, Raster};
 use crate::render::target::checked;
-use crate::render::{HardwareContour, Pipelines as Cache, RenderError, Technique, modules};
-
-const SET: BindingSet = BindingSet {
-    label: "hardware contours",
-    stages: wgpu::ShaderStages::VERTEX_FRAGMENT,
-    entries: &[(0, Access::Instance), (5, Access::Read), (7, Access::Read)],
+use crate::render::{
+    AssetExtras, HardwareContour, Pipelines as Cache, RenderError, Target, Technique,
 };
 
-/// The format of the back faces' depth (Raskar's second depth buffer).
-const BACK_DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+pub(crate) static MODULE: Hardware = Hardware;
 
-/// Every pass of every method, per device and target.
-#[derive(Debug)]
-pub(crate) struct Pipelines {
-    layout: wgpu::BindGroupLayout,
-    valley_layout: wgpu::BindGroupLayout,
-    /// The mesh into depth only (§4.1, Rossignac–van Emmerik's first step).
-    depth_only: wgpu::RenderPipeline,
-    wire: wgpu::RenderPipeline,
-    back: wgpu::RenderPipeline,
-    fat: wgpu::RenderPipeline,
-    ridges: wgpu::RenderPipeline,
-    valleys: wgpu::RenderPipeline,
-    /// The back faces into the frame's own depth texture (Raskar's second depth buffer).
-    back_depth: wgpu::RenderPipeline,
-    /// Stencil passes, where the target has a stencil aspect.
-    stencil: Option<StencilPipelines>,
+const BINDINGS: Bindings = Bindings::draw(
+    "hardware contours",
+    &[FRAME, PARAMS, asset::RENDER_POSITIONS, asset::MESH_INDICES],
+);
+/// The back faces' depth (Raskar's second depth buffer, the frame's own).
+const BACK_DEPTH: Binding = Binding::new(16, "back_depth", Kind::Depth);
+const VALLEY_BINDINGS: Bindings = Bindings::draw(
+    "raskar valleys",
+    &[
+        FRAME,
+        PARAMS,
+        asset::RENDER_POSITIONS,
+        asset::MESH_INDICES,
+        BACK_DEPTH,
+    ],
+);
+
+/// The format of the back faces' depth.
+const BACK_DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// `HardwareParams` in `shaders/hardware.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct HardwareParams {
+    back_only: u32,
+    offset_px: f32,
+    crease_angle: f32,
+    _pad: u32,
 }
 
-#[derive(Debug)]
-struct StencilPipelines {
-    clear: wgpu::RenderPipeline,
-    shifted: wgpu::RenderPipeline,
-    shifted_cover: wgpu::RenderPipeline,
-    lines: wgpu::RenderPipeline,
-    lines_cover: wgpu::RenderPipeline,
+/// The module.
+pub(crate) struct Hardware;
+
+fn shader() -> Shader {
+    use chamfer_shaders as wgsl;
+    let flat = |vertex| Program::draw(vertex, "flat_fragment", &BINDINGS);
+    let stencil = |vertex| Program::draw(vertex, "stencil_only", &BINDINGS);
+    Shader::new(
+        "hardware.wgsl",
+        &[wgsl::COMMON, wgsl::FLAT, wgsl::TRIANGLES, wgsl::HARDWARE],
+        vec![
+            stencil("hw_depth_vertex"),
+            Program::depth_only("hw_depth_vertex", &BINDINGS),
+            flat("hw_wire_vertex"),
+            flat("hw_back_vertex"),
+            flat("hw_fat_vertex"),
+            flat("hw_crease_vertex"),
+            Program::draw("hw_crease_vertex", "valley_fragment", &VALLEY_BINDINGS),
+            stencil("fullscreen_vertex"),
+            flat("fullscreen_vertex"),
+            stencil("hw_shift_vertex"),
+            stencil("hw_line_vertex"),
+        ],
+    )
+}
+
+impl Module for Hardware {
+    fn shaders(&self, _target: &Target) -> Vec<Shader> {
+        vec![shader()]
+    }
+
+    fn structs(&self) -> Vec<Layout> {
+        vec![layout!(
+            "HardwareParams",
+            HardwareParams,
+            [back_only, offset_px, crease_angle, _pad]
+        )]
+    }
+
+    fn needs(&self, _technique: &Technique) -> AssetExtras {
+        AssetExtras::NONE
+    }
+
+    fn needs_stencil(&self, technique: &Technique) -> bool {
+        matches!(technique, Technique::Hardware(method) if method.needs_stencil())
+    }
+
+    fn new_frame(
+        &self,
+        cache: &Cache,
+        _options: &FrameOptions,
+    ) -> Result<Box<dyn TechniqueFrame>, RenderError> {
+        Ok(Box::new(Frame {
+            pipelines: cache.get::<HardwarePipelines>()?,
+            layout: cache.layout(&BINDINGS),
+            valley_layout: cache.layout(&VALLEY_BINDINGS),
+            instances: Instances::new(cache, "hardware contours"),
+            method: HardwareContour::BackFaces,
+            back_depth: None,
+            valley_groups: PerAsset::default(),
+            valleys: Vec::new(),
+        }))
+    }
 }
 
 /// A stencil state doing `op` where `compare` passes against the reference under `read_mask`.
@@ -70,111 +137,50 @@ fn stencil(
     }
 }
 
-impl Pipelines {
-    pub(crate) fn new(cache: &Cache) -> Result<Self, RenderError> {
-        let layout = cache.layout(&SET);
-        let valley_layout =
-            cache
-                .device()
-                .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                    label: Some("raskar valleys"),
-                    entries: &[
-                        wgpu::BindGroupLayoutEntry {
-                            binding: 0,
-                            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-                            ty: wgpu::BindingType::Buffer {
-                                ty: wgpu::BufferBindingType::Uniform,
-                                has_dynamic_offset: true,
-                                min_binding_size: None,
-                            },
-                            count: None,
-                        },
-                        buffer_entry(5, wgpu::BufferBindingType::Storage { read_only: true }),
-                        buffer_entry(7, wgpu::BufferBindingType::Storage { read_only: true }),
-                        wgpu::BindGroupLayoutEntry {
-                            binding: 9,
-                            visibility: wgpu::ShaderStages::FRAGMENT,
-                            ty: wgpu::BindingType::Texture {
-                                sample_type: wgpu::TextureSampleType::Depth,
-                                view_dimension: wgpu::TextureViewDimension::D2,
-                                multisampled: false,
-                            },
-                            count: None,
-                        },
-                    ],
-                });
-        let module = cache.module("hardware.wgsl", &modules::hardware())?;
+/// Every pass of every method, per device and target.
+#[derive(Debug)]
+pub(crate) struct HardwarePipelines {
+    /// The mesh into depth only (§4.1, Rossignac–van Emmerik's first step).
+    depth_only: wgpu::RenderPipeline,
+    wire: wgpu::RenderPipeline,
+    back: wgpu::RenderPipeline,
+    fat: wgpu::RenderPipeline,
+    ridges: wgpu::RenderPipeline,
+    valleys: wgpu::RenderPipeline,
+    /// The back faces into the frame's own depth texture (Raskar's second depth buffer).
+    back_depth: wgpu::RenderPipeline,
+    /// Stencil passes, where the target has a stencil aspect.
+    stencil: Option<StencilPipelines>,
+}
+
+#[derive(Debug)]
+struct StencilPipelines {
+    clear: wgpu::RenderPipeline,
+    shifted: wgpu::RenderPipeline,
+    shifted_cover: wgpu::RenderPipeline,
+    lines: wgpu::RenderPipeline,
+    lines_cover: wgpu::RenderPipeline,
+}
+
+impl PipelineSet for HardwarePipelines {
+    fn new(cache: &Cache) -> Result<Self, RenderError> {
+        let shader = shader();
+        let compiled = cache.compile(&shader)?;
         let target = *cache.target();
         let no_color = wgpu::ColorTargetState {
             format: target.color_format,
             blend: None,
             write_mask: wgpu::ColorWrites::empty(),
         };
-        let pipeline = |label,
-                        layout: &wgpu::BindGroupLayout,
-                        vertex,
-                        fragment,
-                        topology,
-                        depth_stencil,
-                        color| {
-            cache.render_pipeline(
-                &[layout],
-                RenderPipeline {
-                    label,
-                    module: &module,
-                    vertex,
-                    fragment: Some(fragment),
-                    buffers: &[],
-                    primitive: wgpu::PrimitiveState {
-                        topology,
-                        ..Default::default()
-                    },
-                    depth_stencil,
-                    multisample: target.multisample(),
-                    color: Some(color),
-                },
-            )
+        let triangles = |depth_stencil, color| Raster {
+            depth_stencil,
+            color: Some(color),
+            ..Raster::over_mesh(&target)
         };
-        let triangles = wgpu::PrimitiveTopology::TriangleList;
-        let less_equal = target.depth(false, wgpu::CompareFunction::LessEqual);
+        let less_equal = || target.depth(false, wgpu::CompareFunction::LessEqual);
         let drawn = target.blended_color();
-        let depth_only = cache.render_pipeline(
-            &[&layout],
-            RenderPipeline {
-                label: "mesh depth",
-                module: &module,
-                vertex: "hw_depth_vertex",
-                fragment: Some("stencil_only"),
-                buffers: &mesh_buffers()[..1],
-                primitive: wgpu::PrimitiveState::default(),
-                depth_stencil: target.depth(true, wgpu::CompareFunction::Less),
-                multisample: target.multisample(),
-                color: Some(no_color.clone()),
-            },
-        )?;
-        let back_depth = cache.render_pipeline(
-            &[&layout],
-            RenderPipeline {
-                label: "back faces' depth",
-                module: &module,
-                vertex: "hw_depth_vertex",
-                fragment: None,
-                buffers: &mesh_buffers()[..1],
-                primitive: wgpu::PrimitiveState {
-                    cull_mode: Some(wgpu::Face::Front),
-                    ..Default::default()
-                },
-                depth_stencil: Some(wgpu::DepthStencilState {
-                    format: BACK_DEPTH,
-                    depth_write_enabled: Some(true),
-                    depth_compare: Some(target.nearer(wgpu::CompareFunction::Less)),
-                    stencil: wgpu::StencilState::default(),
-                    bias: wgpu::DepthBiasState::default(),
-                }),
-                multisample: wgpu::MultisampleState::default(),
-                color: None,
-            },
-        )?;
+        let flat = |vertex, raster| compiled.render(vertex, Some("flat_fragment"), raster);
+        let stencil_only = |vertex, raster| compiled.render(vertex, Some("stencil_only"), raster);
         let stencil_pipelines = if target.has_stencil() {
             use wgpu::CompareFunction::{Always, Equal};
             use wgpu::StencilOperation::{IncrementClamp, Invert, Keep, Replace};
@@ -182,125 +188,83 @@ impl Pipelines {
                 target.depth_with_stencil(false, Always, stencil(compare, op, mask))
             };
             Some(StencilPipelines {
-                clear: pipeline(
-                    "stencil clear",
-                    &layout,
+                clear: stencil_only(
                     "fullscreen_vertex",
-                    "stencil_only",
-                    triangles,
-                    with(Always, Replace, 0xff),
-                    no_color.clone(),
+                    triangles(with(Always, Replace, 0xff), no_color.clone()),
                 )?,
-                shifted: pipeline(
-                    "shifted mesh stencil",
-                    &layout,
+                shifted: stencil_only(
                     "hw_shift_vertex",
-                    "stencil_only",
-                    triangles,
-                    with(Always, IncrementClamp, 0xff),
-                    no_color.clone(),
+                    triangles(with(Always, IncrementClamp, 0xff), no_color.clone()),
                 )?,
-                shifted_cover: pipeline(
-                    "shifted stencil cover",
-                    &layout,
+                shifted_cover: flat(
                     "fullscreen_vertex",
-                    "flat_fragment",
-                    triangles,
-                    with(Equal, Keep, 2),
-                    drawn.clone(),
+                    triangles(with(Equal, Keep, 2), drawn.clone()),
                 )?,
-                lines: pipeline(
-                    "front wireframe stencil",
-                    &layout,
+                lines: stencil_only(
                     "hw_line_vertex",
-                    "stencil_only",
-                    wgpu::PrimitiveTopology::LineList,
-                    target.depth_with_stencil(
-                        false,
-                        wgpu::CompareFunction::LessEqual,
-                        stencil(Always, Invert, 0xff),
-                    ),
-                    no_color,
+                    Raster {
+                        primitive: wgpu::PrimitiveState {
+                            topology: wgpu::PrimitiveTopology::LineList,
+                            ..Default::default()
+                        },
+                        ..triangles(
+                            target.depth_with_stencil(
+                                false,
+                                wgpu::CompareFunction::LessEqual,
+                                stencil(Always, Invert, 0xff),
+                            ),
+                            no_color.clone(),
+                        )
+                    },
                 )?,
-                lines_cover: pipeline(
-                    "inverted stencil cover",
-                    &layout,
+                lines_cover: flat(
                     "fullscreen_vertex",
-                    "flat_fragment",
-                    triangles,
-                    with(Equal, Keep, 1),
-                    drawn.clone(),
+                    triangles(with(Equal, Keep, 1), drawn.clone()),
                 )?,
             })
         } else {
             None
         };
         Ok(Self {
-            depth_only,
-            wire: pipeline(
-                "wireframe quads",
-                &layout,
-                "hw_wire_vertex",
-                "flat_fragment",
-                triangles,
-                less_equal.clone(),
-                drawn.clone(),
+            depth_only: stencil_only(
+                "hw_depth_vertex",
+                Raster {
+                    buffers: &vertex_layouts()[..1],
+                    ..triangles(target.depth(true, wgpu::CompareFunction::Less), no_color)
+                },
             )?,
-            back: pipeline(
-                "back faces",
-                &layout,
-                "hw_back_vertex",
-                "flat_fragment",
-                triangles,
-                less_equal.clone(),
-                drawn.clone(),
-            )?,
-            fat: pipeline(
-                "fattened back faces",
-                &layout,
-                "hw_fat_vertex",
-                "flat_fragment",
-                triangles,
-                less_equal.clone(),
-                drawn.clone(),
-            )?,
-            ridges: pipeline(
-                "ridge quads",
-                &layout,
-                "hw_crease_vertex",
-                "flat_fragment",
-                triangles,
-                less_equal,
-                drawn.clone(),
-            )?,
+            wire: flat("hw_wire_vertex", triangles(less_equal(), drawn.clone()))?,
+            back: flat("hw_back_vertex", triangles(less_equal(), drawn.clone()))?,
+            fat: flat("hw_fat_vertex", triangles(less_equal(), drawn.clone()))?,
+            ridges: flat("hw_crease_vertex", triangles(less_equal(), drawn.clone()))?,
             // Valleys draw where they lie behind the front surface: the depth test reversed.
-            valleys: pipeline(
-                "valley quads",
-                &valley_layout,
+            valleys: compiled.render(
                 "hw_crease_vertex",
-                "valley_fragment",
-                triangles,
-                target.depth(false, wgpu::CompareFunction::Greater),
-                drawn,
+                Some("valley_fragment"),
+                triangles(target.depth(false, wgpu::CompareFunction::Greater), drawn),
             )?,
-            back_depth,
+            back_depth: compiled.render(
+                "hw_depth_vertex",
+                None,
+                Raster {
+                    buffers: &vertex_layouts()[..1],
+                    primitive: wgpu::PrimitiveState {
+                        cull_mode: Some(wgpu::Face::Front),
+                        ..Default::default()
+                    },
+                    depth_stencil: Some(wgpu::DepthStencilState {
+                        format: BACK_DEPTH_FORMAT,
+                        depth_write_enabled: Some(true),
+                        depth_compare: Some(target.nearer(wgpu::CompareFunction::Less)),
+                        stencil: wgpu::StencilState::default(),
+                        bias: wgpu::DepthBiasState::default(),
+                    }),
+                    multisample: wgpu::MultisampleState::default(),
+                    color: None,
+                },
+            )?,
             stencil: stencil_pipelines,
-            layout,
-            valley_layout,
         })
-    }
-}
-
-fn buffer_entry(binding: u32, ty: wgpu::BufferBindingType) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-        ty: wgpu::BindingType::Buffer {
-            ty,
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
     }
 }
 
@@ -313,36 +277,20 @@ struct BackDepth {
 
 /// A frame.
 #[derive(Debug)]
-pub(crate) struct Frame {
-    pipelines: Arc<Pipelines>,
-    pulled: Pulled,
+struct Frame {
+    pipelines: Arc<HardwarePipelines>,
+    layout: wgpu::BindGroupLayout,
+    valley_layout: wgpu::BindGroupLayout,
+    instances: Instances<HardwareParams>,
     method: HardwareContour,
     back_depth: Option<BackDepth>,
     /// Per asset, its valley group over the back faces' depth (remade each frame: few assets).
     valley_groups: PerAsset<wgpu::BindGroup>,
-    /// Per instance, its valley group and block.
-    valleys: Vec<(usize, u32)>,
+    /// Per instance, its asset's valley group.
+    valleys: Vec<usize>,
 }
 
 impl Frame {
-    pub(crate) fn new(cache: &Cache, method: HardwareContour) -> Result<Self, RenderError> {
-        let pipelines = cache.hardware()?;
-        if method.needs_stencil() && pipelines.stencil.is_none() {
-            return Err(RenderError::TargetLacks {
-                technique: method.name(),
-                needs: "a depth format with a stencil aspect",
-            });
-        }
-        Ok(Self {
-            pipelines,
-            pulled: Pulled::new(cache, "hardware contours"),
-            method,
-            back_depth: None,
-            valley_groups: PerAsset::default(),
-            valleys: Vec::new(),
-        })
-    }
-
     /// Raskar's back-face depth for `size`, made or remade when the viewport changes.
     fn ensure_back_depth(&mut self, cache: &Cache, size: [u32; 2]) -> Result<(), RenderError> {
         if self.back_depth.as_ref().is_some_and(|b| b.size == size) {
@@ -360,7 +308,7 @@ impl Frame {
                 mip_level_count: 1,
                 sample_count: 1,
                 dimension: wgpu::TextureDimension::D2,
-                format: BACK_DEPTH,
+                format: BACK_DEPTH_FORMAT,
                 usage: wgpu::TextureUsages::RENDER_ATTACHMENT
                     | wgpu::TextureUsages::TEXTURE_BINDING,
                 view_formats: &[],
@@ -369,6 +317,59 @@ impl Frame {
         self.back_depth = Some(BackDepth {
             size,
             view: texture.create_view(&Default::default()),
+        });
+        Ok(())
+    }
+
+    /// Raskar's valleys: the groups over the back faces' depth, and the pass that renders it.
+    fn prepare_valleys(
+        &mut self,
+        cx: &FrameContext<'_>,
+        encoder: &mut wgpu::CommandEncoder,
+    ) -> Result<(), RenderError> {
+        let size = cx.camera.viewport.map(|v| v.max(1));
+        self.ensure_back_depth(cx.pipelines, size)?;
+        let Some(back) = &self.back_depth else {
+            return Err(super::mismatch(cx));
+        };
+        let technique = cx.style.technique.name();
+        for drawn in cx.instances {
+            let instances = &self.instances;
+            let layout = &self.valley_layout;
+            let group = self.valley_groups.index(drawn.asset, |asset| {
+                VALLEY_BINDINGS.group(cx.pipelines.device(), layout, |binding| {
+                    if binding == BACK_DEPTH {
+                        return Ok(wgpu::BindingResource::TextureView(&back.view));
+                    }
+                    match instances.block(binding) {
+                        Some(block) => Ok(block),
+                        None => asset.resource(binding, technique),
+                    }
+                })
+            })?;
+            self.valleys.push(group);
+        }
+        let far = cx.pipelines.target().far_depth();
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("back faces' depth"),
+            color_attachments: &[],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &back.view,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(far),
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&self.pipelines.back_depth);
+        self.instances.each(&mut pass, |pass, asset| {
+            pass.set_vertex_buffer(0, asset.render_positions.slice(..));
+            pass.set_index_buffer(asset.mesh_indices.slice(..), asset.index_format);
+            pass.draw_indexed(0..asset.index_count, 0, 0..1);
         });
         Ok(())
     }
@@ -385,106 +386,54 @@ impl TechniqueFrame for Frame {
         };
         self.method = method;
         let bias = cx.style.bias_px();
-        let params = match method {
-            HardwareContour::RossignacVanEmmerik => [0.0, bias, 0.0, 0.0],
-            HardwareContour::GoochWireframe => [1.0, 0.0, 0.0, 0.0],
-            HardwareContour::OffsetBackFaces => [0.0, bias, 0.0, 0.0],
+        let mut params = HardwareParams {
+            back_only: 0,
+            offset_px: 0.0,
+            crease_angle: 0.0,
+            _pad: 0,
+        };
+        match method {
+            HardwareContour::RossignacVanEmmerik | HardwareContour::OffsetBackFaces => {
+                params.offset_px = bias;
+            }
+            HardwareContour::GoochWireframe => params.back_only = 1,
             HardwareContour::Raskar { crease_deg } => {
                 let angle = if crease_deg.is_finite() {
                     crease_deg.clamp(0.0, 180.0)
                 } else {
                     30.0
                 };
-                [0.0, 0.0, 0.0, angle.to_radians()]
+                params.crease_angle = angle.to_radians();
             }
-            _ => [0.0; 4],
-        };
-        self.pulled.prepare(
+            _ => {}
+        }
+        self.instances.prepare(
             cx,
-            &self.pipelines.layout,
-            &SET,
-            |d, i| {
-                let mut uniform = super::frame_uniform(cx, d, i, 0);
-                uniform.params = params;
-                uniform
-            },
-            |asset| {
-                Ok(vec![
-                    (5, asset.render_positions.clone()),
-                    (7, asset.mesh_indices.clone()),
-                ])
-            },
+            &BINDINGS,
+            &self.layout,
+            |_| Some(params),
+            |asset, binding| asset.resource(binding, method.name()),
         )?;
         self.valley_groups.clear();
         self.valleys.clear();
         if let HardwareContour::Raskar { .. } = method {
-            let size = cx.camera.viewport.map(|v| v.max(1));
-            self.ensure_back_depth(cx.pipelines, size)?;
-            let Some(back) = &self.back_depth else {
-                return Err(super::mismatch(cx));
-            };
-            for (i, drawn) in cx.instances.iter().enumerate() {
-                let blocks = &self.pulled.blocks;
-                let layout = &self.pipelines.valley_layout;
-                let group = self.valley_groups.index(drawn.asset, |asset| {
-                    Ok(cx
-                        .pipelines
-                        .device()
-                        .create_bind_group(&wgpu::BindGroupDescriptor {
-                            label: Some("raskar valleys"),
-                            layout,
-                            entries: &[
-                                wgpu::BindGroupEntry {
-                                    binding: 0,
-                                    resource: blocks.binding(),
-                                },
-                                wgpu::BindGroupEntry {
-                                    binding: 5,
-                                    resource: asset.render_positions.as_entire_binding(),
-                                },
-                                wgpu::BindGroupEntry {
-                                    binding: 7,
-                                    resource: asset.mesh_indices.as_entire_binding(),
-                                },
-                                wgpu::BindGroupEntry {
-                                    binding: 9,
-                                    resource: wgpu::BindingResource::TextureView(&back.view),
-                                },
-                            ],
-                        }))
-                })?;
-                self.valleys.push((group, blocks.offset(i)));
-            }
-            let far = cx.pipelines.target().far_depth();
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("back faces' depth"),
-                color_attachments: &[],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &back.view,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(far),
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: None,
-                }),
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            pass.set_pipeline(&self.pipelines.back_depth);
-            self.pulled.each(&mut pass, |pass, asset| {
-                pass.set_vertex_buffer(0, asset.render_positions.slice(..));
-                pass.set_index_buffer(asset.mesh_indices.slice(..), asset.index_format);
-                pass.draw_indexed(0..asset.index_count, 0, 0..1);
-            });
+            self.prepare_valleys(cx, encoder)?;
         }
         Ok(())
+    }
+
+    fn gpu_bytes(&self) -> u64 {
+        let back = self
+            .back_depth
+            .as_ref()
+            .map_or(0, |b| 4 * u64::from(b.size[0]) * u64::from(b.size[1]));
+        self.instances.gpu_bytes() + back
     }
 
     fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
         let p = &self.pipelines;
         match self.method {
-            HardwareContour::RossignacVanEmmerik => self.pulled.each(pass, |pass, asset| {
+            HardwareContour::RossignacVanEmmerik => self.instances.each(pass, |pass, asset| {
                 pass.set_pipeline(&p.depth_only);
                 pass.set_vertex_buffer(0, asset.render_positions.slice(..));
                 pass.set_index_buffer(asset.mesh_indices.slice(..), asset.index_format);
@@ -492,17 +441,17 @@ impl TechniqueFrame for Frame {
                 pass.set_pipeline(&p.wire);
                 pass.draw(0..18, 0..asset.index_count / 3);
             }),
-            HardwareContour::GoochWireframe => self.pulled.each(pass, |pass, asset| {
+            HardwareContour::GoochWireframe => self.instances.each(pass, |pass, asset| {
                 pass.set_pipeline(&p.wire);
                 pass.draw(0..18, 0..asset.index_count / 3);
             }),
             HardwareContour::BackFaces | HardwareContour::OffsetBackFaces => {
-                self.pulled.each(pass, |pass, asset| {
+                self.instances.each(pass, |pass, asset| {
                     pass.set_pipeline(&p.back);
                     pass.draw(0..3, 0..asset.index_count / 3);
                 })
             }
-            HardwareContour::FattenedBackFaces => self.pulled.each(pass, |pass, asset| {
+            HardwareContour::FattenedBackFaces => self.instances.each(pass, |pass, asset| {
                 pass.set_pipeline(&p.fat);
                 pass.draw(0..18, 0..asset.index_count / 3);
             }),
@@ -512,7 +461,7 @@ impl TechniqueFrame for Frame {
                     // union of what it draws.
                     pass.set_stencil_reference(0);
                     let mut first = true;
-                    self.pulled.each(pass, |pass, asset| {
+                    self.instances.each(pass, |pass, asset| {
                         if std::mem::take(&mut first) {
                             pass.set_pipeline(&s.clear);
                             pass.draw(0..3, 0..1);
@@ -536,7 +485,7 @@ impl TechniqueFrame for Frame {
                 if let Some(s) = &p.stencil {
                     pass.set_stencil_reference(0);
                     let mut first = true;
-                    self.pulled.each(pass, |pass, asset| {
+                    self.instances.each(pass, |pass, asset| {
                         if std::mem::take(&mut first) {
                             pass.set_pipeline(&s.clear);
                             pass.draw(0..3, 0..1);
@@ -553,7 +502,7 @@ impl TechniqueFrame for Frame {
                 }
             }
             HardwareContour::Raskar { .. } => {
-                self.pulled.each(pass, |pass, asset| {
+                self.instances.each(pass, |pass, asset| {
                     let triangles = asset.index_count / 3;
                     pass.set_pipeline(&p.fat);
                     pass.draw(0..18, 0..triangles);
@@ -561,22 +510,14 @@ impl TechniqueFrame for Frame {
                     pass.draw(0..18, 0..triangles);
                 });
                 // Instances past the triangle count are the valley quads.
-                for &(group, offset) in &self.valleys {
+                for ((_, offsets), &group) in self.instances.draws().zip(&self.valleys) {
                     let (asset, bind_group) = self.valley_groups.get(group);
                     let triangles = asset.index_count / 3;
-                    pass.set_bind_group(0, bind_group, &[offset]);
+                    pass.set_bind_group(0, bind_group, offsets);
                     pass.set_pipeline(&p.valleys);
                     pass.draw(0..18, triangles..2 * triangles);
                 }
             }
         }
-    }
-
-    fn gpu_bytes(&self) -> u64 {
-        let back = self
-            .back_depth
-            .as_ref()
-            .map_or(0, |b| 4 * u64::from(b.size[0]) * u64::from(b.size[1]));
-        self.pulled.gpu_bytes() + back
     }
 }

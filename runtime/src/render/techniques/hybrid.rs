@@ -5,86 +5,135 @@
 
 use std::sync::Arc;
 
-use super::post::{self, Blend, Own};
-use super::{Blocks, FrameContext, TechniqueFrame};
-use crate::render::layout::Post;
-use crate::render::pipelines::{Access, BindingSet};
-use crate::render::{FrameViews, HybridDepth, Pipelines as Cache, RenderError, Technique, modules};
+use super::post::{self, Blend, DEPTH, MESH_PASS, Own, PARAMS, POST};
+use super::{Blocks, FrameContext, FrameOptions, Module, TechniqueFrame};
+use crate::render::bindings::{Binding, Bindings, Kind};
+use crate::render::layout::{Layout, Post, layout};
+use crate::render::modules::{Program, Shader};
+use crate::render::pipelines::PipelineSet;
+use crate::render::{FrameViews, HybridDepth, Pipelines as Cache, RenderError, Target, Technique};
 
-const MASK_SET: BindingSet = BindingSet {
-    label: "hybrid mask",
-    stages: wgpu::ShaderStages::VERTEX_FRAGMENT,
-    entries: &[(0, Access::Instance)],
-};
-const MASK: wgpu::TextureFormat = wgpu::TextureFormat::R8Unorm;
+pub(crate) static MODULE: Hybrid = Hybrid;
+
+/// The object mask of `object_only`.
+const MASK: Binding = Binding::new(17, "mask", Kind::Texture);
+const BINDINGS: Bindings = Bindings::draw("hybrid", &[POST, PARAMS, DEPTH, MASK]);
+const MASK_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R8Unorm;
+
+/// `HybridParams` in `shaders/hybrid.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct HybridParams {
+    step_px: f32,
+    bleach: f32,
+    contrast: f32,
+    brightness: f32,
+    range: f32,
+    object_only: u32,
+    _pad0: u32,
+    _pad1: u32,
+}
+
+/// The module.
+pub(crate) struct Hybrid;
+
+fn shader(target: &Target) -> Shader {
+    use chamfer_shaders as wgsl;
+    Shader::new(
+        "hybrid.wgsl",
+        &[post::depth_source(target), wgsl::POST, wgsl::HYBRID],
+        vec![
+            Program::draw("post_vertex", "hybrid_fragment", &BINDINGS),
+            Program::draw("mask_vertex", "mask_fragment", &MESH_PASS),
+        ],
+    )
+}
+
+impl Module for Hybrid {
+    fn shaders(&self, target: &Target) -> Vec<Shader> {
+        vec![shader(target)]
+    }
+
+    fn structs(&self) -> Vec<Layout> {
+        vec![layout!(
+            "HybridParams",
+            HybridParams,
+            [
+                step_px,
+                bleach,
+                contrast,
+                brightness,
+                range,
+                object_only,
+                _pad0,
+                _pad1
+            ]
+        )]
+    }
+
+    fn is_post_process(&self) -> bool {
+        true
+    }
+
+    fn new_frame(
+        &self,
+        cache: &Cache,
+        _options: &FrameOptions,
+    ) -> Result<Box<dyn TechniqueFrame>, RenderError> {
+        Ok(Box::new(Frame {
+            pipelines: cache.get::<HybridPipelines>()?,
+            cache: cache.clone(),
+            uniform: post::uniform_buffer(cache, "hybrid", std::mem::size_of::<Post>()),
+            params: post::uniform_buffer(
+                cache,
+                "hybrid parameters",
+                std::mem::size_of::<HybridParams>(),
+            ),
+            blocks: Blocks::new(cache, "hybrid mask", std::mem::size_of::<Post>()),
+            mask_group: None,
+            mask: None,
+            placeholder: Own::new(cache, "hybrid mask placeholder", [1, 1], MASK_FORMAT, false)?,
+        }))
+    }
+}
 
 /// The post-process and the mask pass, per device and target.
 #[derive(Debug)]
-pub(crate) struct Pipelines {
-    layout: wgpu::BindGroupLayout,
-    mask_layout: wgpu::BindGroupLayout,
+pub(crate) struct HybridPipelines {
     hybrid: wgpu::RenderPipeline,
     mask: wgpu::RenderPipeline,
 }
 
-impl Pipelines {
-    pub(crate) fn new(cache: &Cache) -> Result<Self, RenderError> {
-        let layout = post::layout(cache, "hybrid", &[3]);
-        let mask_layout = cache.layout(&MASK_SET);
-        let multisampled = cache.target().sample_count > 1;
-        let module = cache.module("hybrid.wgsl", &modules::hybrid(multisampled))?;
+impl PipelineSet for HybridPipelines {
+    fn new(cache: &Cache) -> Result<Self, RenderError> {
+        let shader = shader(cache.target());
+        let compiled = cache.compile(&shader)?;
         Ok(Self {
-            hybrid: post::pipeline(
-                cache,
-                &layout,
-                "hybrid",
-                &module,
-                "hybrid_fragment",
-                Blend::Multiply,
-            )?,
+            hybrid: post::pipeline(&compiled, cache, "hybrid_fragment", Blend::Multiply)?,
             mask: post::own_pipeline(
+                &compiled,
                 cache,
-                &mask_layout,
-                "hybrid mask",
-                &module,
                 ("mask_vertex", "mask_fragment"),
-                MASK,
+                MASK_FORMAT,
                 false,
             )?,
-            layout,
-            mask_layout,
         })
     }
 }
 
 /// A frame: the uniform, and the object mask while it is used.
 #[derive(Debug)]
-pub(crate) struct Frame {
-    pipelines: Arc<Pipelines>,
+struct Frame {
+    pipelines: Arc<HybridPipelines>,
     cache: Cache,
     uniform: wgpu::Buffer,
+    params: wgpu::Buffer,
     /// Per instance, the mask pass's matrix.
     blocks: Blocks,
     mask_group: Option<wgpu::BindGroup>,
     mask: Option<Own>,
     /// Fills the mask binding when there is no mask (the shader reads it only with one).
     placeholder: Own,
-}
-
-impl Frame {
-    pub(crate) fn new(cache: &Cache) -> Result<Self, RenderError> {
-        let pipelines = cache.hybrid()?;
-        let uniform = post::uniform_buffer(cache, "hybrid");
-        Ok(Self {
-            pipelines,
-            cache: cache.clone(),
-            uniform,
-            blocks: Blocks::new(cache, "hybrid mask", std::mem::size_of::<Post>()),
-            mask_group: None,
-            mask: None,
-            placeholder: Own::new(cache, "hybrid mask placeholder", [1, 1], MASK, false)?,
-        })
-    }
 }
 
 fn finite(value: f32, fallback: f32) -> f32 {
@@ -101,34 +150,38 @@ impl TechniqueFrame for Frame {
             return Err(super::mismatch(cx));
         };
         let defaults = HybridDepth::EDGES;
-        let mut uniform = post::uniform(cx, u32::from(p.object_only));
-        uniform.params = [
-            finite(p.step_px, defaults.step_px).clamp(1.0, 64.0),
-            finite(p.bleach, defaults.bleach).clamp(1e-4, 1.0),
-            finite(p.contrast, defaults.contrast).clamp(0.0, 1000.0),
-            finite(p.brightness, 0.0).clamp(0.0, 2.0),
-        ];
         let share = if p.range.is_finite() && p.range > 0.0 {
             p.range
         } else {
             defaults.range
         };
-        let range = share * post::far_distance(cx);
-        uniform.more = [range, 0.0, 0.0, 0.0];
+        let params = HybridParams {
+            step_px: finite(p.step_px, defaults.step_px).clamp(1.0, 64.0),
+            bleach: finite(p.bleach, defaults.bleach).clamp(1e-4, 1.0),
+            contrast: finite(p.contrast, defaults.contrast).clamp(0.0, 1000.0),
+            brightness: finite(p.brightness, 0.0).clamp(0.0, 2.0),
+            range: share * post::far_distance(cx),
+            object_only: u32::from(p.object_only),
+            _pad0: 0,
+            _pad1: 0,
+        };
         cx.queue
-            .write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
+            .write_buffer(&self.uniform, 0, bytemuck::bytes_of(&post::uniform(cx)));
+        cx.queue
+            .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
         if p.object_only {
             let size = cx.camera.viewport.map(|v| v.max(1));
             if self.mask.as_ref().is_none_or(|m| m.size != size) {
-                self.mask = Some(Own::new(cx.pipelines, "hybrid mask", size, MASK, false)?);
+                self.mask = Some(Own::new(
+                    cx.pipelines,
+                    "hybrid mask",
+                    size,
+                    MASK_FORMAT,
+                    false,
+                )?);
             }
             let meshes = post::instance_blocks(cx, &mut self.blocks, &mut self.mask_group);
-            let group = post::block_group(
-                cx.pipelines,
-                &self.pipelines.mask_layout,
-                &self.blocks,
-                &mut self.mask_group,
-            );
+            let group = post::block_group(cx.pipelines, &self.blocks, &mut self.mask_group)?;
             if let Some(mask) = &self.mask {
                 mask.draw_meshes(cx.pipelines, encoder, &self.pipelines.mask, group, &meshes);
             }
@@ -150,14 +203,13 @@ impl TechniqueFrame for Frame {
             &self.cache,
             encoder,
             views,
-            &self.pipelines.layout,
-            &self.pipelines.hybrid,
-            &self.uniform,
-            &[(3, mask)],
+            (&BINDINGS, &self.pipelines.hybrid),
+            (&self.uniform, &self.params),
+            (MASK, mask),
         )
     }
 
     fn gpu_bytes(&self) -> u64 {
-        self.uniform.size() + self.mask.as_ref().map_or(0, Own::bytes)
+        self.uniform.size() + self.params.size() + self.mask.as_ref().map_or(0, Own::bytes)
     }
 }

@@ -5,83 +5,132 @@
 
 use std::sync::Arc;
 
-use super::post::{self, Blend, Own};
-use super::{Blocks, FrameContext, TechniqueFrame};
-use crate::render::layout::Post;
-use crate::render::pipelines::{Access, BindingSet};
-use crate::render::{FrameViews, Operator, Pipelines as Cache, RenderError, Technique, modules};
+use super::post::{self, Blend, DEPTH, MESH_PASS, Own, PARAMS, POST};
+use super::{Blocks, FrameContext, FrameOptions, Module, TechniqueFrame};
+use crate::render::bindings::{Binding, Bindings, Kind};
+use crate::render::layout::{Layout, Post, layout};
+use crate::render::modules::{Program, Shader};
+use crate::render::pipelines::PipelineSet;
+use crate::render::{FrameViews, Operator, Pipelines as Cache, RenderError, Target, Technique};
 
-const NORMAL_SET: BindingSet = BindingSet {
-    label: "normal buffer",
-    stages: wgpu::ShaderStages::VERTEX_FRAGMENT,
-    entries: &[(0, Access::Instance)],
-};
-const NORMALS: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+pub(crate) static MODULE: ImageSpace = ImageSpace;
+
+/// The normal buffer the frame draws.
+const NORMALS: Binding = Binding::new(17, "normals", Kind::Texture);
+const BINDINGS: Bindings = Bindings::draw("image-space edges", &[POST, PARAMS, DEPTH, NORMALS]);
+const NORMALS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+
+/// `ImageParams` in `shaders/image_space.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct ImageParams {
+    kernel: u32,
+    depth_threshold: f32,
+    normal_threshold: f32,
+    step_px: f32,
+    depth_scaled: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+}
+
+/// The module.
+pub(crate) struct ImageSpace;
+
+fn shader(target: &Target) -> Shader {
+    use chamfer_shaders as wgsl;
+    Shader::new(
+        "image_space.wgsl",
+        &[post::depth_source(target), wgsl::POST, wgsl::IMAGE_SPACE],
+        vec![
+            Program::draw("post_vertex", "image_fragment", &BINDINGS),
+            Program::draw("normal_vertex", "normal_fragment", &MESH_PASS),
+        ],
+    )
+}
+
+impl Module for ImageSpace {
+    fn shaders(&self, target: &Target) -> Vec<Shader> {
+        vec![shader(target)]
+    }
+
+    fn structs(&self) -> Vec<Layout> {
+        vec![layout!(
+            "ImageParams",
+            ImageParams,
+            [
+                kernel,
+                depth_threshold,
+                normal_threshold,
+                step_px,
+                depth_scaled,
+                _pad0,
+                _pad1,
+                _pad2
+            ]
+        )]
+    }
+
+    fn is_post_process(&self) -> bool {
+        true
+    }
+
+    fn new_frame(
+        &self,
+        cache: &Cache,
+        _options: &FrameOptions,
+    ) -> Result<Box<dyn TechniqueFrame>, RenderError> {
+        Ok(Box::new(Frame {
+            pipelines: cache.get::<ImagePipelines>()?,
+            cache: cache.clone(),
+            uniform: post::uniform_buffer(cache, "image-space edges", std::mem::size_of::<Post>()),
+            params: post::uniform_buffer(
+                cache,
+                "image-space parameters",
+                std::mem::size_of::<ImageParams>(),
+            ),
+            blocks: Blocks::new(cache, "normal buffer", std::mem::size_of::<Post>()),
+            normal_group: None,
+            normals: Own::new(cache, "normal buffer", [1, 1], NORMALS_FORMAT, true)?,
+        }))
+    }
+}
 
 /// The operator pass and the normal pass, per device and target.
 #[derive(Debug)]
-pub(crate) struct Pipelines {
-    layout: wgpu::BindGroupLayout,
-    normal_layout: wgpu::BindGroupLayout,
+pub(crate) struct ImagePipelines {
     operator: wgpu::RenderPipeline,
     normals: wgpu::RenderPipeline,
 }
 
-impl Pipelines {
-    pub(crate) fn new(cache: &Cache) -> Result<Self, RenderError> {
-        let layout = post::layout(cache, "image-space edges", &[2]);
-        let normal_layout = cache.layout(&NORMAL_SET);
-        let multisampled = cache.target().sample_count > 1;
-        let module = cache.module("image_space.wgsl", &modules::image_space(multisampled))?;
+impl PipelineSet for ImagePipelines {
+    fn new(cache: &Cache) -> Result<Self, RenderError> {
+        let shader = shader(cache.target());
+        let compiled = cache.compile(&shader)?;
         Ok(Self {
-            operator: post::pipeline(
-                cache,
-                &layout,
-                "image-space edges",
-                &module,
-                "image_fragment",
-                Blend::Alpha,
-            )?,
+            operator: post::pipeline(&compiled, cache, "image_fragment", Blend::Alpha)?,
             normals: post::own_pipeline(
+                &compiled,
                 cache,
-                &normal_layout,
-                "normal buffer",
-                &module,
                 ("normal_vertex", "normal_fragment"),
-                NORMALS,
+                NORMALS_FORMAT,
                 true,
             )?,
-            layout,
-            normal_layout,
         })
     }
 }
 
-/// A frame: the uniform and the normal buffer.
+/// A frame: the uniforms and the normal buffer.
 #[derive(Debug)]
-pub(crate) struct Frame {
-    pipelines: Arc<Pipelines>,
+struct Frame {
+    pipelines: Arc<ImagePipelines>,
     cache: Cache,
     uniform: wgpu::Buffer,
+    params: wgpu::Buffer,
     /// Per instance, the normal pass's matrix.
     blocks: Blocks,
     normal_group: Option<wgpu::BindGroup>,
     normals: Own,
-}
-
-impl Frame {
-    pub(crate) fn new(cache: &Cache) -> Result<Self, RenderError> {
-        let pipelines = cache.image_space()?;
-        let uniform = post::uniform_buffer(cache, "image-space edges");
-        Ok(Self {
-            normals: Own::new(cache, "normal buffer", [1, 1], NORMALS, true)?,
-            pipelines,
-            cache: cache.clone(),
-            uniform,
-            blocks: Blocks::new(cache, "normal buffer", std::mem::size_of::<Post>()),
-            normal_group: None,
-        })
-    }
 }
 
 impl TechniqueFrame for Frame {
@@ -93,33 +142,32 @@ impl TechniqueFrame for Frame {
         let Technique::ImageSpace(p) = cx.style.technique else {
             return Err(super::mismatch(cx));
         };
-        let operator = match p.operator {
-            Operator::Sobel => 0,
-            Operator::Prewitt => 1,
-            Operator::Scharr => 2,
-            Operator::Roberts => 3,
-        };
         let threshold = |t: f32| if t.is_finite() { t.max(0.0) } else { 0.0 };
-        let mut uniform = post::uniform(cx, operator);
-        uniform.params = [
-            threshold(p.depth_threshold),
-            threshold(p.normal_threshold),
-            (0.5 * cx.style.width()).max(1.0),
-            f32::from(u8::from(cx.style.depth_scaled)),
-        ];
+        let params = ImageParams {
+            kernel: match p.operator {
+                Operator::Sobel => 0,
+                Operator::Prewitt => 1,
+                Operator::Scharr => 2,
+                Operator::Roberts => 3,
+            },
+            depth_threshold: threshold(p.depth_threshold),
+            normal_threshold: threshold(p.normal_threshold),
+            step_px: (0.5 * cx.style.width()).max(1.0),
+            depth_scaled: u32::from(cx.style.depth_scaled),
+            _pad0: 0,
+            _pad1: 0,
+            _pad2: 0,
+        };
         cx.queue
-            .write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
+            .write_buffer(&self.uniform, 0, bytemuck::bytes_of(&post::uniform(cx)));
+        cx.queue
+            .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
         let size = cx.camera.viewport.map(|v| v.max(1));
         if self.normals.size != size {
-            self.normals = Own::new(cx.pipelines, "normal buffer", size, NORMALS, true)?;
+            self.normals = Own::new(cx.pipelines, "normal buffer", size, NORMALS_FORMAT, true)?;
         }
         let meshes = post::instance_blocks(cx, &mut self.blocks, &mut self.normal_group);
-        let group = post::block_group(
-            cx.pipelines,
-            &self.pipelines.normal_layout,
-            &self.blocks,
-            &mut self.normal_group,
-        );
+        let group = post::block_group(cx.pipelines, &self.blocks, &mut self.normal_group)?;
         self.normals.draw_meshes(
             cx.pipelines,
             encoder,
@@ -141,14 +189,13 @@ impl TechniqueFrame for Frame {
             &self.cache,
             encoder,
             views,
-            &self.pipelines.layout,
-            &self.pipelines.operator,
-            &self.uniform,
-            &[(2, &self.normals.view)],
+            (&BINDINGS, &self.pipelines.operator),
+            (&self.uniform, &self.params),
+            (NORMALS, &self.normals.view),
         )
     }
 
     fn gpu_bytes(&self) -> u64 {
-        self.uniform.size() + self.normals.bytes()
+        self.uniform.size() + self.params.size() + self.normals.bytes()
     }
 }

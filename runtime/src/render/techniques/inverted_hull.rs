@@ -2,106 +2,107 @@
 //! (thesis §7.2, `shaders/inverted_hull.wgsl`): the mesh pushed out along its normals, front faces
 //! culled, in the contour colour.
 
-use std::sync::Arc;
+use super::pulled::{Pull, PullModule};
+use super::{Drawn, FrameContext};
+use crate::render::bindings::{Bindings, FRAME, PARAMS, asset};
+use crate::render::gpu_asset::vertex_layouts;
+use crate::render::layout::{Layout, layout};
+use crate::render::modules::{Program, Shader};
+use crate::render::pipelines::{PipelineSet, Raster};
+use crate::render::{GpuAsset, Pipelines, RenderError, Target, Technique};
 
-use super::surface_angle::mesh_buffers;
-use super::{FrameContext, Pulled, TechniqueFrame, extra};
-use crate::render::pipelines::{Access, BindingSet, RenderPipeline};
-use crate::render::{Pipelines as Cache, RenderError, Technique, modules};
+pub(crate) static MODULE: PullModule<InvertedHull> = PullModule::new();
 
-const SET: BindingSet = BindingSet {
-    label: "inverted hull",
-    stages: wgpu::ShaderStages::VERTEX_FRAGMENT,
-    entries: &[(0, Access::Instance), (4, Access::Read), (6, Access::Read)],
-};
+const BINDINGS: Bindings = Bindings::draw(
+    "inverted hull",
+    &[
+        FRAME,
+        PARAMS,
+        asset::VERTEX_NORMALS,
+        asset::RENDER_TO_TOPOLOGY,
+    ],
+);
+
+/// `HullParams` in `shaders/inverted_hull.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct HullParams {
+    smooth_normals: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+}
+
+pub(crate) struct InvertedHull;
+
+fn shader() -> Shader {
+    use chamfer_shaders as wgsl;
+    Shader::new(
+        "inverted_hull.wgsl",
+        &[wgsl::COMMON, wgsl::FLAT, wgsl::INVERTED_HULL],
+        vec![Program::draw("hull_vertex", "flat_fragment", &BINDINGS)],
+    )
+}
 
 /// The pipeline, per device and target.
 #[derive(Debug)]
-pub(crate) struct Pipelines {
-    layout: wgpu::BindGroupLayout,
+pub(crate) struct HullPipelines {
     hull: wgpu::RenderPipeline,
 }
 
-impl Pipelines {
-    pub(crate) fn new(cache: &Cache) -> Result<Self, RenderError> {
-        let layout = cache.layout(&SET);
-        let module = cache.module("inverted_hull.wgsl", &modules::inverted_hull())?;
-        let target = cache.target();
-        let hull = cache.render_pipeline(
-            &[&layout],
-            RenderPipeline {
-                label: "inverted hull",
-                module: &module,
-                vertex: "hull_vertex",
-                fragment: Some("flat_fragment"),
-                buffers: &mesh_buffers(),
-                primitive: wgpu::PrimitiveState {
-                    cull_mode: Some(wgpu::Face::Front),
-                    ..Default::default()
-                },
-                depth_stencil: target.depth(false, wgpu::CompareFunction::LessEqual),
-                multisample: target.multisample(),
-                color: Some(target.blended_color()),
-            },
-        )?;
-        Ok(Self { layout, hull })
-    }
-}
-
-/// A frame.
-#[derive(Debug)]
-pub(crate) struct Frame {
-    pipelines: Arc<Pipelines>,
-    pulled: Pulled,
-}
-
-impl Frame {
-    pub(crate) fn new(cache: &Cache) -> Result<Self, RenderError> {
+impl PipelineSet for HullPipelines {
+    fn new(cache: &Pipelines) -> Result<Self, RenderError> {
+        let shader = shader();
+        let compiled = cache.compile(&shader)?;
         Ok(Self {
-            pipelines: cache.inverted_hull()?,
-            pulled: Pulled::new(cache, "inverted hull"),
+            hull: compiled.render(
+                "hull_vertex",
+                Some("flat_fragment"),
+                Raster {
+                    buffers: &vertex_layouts(),
+                    primitive: wgpu::PrimitiveState {
+                        cull_mode: Some(wgpu::Face::Front),
+                        ..Default::default()
+                    },
+                    ..Raster::over_mesh(cache.target())
+                },
+            )?,
         })
     }
 }
 
-impl TechniqueFrame for Frame {
-    fn prepare(
-        &mut self,
-        cx: &FrameContext<'_>,
-        _encoder: &mut wgpu::CommandEncoder,
-    ) -> Result<(), RenderError> {
-        let technique = cx.style.technique;
-        let Technique::InvertedHull { smooth_normals } = technique else {
-            return Err(super::mismatch(cx));
+impl Pull for InvertedHull {
+    type Params = HullParams;
+    type Pipelines = HullPipelines;
+    type Draw = ();
+    const BINDINGS: &'static Bindings = &BINDINGS;
+
+    fn shaders(_target: &Target) -> Vec<Shader> {
+        vec![shader()]
+    }
+
+    fn structs() -> Vec<Layout> {
+        vec![layout!(
+            "HullParams",
+            HullParams,
+            [smooth_normals, _pad0, _pad1, _pad2]
+        )]
+    }
+
+    fn params(cx: &FrameContext<'_>, _: &Drawn<'_>) -> Option<HullParams> {
+        let Technique::InvertedHull { smooth_normals } = cx.style.technique else {
+            return None;
         };
-        self.pulled.prepare(
-            cx,
-            &self.pipelines.layout,
-            &SET,
-            |d, i| {
-                let mut uniform = super::frame_uniform(cx, d, i, 0);
-                uniform.params[0] = f32::from(u8::from(smooth_normals));
-                uniform
-            },
-            |asset| {
-                let needs = "AssetExtras::VERTEX_NORMALS";
-                Ok(vec![
-                    (4, extra(&asset.vertex_normals, &technique, needs)?),
-                    (6, extra(&asset.render_to_topology, &technique, needs)?),
-                ])
-            },
-        )
+        Some(HullParams {
+            smooth_normals: u32::from(smooth_normals),
+            _pad0: 0,
+            _pad1: 0,
+            _pad2: 0,
+        })
     }
 
-    fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
-        let pipeline = &self.pipelines.hull;
-        self.pulled.each(pass, |pass, asset| {
-            pass.set_pipeline(pipeline);
-            super::draw_mesh(pass, asset);
-        });
-    }
-
-    fn gpu_bytes(&self) -> u64 {
-        self.pulled.gpu_bytes()
+    fn draw(set: &HullPipelines, _: (), pass: &mut wgpu::RenderPass<'_>, asset: &GpuAsset) {
+        pass.set_pipeline(&set.hull);
+        super::draw_mesh(pass, asset);
     }
 }

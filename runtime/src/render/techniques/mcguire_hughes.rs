@@ -7,46 +7,51 @@
 //! quad's four vertices and each cap pass's three (§8.5 "high duplication of work"), and nothing is
 //! compacted. Per-frame memory: one uniform block per instance.
 
-use std::sync::Arc;
+use super::pulled::{Pull, PullModule};
+use super::{Drawn, FrameContext};
+use crate::render::bindings::{Bindings, FRAME, asset};
+use crate::render::layout::Layout;
+use crate::render::modules::{Program, Shader};
+use crate::render::pipelines::{PipelineSet, Raster};
+use crate::render::{CapMethod, GpuAsset, Pipelines, RenderError, Target, Technique};
 
-use super::{FrameContext, Pulled, TechniqueFrame, extra, pulled_pipeline};
-use crate::render::pipelines::{Access, BindingSet};
-use crate::render::{CapMethod, GpuAsset, Pipelines as Cache, RenderError, Technique, modules};
+pub(crate) static MODULE: PullModule<McGuireHughes> = PullModule::new();
 
-pub(crate) const SET: BindingSet = BindingSet {
-    label: "vertex-classified edges",
-    stages: wgpu::ShaderStages::VERTEX_FRAGMENT,
-    entries: &[
-        (0, Access::Instance),
-        (1, Access::Read),
-        (2, Access::Read),
-        (3, Access::Read),
-        (4, Access::Read),
+const BINDINGS: Bindings = Bindings::draw(
+    "mcguire-hughes",
+    &[
+        FRAME,
+        asset::TOPOLOGY,
+        asset::EDGE_VERTICES,
+        asset::ATTRIBUTES,
+        asset::VERTEX_NORMALS,
     ],
-};
+);
 
-/// The asset buffers of [`SET`].
-pub(crate) fn buffers(
-    asset: &GpuAsset,
-    technique: &Technique,
-) -> Result<Vec<(u32, wgpu::Buffer)>, RenderError> {
-    let normals = extra(
-        &asset.vertex_normals,
-        technique,
-        "AssetExtras::VERTEX_NORMALS",
-    )?;
-    Ok(vec![
-        (1, asset.topology_positions.clone()),
-        (2, asset.whole_edge_vertices()?.clone()),
-        (3, asset.edge_attributes.clone()),
-        (4, normals),
-    ])
+pub(crate) struct McGuireHughes;
+
+fn shader() -> Shader {
+    use chamfer_shaders as wgsl;
+    let program = |vertex| Program::draw(vertex, "flat_fragment", &BINDINGS);
+    Shader::new(
+        "mcguire_hughes.wgsl",
+        &[
+            wgsl::COMMON,
+            wgsl::FLAT,
+            wgsl::VERTEX_EDGES,
+            wgsl::MCGUIRE_HUGHES,
+        ],
+        vec![
+            program("mh_edge_vertex"),
+            program("mh_cap0_vertex"),
+            program("mh_cap1_vertex"),
+        ],
+    )
 }
 
 /// The edge pass and the two cap passes, per device and target.
 #[derive(Debug)]
-pub(crate) struct Pipelines {
-    layout: wgpu::BindGroupLayout,
+pub(crate) struct McGuireHughesPipelines {
     edges: wgpu::RenderPipeline,
     cap0: wgpu::RenderPipeline,
     cap1: wgpu::RenderPipeline,
@@ -54,76 +59,64 @@ pub(crate) struct Pipelines {
     quad: wgpu::Buffer,
 }
 
-impl Pipelines {
-    pub(crate) fn new(cache: &Cache) -> Result<Self, RenderError> {
-        let layout = cache.layout(&SET);
-        let module = cache.module("mcguire_hughes.wgsl", &modules::mcguire_hughes())?;
-        let pipeline = |label, vertex| {
-            pulled_pipeline(cache, &layout, label, &module, vertex, "flat_fragment")
+impl PipelineSet for McGuireHughesPipelines {
+    fn new(cache: &Pipelines) -> Result<Self, RenderError> {
+        let shader = shader();
+        let compiled = cache.compile(&shader)?;
+        let pipeline = |vertex| {
+            compiled.render(
+                vertex,
+                Some("flat_fragment"),
+                Raster::over_mesh(cache.target()),
+            )
         };
         Ok(Self {
-            edges: pipeline("mcguire-hughes edges", "mh_edge_vertex")?,
-            cap0: pipeline("mcguire-hughes v0 caps", "mh_cap0_vertex")?,
-            cap1: pipeline("mcguire-hughes v1 caps", "mh_cap1_vertex")?,
+            edges: pipeline("mh_edge_vertex")?,
+            cap0: pipeline("mh_cap0_vertex")?,
+            cap1: pipeline("mh_cap1_vertex")?,
             quad: super::corner_indices(cache, "edge quad", &[0, 1, 2, 0, 2, 3]),
-            layout,
         })
     }
 }
 
-/// A frame: the instances' blocks and the groups over their assets.
-#[derive(Debug)]
-pub(crate) struct Frame {
-    pipelines: Arc<Pipelines>,
-    pulled: Pulled,
-    caps: bool,
-}
+impl Pull for McGuireHughes {
+    type Params = ();
+    type Pipelines = McGuireHughesPipelines;
+    /// Whether the two cap passes run.
+    type Draw = bool;
+    const BINDINGS: &'static Bindings = &BINDINGS;
 
-impl Frame {
-    pub(crate) fn new(cache: &Cache) -> Result<Self, RenderError> {
-        Ok(Self {
-            pipelines: cache.mcguire_hughes()?,
-            pulled: Pulled::new(cache, "mcguire-hughes"),
-            caps: true,
-        })
-    }
-}
-
-impl TechniqueFrame for Frame {
-    fn prepare(
-        &mut self,
-        cx: &FrameContext<'_>,
-        _encoder: &mut wgpu::CommandEncoder,
-    ) -> Result<(), RenderError> {
-        self.caps = cx.style.caps != CapMethod::None;
-        let technique = cx.style.technique;
-        self.pulled.prepare(
-            cx,
-            &self.pipelines.layout,
-            &SET,
-            |d, i| super::frame_uniform(cx, d, i, 0),
-            |asset| buffers(asset, &technique),
-        )
+    fn shaders(_target: &Target) -> Vec<Shader> {
+        vec![shader()]
     }
 
-    fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
-        let p = &self.pipelines;
-        let caps = self.caps;
-        self.pulled.each(pass, |pass, asset| {
-            let edges = asset.edge_count;
-            pass.set_pipeline(&p.edges);
-            pass.set_index_buffer(p.quad.slice(..), wgpu::IndexFormat::Uint16);
-            pass.draw_indexed(0..6, 0, 0..edges);
-            if caps {
-                pass.set_pipeline(&p.cap0);
-                pass.draw(0..3, 0..edges);
-                pass.set_pipeline(&p.cap1);
-                pass.draw(0..3, 0..edges);
-            }
-        });
+    fn structs() -> Vec<Layout> {
+        Vec::new()
     }
 
-    fn gpu_bytes(&self) -> u64 {
-        self.pulled.gpu_bytes()
+    fn params(cx: &FrameContext<'_>, _: &Drawn<'_>) -> Option<()> {
+        (cx.style.technique == Technique::McGuireHughes).then_some(())
+    }
+
+    fn draw_state(cx: &FrameContext<'_>) -> bool {
+        cx.style.caps != CapMethod::None
+    }
+
+    fn draw(
+        set: &McGuireHughesPipelines,
+        caps: bool,
+        pass: &mut wgpu::RenderPass<'_>,
+        asset: &GpuAsset,
+    ) {
+        let edges = asset.edge_count;
+        pass.set_pipeline(&set.edges);
+        pass.set_index_buffer(set.quad.slice(..), wgpu::IndexFormat::Uint16);
+        pass.draw_indexed(0..6, 0, 0..edges);
+        if caps {
+            pass.set_pipeline(&set.cap0);
+            pass.draw(0..3, 0..edges);
+            pass.set_pipeline(&set.cap1);
+            pass.draw(0..3, 0..edges);
+        }
     }
 }

@@ -1,50 +1,142 @@
-//! One module per edge technique. Each has its per-device pipelines (kept in [`Pipelines`]) and its
-//! per-frame state, a [`TechniqueFrame`] that a [`SceneRenderer`](super::SceneRenderer) owns for the
-//! technique its style names. A frame draws any number of instances of any number of assets: what
-//! is per instance (the camera in the instance's model space, its colours) is a block of a dynamic
-//! uniform buffer ([`Blocks`]), what is per asset (bind groups over its sections) is kept per asset
-//! ([`PerAsset`]), and the pipelines are the device's.
+//! One module per edge technique, behind the one switch [`Technique`]. A technique module declares
+//! everything the core needs of it in one [`Module`] value: its shaders with the bindings and
+//! parameters of each pipeline (checked against the WGSL on the CPU by `modules.rs`), its per-asset
+//! needs, what it needs of the target, and its per-frame state, a [`TechniqueFrame`] that a
+//! [`SceneRenderer`](super::SceneRenderer) owns while its style names the technique. Its pipelines
+//! are a [`PipelineSet`](super::pipelines::PipelineSet) of its own, made on first use; the core
+//! keeps no list of techniques but [`module`], the enum's one dispatch.
+//!
+//! A frame draws any number of instances of any number of assets: what is per instance (the camera
+//! in the instance's model space, its colours, its parameters) is a block of a dynamic uniform buffer
+//! ([`Blocks`]), what is per asset (bind groups over its sections) is kept per asset ([`PerAsset`]).
+//! The techniques that pull their geometry in the vertex shader share one skeleton, [`pulled`].
 
-pub(crate) mod alternate;
-pub(crate) mod fins;
-pub(crate) mod hardware;
-pub(crate) mod hybrid;
-pub(crate) mod image_space;
-pub(crate) mod inverted_hull;
-pub(crate) mod joined;
-pub(crate) mod mcguire_hughes;
-pub(crate) mod post;
-pub(crate) mod surface_angle;
-pub(crate) mod wireframe;
+mod alternate;
+mod fins;
+mod hardware;
+mod hybrid;
+mod image_space;
+mod inverted_hull;
+mod joined;
+mod mcguire_hughes;
+mod post;
+pub(crate) mod pulled;
+mod surface_angle;
+#[cfg(test)]
+mod tests;
+mod wireframe;
 
 use std::sync::Arc;
 
-use super::layout::Frame;
-use super::pipelines::BindingSet;
+use super::layout::{Frame, Layout};
+use super::modules::Shader;
 use super::{
-    Camera, DrawCounts, EdgeColors, EdgeStyle, FrameViews, GpuAsset, Pipelines, RenderError,
-    Technique,
+    AssetExtras, Camera, DrawCounts, EdgeColors, EdgeStyle, FrameViews, GpuAsset, Pipelines,
+    RenderError, Target, Technique,
 };
 
-/// The per-frame state of `technique`.
-pub(crate) fn new_frame(
-    pipelines: &Pipelines,
-    technique: &Technique,
-) -> Result<Box<dyn TechniqueFrame>, RenderError> {
-    Ok(match technique {
-        Technique::Joined => Box::new(joined::Frame::new(pipelines)?),
-        Technique::McGuireHughes => Box::new(mcguire_hughes::Frame::new(pipelines)?),
+/// The module that draws `technique`: the one place the enum meets the modules.
+pub(crate) fn module(technique: &Technique) -> &'static dyn Module {
+    match technique {
+        Technique::Joined => &joined::MODULE,
+        Technique::McGuireHughes => &mcguire_hughes::MODULE,
         Technique::HalfHex | Technique::Plug | Technique::HalfHexPlug | Technique::House => {
-            Box::new(alternate::Frame::new(pipelines)?)
+            &alternate::MODULE
         }
-        Technique::Fins { .. } => Box::new(fins::Frame::new(pipelines)?),
-        Technique::Wireframe { .. } => Box::new(wireframe::Frame::new(pipelines)?),
-        Technique::Hardware(method) => Box::new(hardware::Frame::new(pipelines, *method)?),
-        Technique::SurfaceAngle { .. } => Box::new(surface_angle::Frame::new(pipelines)?),
-        Technique::InvertedHull { .. } => Box::new(inverted_hull::Frame::new(pipelines)?),
-        Technique::Hybrid(_) => Box::new(hybrid::Frame::new(pipelines)?),
-        Technique::ImageSpace(_) => Box::new(image_space::Frame::new(pipelines)?),
-    })
+        Technique::Fins { .. } => &fins::MODULE,
+        Technique::Wireframe { .. } => &wireframe::MODULE,
+        Technique::Hardware(_) => &hardware::MODULE,
+        Technique::SurfaceAngle { .. } => &surface_angle::MODULE,
+        Technique::InvertedHull { .. } => &inverted_hull::MODULE,
+        Technique::Hybrid(_) => &hybrid::MODULE,
+        Technique::ImageSpace(_) => &image_space::MODULE,
+    }
+}
+
+/// Every technique module, once each (from [`Technique::all`]: nothing to keep in step).
+#[cfg(test)]
+pub(crate) fn modules() -> Vec<&'static dyn Module> {
+    let mut all: Vec<&'static dyn Module> = Vec::new();
+    for technique in Technique::all() {
+        let module = module(&technique);
+        if !all.iter().any(|m| m.id() == module.id()) {
+            all.push(module);
+        }
+    }
+    all
+}
+
+/// What a technique module declares. One `static` value per module implements it.
+pub(crate) trait Module: Sync + 'static {
+    /// The WGSL modules the technique compiles for `target` and the pipelines made of each (the
+    /// same declarations its [`PipelineSet`](super::pipelines::PipelineSet) compiles; the CPU tests
+    /// of `modules.rs` read them).
+    #[cfg_attr(not(test), allow(dead_code))]
+    fn shaders(&self, target: &Target) -> Vec<Shader>;
+
+    /// The Rust twins of the structs its own WGSL declares (its parameters).
+    #[cfg_attr(not(test), allow(dead_code))]
+    fn structs(&self) -> Vec<Layout> {
+        Vec::new()
+    }
+
+    /// What an asset must be uploaded with for `technique`.
+    fn needs(&self, _technique: &Technique) -> AssetExtras {
+        AssetExtras::NONE
+    }
+
+    /// True if `technique` draws through the target's stencil.
+    fn needs_stencil(&self, _technique: &Technique) -> bool {
+        false
+    }
+
+    /// True if the technique works after the application's pass ([`TechniqueFrame::finish`]).
+    fn is_post_process(&self) -> bool {
+        false
+    }
+
+    /// Fresh per-frame state (compiling the technique's pipelines if they are not yet).
+    fn new_frame(
+        &self,
+        pipelines: &Pipelines,
+        options: &FrameOptions,
+    ) -> Result<Box<dyn TechniqueFrame>, RenderError>;
+
+    /// The module's identity: a renderer keeps its frame while the module stays the same.
+    fn id(&self) -> std::any::TypeId {
+        std::any::TypeId::of::<Self>()
+    }
+}
+
+/// What a renderer asks of the frames it makes.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct FrameOptions {
+    /// Slots of the first edge lists (0: sized from the first frame), where a technique has lists.
+    pub(crate) first_slots: u64,
+}
+
+/// Checks what `technique` needs of `target`, before any frame is made or reused for it.
+pub(crate) fn check_target(
+    module: &dyn Module,
+    technique: &Technique,
+    target: &Target,
+) -> Result<(), RenderError> {
+    if module.needs_stencil(technique) && !target.has_stencil() {
+        return Err(RenderError::TargetLacks {
+            technique: technique.name(),
+            needs: "a depth format with a stencil aspect",
+        });
+    }
+    Ok(())
+}
+
+/// The error for a frame asked to draw a technique other than the one its module draws (the
+/// renderer dispatches by module, so this is a bug).
+pub(crate) fn mismatch(cx: &FrameContext<'_>) -> RenderError {
+    RenderError::Internal(format!(
+        "a frame was asked to draw {}, which its module does not draw",
+        cx.style.technique.name()
+    ))
 }
 
 /// One instance the frame draws: its asset, the camera as its model space sees it (the scene
@@ -102,14 +194,8 @@ pub(crate) trait TechniqueFrame: std::fmt::Debug + Send + Sync {
     fn gpu_bytes(&self) -> u64;
 }
 
-/// The `Frame` uniform of the object-space edge passes for instance `index`; `technique` selects a
-/// technique's variant of a shared pass.
-pub(crate) fn frame_uniform(
-    cx: &FrameContext<'_>,
-    drawn: &Drawn<'_>,
-    index: usize,
-    technique: u32,
-) -> Frame {
+/// The `Frame` uniform of the object-space edge passes for instance `index`.
+pub(crate) fn frame_uniform(cx: &FrameContext<'_>, drawn: &Drawn<'_>, index: usize) -> Frame {
     let (camera, style, asset) = (&drawn.camera, cx.style, drawn.asset);
     let mvp = camera.view_projection();
     let depth_ref = if style.depth_scaled && !camera.is_orthographic() {
@@ -140,8 +226,7 @@ pub(crate) fn frame_uniform(
         highlight: 0,
         radius_scale: asset.radius_scale,
         reverse_z: u32::from(cx.pipelines.target().reverse_z),
-        technique,
-        params: [0.0; 4],
+        _pad: 0,
         frustum: [[0.0; 4]; 4],
         indices_u16: u32::from(asset.index_format == wgpu::IndexFormat::Uint16),
         triangle_count: asset.index_count / 3,
@@ -225,10 +310,6 @@ impl Blocks {
         })
     }
 
-    pub(crate) fn buffer(&self) -> &wgpu::Buffer {
-        &self.buffer
-    }
-
     pub(crate) fn gpu_bytes(&self) -> u64 {
         self.buffer.size()
     }
@@ -286,144 +367,6 @@ impl<T> PerAsset<T> {
 
     pub(crate) fn iter(&self) -> impl Iterator<Item = &T> {
         self.entries.iter().map(|(_, _, t)| t)
-    }
-}
-
-/// The per-frame state of a technique that pulls its geometry in the vertex shader from the
-/// asset's buffers: one uniform block per instance and one bind group per asset over the block
-/// buffer (binding 0, dynamic) and the asset's buffers; `draws` lists, per instance, its asset's
-/// group and its block.
-#[derive(Debug)]
-pub(crate) struct Pulled {
-    pub(crate) blocks: Blocks,
-    groups: PerAsset<wgpu::BindGroup>,
-    pub(crate) draws: Vec<(usize, u32)>,
-}
-
-impl Pulled {
-    pub(crate) fn new(pipelines: &Pipelines, label: &'static str) -> Self {
-        Self {
-            blocks: Blocks::new(pipelines, label, std::mem::size_of::<Frame>()),
-            groups: PerAsset::default(),
-            draws: Vec::new(),
-        }
-    }
-
-    /// Writes one `Frame` per instance (from `uniform`) and makes the group of each new asset with
-    /// `buffers`, the asset's buffers beside the blocks at binding 0.
-    pub(crate) fn prepare(
-        &mut self,
-        cx: &FrameContext<'_>,
-        layout: &wgpu::BindGroupLayout,
-        set: &BindingSet,
-        uniform: impl Fn(&Drawn<'_>, usize) -> Frame,
-        buffers: impl Fn(&GpuAsset) -> Result<Vec<(u32, wgpu::Buffer)>, RenderError>,
-    ) -> Result<(), RenderError> {
-        let frames: Vec<Frame> = cx
-            .instances
-            .iter()
-            .enumerate()
-            .map(|(i, d)| uniform(d, i))
-            .collect();
-        if self.blocks.write(cx.pipelines, cx.queue, &frames) {
-            self.groups.clear();
-        }
-        self.groups.retain(cx.instances);
-        self.draws.clear();
-        for (i, drawn) in cx.instances.iter().enumerate() {
-            let blocks = &self.blocks;
-            let group = self.groups.index(drawn.asset, |asset| {
-                let buffers = buffers(asset)?;
-                let mut entries = vec![wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: blocks.binding(),
-                }];
-                entries.extend(
-                    buffers
-                        .iter()
-                        .map(|(binding, buffer)| wgpu::BindGroupEntry {
-                            binding: *binding,
-                            resource: buffer.as_entire_binding(),
-                        }),
-                );
-                debug_assert_eq!(entries.len(), set.entries.len(), "{}", set.label);
-                Ok(cx
-                    .pipelines
-                    .device()
-                    .create_bind_group(&wgpu::BindGroupDescriptor {
-                        label: Some(set.label),
-                        layout,
-                        entries: &entries,
-                    }))
-            })?;
-            self.draws.push((group, self.blocks.offset(i)));
-        }
-        Ok(())
-    }
-
-    /// For each instance: sets its group and block on `pass` and calls `draw` with its asset.
-    pub(crate) fn each(
-        &self,
-        pass: &mut wgpu::RenderPass<'_>,
-        mut draw: impl FnMut(&mut wgpu::RenderPass<'_>, &GpuAsset),
-    ) {
-        for &(group, offset) in &self.draws {
-            let (asset, bind_group) = self.groups.get(group);
-            pass.set_bind_group(0, bind_group, &[offset]);
-            draw(pass, asset);
-        }
-    }
-
-    pub(crate) fn gpu_bytes(&self) -> u64 {
-        self.blocks.gpu_bytes()
-    }
-}
-
-/// `buffer`, or the error that says the asset was uploaded without `extra`.
-pub(crate) fn extra(
-    buffer: &Option<wgpu::Buffer>,
-    technique: &Technique,
-    needs: &'static str,
-) -> Result<wgpu::Buffer, RenderError> {
-    buffer.clone().ok_or(RenderError::MissingAssetData {
-        technique: technique.name(),
-        needs,
-    })
-}
-
-/// A render pipeline of the pulled kind: no vertex buffers, one bind group, `primitive` triangles,
-/// depth tested (LessEqual, no writes) and alpha-blended like the default edges.
-pub(crate) fn pulled_pipeline(
-    cache: &Pipelines,
-    layout: &wgpu::BindGroupLayout,
-    label: &str,
-    module: &wgpu::ShaderModule,
-    vertex: &str,
-    fragment: &str,
-) -> Result<wgpu::RenderPipeline, RenderError> {
-    let target = cache.target();
-    cache.render_pipeline(
-        &[layout],
-        super::pipelines::RenderPipeline {
-            label,
-            module,
-            vertex,
-            fragment: Some(fragment),
-            buffers: &[],
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: target.depth(false, wgpu::CompareFunction::LessEqual),
-            multisample: target.multisample(),
-            color: Some(target.blended_color()),
-        },
-    )
-}
-
-/// The error for a frame asked to draw a technique other than the one it was made for (the
-/// renderer remakes frames when the technique changes, so this is a bug).
-pub(crate) fn mismatch(cx: &FrameContext<'_>) -> RenderError {
-    RenderError::Unsupported {
-        technique: cx.style.technique.name(),
-        why: "its frame state was made for another technique (a bug: please report it)".into(),
     }
 }
 

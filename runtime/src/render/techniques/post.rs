@@ -2,12 +2,26 @@
 //! pass into its finished colour, reading its depth; textures of their own sized to the viewport;
 //! the `Post` uniform.
 
+use crate::render::bindings::{Binding, Bindings, Kind};
+use crate::render::gpu_asset::vertex_layouts;
 use crate::render::layout::Post;
-use crate::render::pipelines::RenderPipeline;
+use crate::render::pipelines::{Compiled, Raster};
 use crate::render::target::checked;
 use crate::render::{FrameViews, GpuAsset, Pipelines as Cache, RenderError};
 
 use super::FrameContext;
+
+/// The frame's [`Post`] uniform, in the full-screen pass.
+pub(crate) const POST: Binding = Binding::new(0, "post", Kind::Uniform);
+/// One [`Post`] block per instance, in the passes that draw the instances' meshes into the frame's
+/// own textures.
+pub(crate) const POST_BLOCK: Binding = Binding::new(0, "post", Kind::Block);
+/// The technique's parameters (its own struct, one per frame).
+pub(crate) const PARAMS: Binding = Binding::new(15, "params", Kind::Uniform);
+/// The application's depth.
+pub(crate) const DEPTH: Binding = Binding::new(16, "depth_texture", Kind::TargetDepth);
+/// The bindings of a mesh pass into the frame's own textures.
+pub(crate) const MESH_PASS: Bindings = Bindings::draw("post-process mesh pass", &[POST_BLOCK]);
 
 /// How a post-process's output meets the scene colour.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -18,60 +32,14 @@ pub(crate) enum Blend {
     Alpha,
 }
 
-/// The layout of a post-process: the uniform, the application's depth, and `own` textures of the
-/// frame's (binding, single-sample float texture).
-pub(crate) fn layout(cache: &Cache, label: &str, own: &[u32]) -> wgpu::BindGroupLayout {
-    let fragment = wgpu::ShaderStages::FRAGMENT;
-    let mut entries = vec![
-        wgpu::BindGroupLayoutEntry {
-            binding: 0,
-            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Uniform,
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        },
-        wgpu::BindGroupLayoutEntry {
-            binding: 1,
-            visibility: fragment,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Depth,
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: cache.target().sample_count > 1,
-            },
-            count: None,
-        },
-    ];
-    entries.extend(own.iter().map(|&binding| wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: fragment,
-        ty: wgpu::BindingType::Texture {
-            sample_type: wgpu::TextureSampleType::Float { filterable: false },
-            view_dimension: wgpu::TextureViewDimension::D2,
-            multisampled: false,
-        },
-        count: None,
-    }));
-    cache
-        .device()
-        .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some(label),
-            entries: &entries,
-        })
-}
-
-/// The full-screen pipeline of `fragment`, drawing into the single-sample finished colour.
+/// The full-screen pipeline of `fragment` (a program of `compiled` with `post_vertex`), drawing into
+/// the single-sample finished colour.
 pub(crate) fn pipeline(
+    compiled: &Compiled<'_>,
     cache: &Cache,
-    layout: &wgpu::BindGroupLayout,
-    label: &str,
-    module: &wgpu::ShaderModule,
     fragment: &str,
     blend: Blend,
 ) -> Result<wgpu::RenderPipeline, RenderError> {
-    let target = cache.target();
     let blend = match blend {
         Blend::Multiply => wgpu::BlendState {
             color: wgpu::BlendComponent {
@@ -87,24 +55,21 @@ pub(crate) fn pipeline(
         },
         Blend::Alpha => wgpu::BlendState::ALPHA_BLENDING,
     };
-    cache.render_pipeline(
-        &[layout],
-        RenderPipeline {
-            label,
-            module,
-            vertex: "post_vertex",
-            fragment: Some(fragment),
+    compiled.render(
+        "post_vertex",
+        Some(fragment),
+        Raster {
             buffers: &[],
             primitive: wgpu::PrimitiveState::default(),
             depth_stencil: None,
             multisample: wgpu::MultisampleState::default(),
-            color: Some(target.color(Some(blend))),
+            color: Some(cache.target().color(Some(blend))),
         },
     )
 }
 
 /// The uniform of this frame (its mesh pass: the first instance's).
-pub(crate) fn uniform(cx: &FrameContext<'_>, variant: u32) -> Post {
+pub(crate) fn uniform(cx: &FrameContext<'_>) -> Post {
     let camera = cx.camera;
     let mvp = cx
         .instances
@@ -122,11 +87,9 @@ pub(crate) fn uniform(cx: &FrameContext<'_>, variant: u32) -> Post {
         inv_projection: camera.projection.inverse().to_cols_array_2d(),
         mvp: mvp.to_cols_array_2d(),
         color: cx.style.colors.contour,
-        params: [0.0; 4],
-        more: [0.0; 4],
         viewport: camera.viewport.map(|v| v.max(1) as f32),
         depth_ref,
-        variant,
+        _pad: 0,
     }
 }
 
@@ -256,24 +219,20 @@ impl Own {
 /// The depth format of the frame's own mesh passes (the target's depth convention).
 pub(crate) const OWN_DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
-/// A pipeline drawing `asset`'s mesh into an [`Own`] texture of `format` (with depth if `depth`).
+/// A pipeline of `compiled`'s program `vertex` + `fragment` drawing the instances' meshes into an
+/// [`Own`] texture of `format` (with depth if `depth`).
 pub(crate) fn own_pipeline(
+    compiled: &Compiled<'_>,
     cache: &Cache,
-    layout: &wgpu::BindGroupLayout,
-    label: &str,
-    module: &wgpu::ShaderModule,
     (vertex, fragment): (&str, &str),
     format: wgpu::TextureFormat,
     depth: bool,
 ) -> Result<wgpu::RenderPipeline, RenderError> {
-    cache.render_pipeline(
-        &[layout],
-        RenderPipeline {
-            label,
-            module,
-            vertex,
-            fragment: Some(fragment),
-            buffers: &super::surface_angle::mesh_buffers(),
+    compiled.render(
+        vertex,
+        Some(fragment),
+        Raster {
+            buffers: &vertex_layouts(),
             primitive: wgpu::PrimitiveState::default(),
             depth_stencil: depth.then_some(wgpu::DepthStencilState {
                 format: OWN_DEPTH,
@@ -292,45 +251,34 @@ pub(crate) fn own_pipeline(
     )
 }
 
-/// Records the full-screen pass of `pipeline` over `views.color` with `entries` (the uniform and
-/// the frame's own textures; the application's depth is added as binding 1).
+/// Records the full-screen pass of `pipeline` over `views.color`, its group over `bindings`: the
+/// uniform ([`POST`]), the parameters ([`PARAMS`]), the application's depth ([`DEPTH`]) and `own`,
+/// the frame's own texture at its binding.
 pub(crate) fn full_screen(
     cache: &Cache,
     encoder: &mut wgpu::CommandEncoder,
     views: &FrameViews<'_>,
-    layout: &wgpu::BindGroupLayout,
-    pipeline: &wgpu::RenderPipeline,
-    uniform: &wgpu::Buffer,
-    own: &[(u32, &wgpu::TextureView)],
+    (bindings, pipeline): (&'static Bindings, &wgpu::RenderPipeline),
+    (uniform, params): (&wgpu::Buffer, &wgpu::Buffer),
+    own: (Binding, &wgpu::TextureView),
 ) -> Result<(), RenderError> {
     let device = cache.device();
-    let mut entries = vec![
-        wgpu::BindGroupEntry {
-            binding: 0,
-            resource: uniform.as_entire_binding(),
-        },
-        wgpu::BindGroupEntry {
-            binding: 1,
-            resource: wgpu::BindingResource::TextureView(views.depth),
-        },
-    ];
-    entries.extend(own.iter().map(|&(binding, view)| wgpu::BindGroupEntry {
-        binding,
-        resource: wgpu::BindingResource::TextureView(view),
-    }));
+    let layout = cache.layout(bindings);
     // The application's views are checked here: a depth view that cannot be sampled is a typed
     // error, not a panic.
     let group = checked(
         device,
         "the post-process bindings (is the depth TEXTURE_BINDING?)",
         || {
-            device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("post-process"),
-                layout,
-                entries: &entries,
+            bindings.group(device, &layout, |binding| match binding {
+                POST => Ok(uniform.as_entire_binding()),
+                PARAMS => Ok(params.as_entire_binding()),
+                DEPTH => Ok(wgpu::BindingResource::TextureView(views.depth)),
+                b if b == own.0 => Ok(wgpu::BindingResource::TextureView(own.1)),
+                other => Err(crate::render::bindings::unbound(bindings, other)),
             })
         },
-    )?;
+    )??;
     let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
         label: Some("post-process"),
         color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -353,11 +301,11 @@ pub(crate) fn full_screen(
     Ok(())
 }
 
-/// A uniform buffer for [`Post`].
-pub(crate) fn uniform_buffer(cache: &Cache, label: &str) -> wgpu::Buffer {
+/// A uniform buffer of `size` bytes (for [`Post`] or a technique's parameters).
+pub(crate) fn uniform_buffer(cache: &Cache, label: &str, size: usize) -> wgpu::Buffer {
     cache.device().create_buffer(&wgpu::BufferDescriptor {
         label: Some(label),
-        size: std::mem::size_of::<Post>() as u64,
+        size: size as u64,
         usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
     })
@@ -374,7 +322,7 @@ pub(crate) fn instance_blocks(
         .instances
         .iter()
         .map(|d| {
-            let mut post = uniform(cx, 0);
+            let mut post = uniform(cx);
             post.mvp = d.camera.view_projection().to_cols_array_2d();
             post
         })
@@ -389,23 +337,26 @@ pub(crate) fn instance_blocks(
         .collect()
 }
 
-/// The bind group of a mesh pass over `blocks` (binding 0, dynamic), made once.
+/// The bind group of a mesh pass over `blocks` ([`MESH_PASS`]), made once.
 pub(crate) fn block_group<'g>(
     cache: &Cache,
-    layout: &wgpu::BindGroupLayout,
     blocks: &super::Blocks,
     group: &'g mut Option<wgpu::BindGroup>,
-) -> &'g wgpu::BindGroup {
-    group.get_or_insert_with(|| {
-        cache
-            .device()
-            .create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("post-process mesh pass"),
-                layout,
-                entries: &[wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: blocks.binding(),
-                }],
-            })
-    })
+) -> Result<&'g wgpu::BindGroup, RenderError> {
+    if group.is_none() {
+        let layout = cache.layout(&MESH_PASS);
+        *group = Some(MESH_PASS.group(cache.device(), &layout, |_| Ok(blocks.binding()))?);
+    }
+    group
+        .as_ref()
+        .ok_or_else(|| RenderError::Internal("the mesh pass group was not made".into()))
+}
+
+/// The WGSL that reads the application's depth, as `target` samples it.
+pub(crate) fn depth_source(target: &crate::render::Target) -> &'static str {
+    if target.sample_count > 1 {
+        chamfer_shaders::DEPTH_MULTI
+    } else {
+        chamfer_shaders::DEPTH_SINGLE
+    }
 }

@@ -2,114 +2,99 @@
 //! (thesis §7.1, `shaders/surface_angle.wgsl`): the mesh drawn once more over itself, inked where its
 //! normal is nearly perpendicular to the view.
 
-use std::sync::Arc;
+use super::pulled::{Pull, PullModule};
+use super::{Drawn, FrameContext};
+use crate::render::bindings::{Bindings, FRAME, PARAMS};
+use crate::render::gpu_asset::vertex_layouts;
+use crate::render::layout::{Layout, layout};
+use crate::render::modules::{Program, Shader};
+use crate::render::pipelines::{PipelineSet, Raster};
+use crate::render::{GpuAsset, Pipelines, RenderError, Target, Technique};
 
-use super::{FrameContext, Pulled, TechniqueFrame};
-use crate::render::pipelines::{Access, BindingSet, RenderPipeline};
-use crate::render::{Pipelines as Cache, RenderError, Technique, modules};
+pub(crate) static MODULE: PullModule<SurfaceAngle> = PullModule::new();
 
-const SET: BindingSet = BindingSet {
-    label: "surface angle",
-    stages: wgpu::ShaderStages::VERTEX_FRAGMENT,
-    entries: &[(0, Access::Instance)],
-};
+const BINDINGS: Bindings = Bindings::draw("surface angle", &[FRAME, PARAMS]);
 
-/// The position and normal vertex buffers of the mesh pass.
-pub(crate) fn mesh_buffers() -> [Option<wgpu::VertexBufferLayout<'static>>; 2] {
-    const POSITION: [wgpu::VertexAttribute; 1] = wgpu::vertex_attr_array![0 => Float32x3];
-    const NORMAL: [wgpu::VertexAttribute; 1] = wgpu::vertex_attr_array![1 => Float32x3];
-    let layout = |attributes: &'static [wgpu::VertexAttribute]| {
-        Some(wgpu::VertexBufferLayout {
-            array_stride: 12,
-            step_mode: wgpu::VertexStepMode::Vertex,
-            attributes,
-        })
-    };
-    [layout(&POSITION), layout(&NORMAL)]
+/// `AngleParams` in `shaders/surface_angle.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct AngleParams {
+    threshold: f32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+}
+
+pub(crate) struct SurfaceAngle;
+
+fn shader() -> Shader {
+    use chamfer_shaders as wgsl;
+    Shader::new(
+        "surface_angle.wgsl",
+        &[wgsl::COMMON, wgsl::SURFACE_ANGLE],
+        vec![Program::draw("angle_vertex", "angle_fragment", &BINDINGS)],
+    )
 }
 
 /// The pipeline, per device and target.
 #[derive(Debug)]
-pub(crate) struct Pipelines {
-    layout: wgpu::BindGroupLayout,
+pub(crate) struct AnglePipelines {
     angle: wgpu::RenderPipeline,
 }
 
-impl Pipelines {
-    pub(crate) fn new(cache: &Cache) -> Result<Self, RenderError> {
-        let layout = cache.layout(&SET);
-        let module = cache.module("surface_angle.wgsl", &modules::surface_angle())?;
-        let target = cache.target();
-        let angle = cache.render_pipeline(
-            &[&layout],
-            RenderPipeline {
-                label: "surface angle",
-                module: &module,
-                vertex: "angle_vertex",
-                fragment: Some("angle_fragment"),
-                buffers: &mesh_buffers(),
-                primitive: wgpu::PrimitiveState::default(),
-                depth_stencil: target.depth(false, wgpu::CompareFunction::LessEqual),
-                multisample: target.multisample(),
-                color: Some(target.blended_color()),
-            },
-        )?;
-        Ok(Self { layout, angle })
-    }
-}
-
-/// A frame.
-#[derive(Debug)]
-pub(crate) struct Frame {
-    pipelines: Arc<Pipelines>,
-    pulled: Pulled,
-}
-
-impl Frame {
-    pub(crate) fn new(cache: &Cache) -> Result<Self, RenderError> {
+impl PipelineSet for AnglePipelines {
+    fn new(cache: &Pipelines) -> Result<Self, RenderError> {
+        let shader = shader();
+        let compiled = cache.compile(&shader)?;
         Ok(Self {
-            pipelines: cache.surface_angle()?,
-            pulled: Pulled::new(cache, "surface angle"),
+            angle: compiled.render(
+                "angle_vertex",
+                Some("angle_fragment"),
+                Raster {
+                    buffers: &vertex_layouts(),
+                    ..Raster::over_mesh(cache.target())
+                },
+            )?,
         })
     }
 }
 
-impl TechniqueFrame for Frame {
-    fn prepare(
-        &mut self,
-        cx: &FrameContext<'_>,
-        _encoder: &mut wgpu::CommandEncoder,
-    ) -> Result<(), RenderError> {
+impl Pull for SurfaceAngle {
+    type Params = AngleParams;
+    type Pipelines = AnglePipelines;
+    type Draw = ();
+    const BINDINGS: &'static Bindings = &BINDINGS;
+
+    fn shaders(_target: &Target) -> Vec<Shader> {
+        vec![shader()]
+    }
+
+    fn structs() -> Vec<Layout> {
+        vec![layout!(
+            "AngleParams",
+            AngleParams,
+            [threshold, _pad0, _pad1, _pad2]
+        )]
+    }
+
+    fn params(cx: &FrameContext<'_>, _: &Drawn<'_>) -> Option<AngleParams> {
         let Technique::SurfaceAngle { threshold } = cx.style.technique else {
-            return Err(super::mismatch(cx));
+            return None;
         };
-        let threshold = if threshold.is_finite() {
-            threshold.clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        self.pulled.prepare(
-            cx,
-            &self.pipelines.layout,
-            &SET,
-            |d, i| {
-                let mut uniform = super::frame_uniform(cx, d, i, 0);
-                uniform.params[0] = threshold;
-                uniform
+        Some(AngleParams {
+            threshold: if threshold.is_finite() {
+                threshold.clamp(0.0, 1.0)
+            } else {
+                0.0
             },
-            |_| Ok(Vec::new()),
-        )
+            _pad0: 0,
+            _pad1: 0,
+            _pad2: 0,
+        })
     }
 
-    fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
-        let pipeline = &self.pipelines.angle;
-        self.pulled.each(pass, |pass, asset| {
-            pass.set_pipeline(pipeline);
-            super::draw_mesh(pass, asset);
-        });
-    }
-
-    fn gpu_bytes(&self) -> u64 {
-        self.pulled.gpu_bytes()
+    fn draw(set: &AnglePipelines, _: (), pass: &mut wgpu::RenderPass<'_>, asset: &GpuAsset) {
+        pass.set_pipeline(&set.angle);
+        super::draw_mesh(pass, asset);
     }
 }

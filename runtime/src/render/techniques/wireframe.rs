@@ -3,125 +3,137 @@
 //! coordinates from its triangle; here the vertex shader pulls the triangle's three corners from the
 //! asset's render sections (instance = triangle, vertex = corner) and does the same.
 
-use std::sync::Arc;
+use super::pulled::{Pull, PullModule};
+use super::{Drawn, FrameContext};
+use crate::render::bindings::{Binding, Bindings, FRAME, PARAMS, asset};
+use crate::render::layout::{Layout, layout};
+use crate::render::modules::{Program, Shader};
+use crate::render::pipelines::{PipelineSet, Raster};
+use crate::render::{AssetExtras, GpuAsset, Pipelines, RenderError, Target, Technique};
 
-use super::{FrameContext, Pulled, TechniqueFrame, extra, pulled_pipeline};
-use crate::render::pipelines::{Access, BindingSet};
-use crate::render::{Pipelines as Cache, RenderError, Technique, modules};
+pub(crate) static MODULE: PullModule<Wireframe> = PullModule::new();
 
-const SET: BindingSet = BindingSet {
-    label: "wireframe",
-    stages: wgpu::ShaderStages::VERTEX_FRAGMENT,
-    entries: &[
-        (0, Access::Instance),
-        (5, Access::Read),
-        (7, Access::Read),
-        (8, Access::Read),
+const BINDINGS: Bindings = Bindings::draw(
+    "wireframe",
+    &[
+        FRAME,
+        PARAMS,
+        asset::RENDER_POSITIONS,
+        asset::MESH_INDICES,
+        asset::TRIANGLE_EDGES,
     ],
-};
+);
+
+/// `WireParams` in `shaders/wireframe.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct WireParams {
+    naive: u32,
+    smooth_border: u32,
+    feature_only: u32,
+    naive_threshold: f32,
+}
+
+pub(crate) struct Wireframe;
+
+fn shader() -> Shader {
+    use chamfer_shaders as wgsl;
+    Shader::new(
+        "wireframe.wgsl",
+        &[wgsl::COMMON, wgsl::TRIANGLES, wgsl::WIREFRAME],
+        vec![Program::draw("wire_vertex", "wire_fragment", &BINDINGS)],
+    )
+}
 
 /// The wireframe pipeline, per device and target.
 #[derive(Debug)]
-pub(crate) struct Pipelines {
-    layout: wgpu::BindGroupLayout,
+pub(crate) struct WirePipelines {
     wire: wgpu::RenderPipeline,
 }
 
-impl Pipelines {
-    pub(crate) fn new(cache: &Cache) -> Result<Self, RenderError> {
-        let layout = cache.layout(&SET);
-        let module = cache.module("wireframe.wgsl", &modules::wireframe())?;
-        let wire = pulled_pipeline(
-            cache,
-            &layout,
-            "wireframe",
-            &module,
-            "wire_vertex",
-            "wire_fragment",
-        )?;
-        Ok(Self { layout, wire })
-    }
-}
-
-/// A frame.
-#[derive(Debug)]
-pub(crate) struct Frame {
-    pipelines: Arc<Pipelines>,
-    pulled: Pulled,
-}
-
-impl Frame {
-    pub(crate) fn new(cache: &Cache) -> Result<Self, RenderError> {
+impl PipelineSet for WirePipelines {
+    fn new(cache: &Pipelines) -> Result<Self, RenderError> {
+        let shader = shader();
+        let compiled = cache.compile(&shader)?;
         Ok(Self {
-            pipelines: cache.wireframe()?,
-            pulled: Pulled::new(cache, "wireframe"),
+            wire: compiled.render(
+                "wire_vertex",
+                Some("wire_fragment"),
+                Raster::over_mesh(cache.target()),
+            )?,
         })
     }
 }
 
-impl TechniqueFrame for Frame {
-    fn prepare(
-        &mut self,
-        cx: &FrameContext<'_>,
-        _encoder: &mut wgpu::CommandEncoder,
-    ) -> Result<(), RenderError> {
-        let technique = cx.style.technique;
+fn feature_only(technique: &Technique) -> bool {
+    matches!(
+        technique,
+        Technique::Wireframe {
+            feature_only: true,
+            ..
+        }
+    )
+}
+
+impl Pull for Wireframe {
+    type Params = WireParams;
+    type Pipelines = WirePipelines;
+    type Draw = ();
+    const BINDINGS: &'static Bindings = &BINDINGS;
+
+    fn shaders(_target: &Target) -> Vec<Shader> {
+        vec![shader()]
+    }
+
+    fn structs() -> Vec<Layout> {
+        vec![layout!(
+            "WireParams",
+            WireParams,
+            [naive, smooth_border, feature_only, naive_threshold]
+        )]
+    }
+
+    fn needs(technique: &Technique) -> AssetExtras {
+        if feature_only(technique) {
+            AssetExtras::TRIANGLE_EDGES
+        } else {
+            AssetExtras::NONE
+        }
+    }
+
+    fn params(cx: &FrameContext<'_>, _: &Drawn<'_>) -> Option<WireParams> {
         let Technique::Wireframe {
             feature_only,
             smooth,
             naive_threshold,
-        } = technique
+        } = cx.style.technique
         else {
-            return Err(super::mismatch(cx));
+            return None;
         };
-        let params = [
-            f32::from(u8::from(naive_threshold.is_some())),
-            f32::from(u8::from(smooth)),
-            f32::from(u8::from(feature_only)),
-            naive_threshold.unwrap_or(0.0),
-        ];
-        self.pulled.prepare(
-            cx,
-            &self.pipelines.layout,
-            &SET,
-            |d, i| {
-                let mut uniform = super::frame_uniform(cx, d, i, 0);
-                uniform.params = params;
-                uniform
-            },
-            |asset| {
-                // The masks are read only in feature-only mode; otherwise any buffer fills the
-                // binding.
-                let masks = if feature_only {
-                    extra(
-                        &asset.triangle_edges,
-                        &technique,
-                        "AssetExtras::TRIANGLE_EDGES",
-                    )?
-                } else {
-                    asset
-                        .triangle_edges
-                        .clone()
-                        .unwrap_or_else(|| asset.mesh_indices.clone())
-                };
-                Ok(vec![
-                    (5, asset.render_positions.clone()),
-                    (7, asset.mesh_indices.clone()),
-                    (8, masks),
-                ])
-            },
-        )
+        Some(WireParams {
+            naive: u32::from(naive_threshold.is_some()),
+            smooth_border: u32::from(smooth),
+            feature_only: u32::from(feature_only),
+            naive_threshold: naive_threshold.unwrap_or(0.0),
+        })
     }
 
-    fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
-        let pipeline = &self.pipelines.wire;
-        self.pulled.each(pass, |pass, asset| {
-            pass.set_pipeline(pipeline);
-            pass.draw(0..3, 0..asset.index_count / 3);
-        });
+    fn resource<'a>(
+        asset: &'a GpuAsset,
+        binding: Binding,
+        technique: &Technique,
+    ) -> Result<wgpu::BindingResource<'a>, RenderError> {
+        // The masks are read only in feature-only mode; otherwise any buffer fills the binding.
+        if binding == asset::TRIANGLE_EDGES && !feature_only(technique) {
+            return asset
+                .resource(binding, technique.name())
+                .or_else(|_| asset.resource(asset::MESH_INDICES, technique.name()));
+        }
+        asset.resource(binding, technique.name())
     }
 
-    fn gpu_bytes(&self) -> u64 {
-        self.pulled.gpu_bytes()
+    fn draw(set: &WirePipelines, _: (), pass: &mut wgpu::RenderPass<'_>, asset: &GpuAsset) {
+        pass.set_pipeline(&set.wire);
+        pass.draw(0..3, 0..asset.index_count / 3);
     }
 }

@@ -1,0 +1,104 @@
+//! The joined technique's bindings: the asset sections its passes read and the frame's lists (the
+//! numbers `shaders/compute.wgsl`, `draw.wgsl`, `args.wgsl` and `cull.wgsl` use). Each pass binds only
+//! what its entry points use, which keeps every stage within wgpu's default limit of 8 storage
+//! buffers.
+
+use crate::render::bindings::Kind::{Read, ReadWrite, Uniform};
+use crate::render::bindings::{Binding, Bindings, FRAME, asset};
+
+/// Per edge, its slot + 1 this frame (0: not drawn), written by classify, read by the joins.
+pub(crate) const STATE: Binding = Binding::new(16, "state", ReadWrite);
+/// The drawn edges: (edge, drawn word) per slot.
+pub(crate) const DRAWN: Binding = Binding::new(17, "drawn", ReadWrite);
+/// Per drawn end, its split directions (the joins).
+pub(crate) const JOINS: Binding = Binding::new(18, "joins", ReadWrite);
+/// The indirect draws' arguments, the wanted count and the cap list.
+pub(crate) const OUT: Binding = Binding::new(19, "out", ReadWrite);
+/// Per slot, the edge's quad on screen.
+pub(crate) const SCREEN: Binding = Binding::new(20, "screen", ReadWrite);
+/// Per slot, a highlighted chamfer edge's record.
+pub(crate) const CHAMFERS: Binding = Binding::new(21, "chamfers", ReadWrite);
+/// The F(φ, n + 1) row of the highlight's exponent.
+pub(crate) const COS_POWER: Binding = Binding::new(22, "cos_power", Read);
+/// The highlight's light and material.
+pub(crate) const LIGHTING: Binding = Binding::new(23, "lighting", Uniform);
+/// Per drawn instance, its first slot.
+pub(crate) const STARTS: Binding = Binding::new(24, "starts", ReadWrite);
+/// Per drawn instance, its class colours.
+pub(crate) const COLORS: Binding = Binding::new(25, "instance_colors", Read);
+/// The indirect dispatch of the joins, sized by what an instance drew.
+pub(crate) const DISPATCH: Binding = Binding::new(26, "dispatch", ReadWrite);
+/// The clusters a chunk's cull pass kept.
+pub(crate) const SURVIVORS: Binding = Binding::new(27, "survivors", ReadWrite);
+/// The indirect dispatch over the kept clusters.
+pub(crate) const CULL_DISPATCH: Binding = Binding::new(28, "cull_dispatch", ReadWrite);
+
+/// What the draw passes read of the lists the compute passes wrote.
+const fn read_only(binding: Binding) -> Binding {
+    Binding::new(binding.index, binding.name, Read)
+}
+
+pub(crate) const CLASSIFY: Bindings = Bindings::compute(
+    "classify",
+    &[
+        FRAME,
+        STARTS,
+        asset::TOPOLOGY,
+        asset::EDGE_VERTICES,
+        asset::ATTRIBUTES,
+        STATE,
+        DRAWN,
+        OUT,
+        SCREEN,
+        SURVIVORS,
+    ],
+);
+pub(crate) const CULL: Bindings = Bindings::compute(
+    "cull",
+    &[FRAME, OUT, SURVIVORS, asset::CLUSTERS, CULL_DISPATCH],
+);
+pub(crate) const JOIN: Bindings = Bindings::compute(
+    "joins",
+    &[
+        FRAME,
+        STARTS,
+        asset::RINGS,
+        STATE,
+        DRAWN,
+        JOINS,
+        OUT,
+        SCREEN,
+        asset::CAP_HEADS,
+    ],
+);
+pub(crate) const RECORDS: Bindings = Bindings::compute(
+    "chamfer records",
+    &[
+        FRAME,
+        asset::TOPOLOGY,
+        asset::EDGE_VERTICES,
+        asset::ATTRIBUTES,
+        DRAWN,
+        OUT,
+        SCREEN,
+        CHAMFERS,
+        STARTS,
+    ],
+);
+pub(crate) const ARGS: Bindings = Bindings::compute("edge lists", &[FRAME, OUT, STARTS, DISPATCH]);
+pub(crate) const DRAW: Bindings = Bindings::draw(
+    "edge draw",
+    &[
+        FRAME,
+        COLORS,
+        read_only(DRAWN),
+        read_only(JOINS),
+        read_only(OUT),
+        read_only(SCREEN),
+        read_only(CHAMFERS),
+        COS_POWER,
+        LIGHTING,
+    ],
+);
+pub(crate) const SEGMENTS: Bindings =
+    Bindings::draw("intersection edges", &[FRAME, asset::SEGMENTS]);

@@ -1,0 +1,90 @@
+//! The chamfer highlight's per-frame uniforms (seed 000): the F(φ, n + 1) row of the material's
+//! exponent, rewritten only when the exponent changes, and the light and material.
+
+use glam::Vec3;
+
+use super::super::FrameContext;
+use crate::render::lighting::Light;
+use crate::render::{Pipelines as Cache, layout};
+
+/// The highlight's buffers.
+#[derive(Debug)]
+pub(super) struct HighlightUniforms {
+    pub(super) cos_power: wgpu::Buffer,
+    pub(super) lighting: wgpu::Buffer,
+    /// The exponent the cos-power row holds now.
+    row_exponent: Option<f32>,
+}
+
+impl HighlightUniforms {
+    pub(super) fn new(cache: &Cache) -> Self {
+        let device = cache.device();
+        let buffer = |label, size: usize, usage| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: size as u64,
+                usage: usage | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        };
+        Self {
+            cos_power: buffer(
+                "cos power row",
+                4 * (crate::highlight::table::SAMPLES + 1),
+                wgpu::BufferUsages::STORAGE,
+            ),
+            lighting: buffer(
+                "highlight lighting",
+                std::mem::size_of::<layout::Lighting>(),
+                wgpu::BufferUsages::UNIFORM,
+            ),
+            row_exponent: None,
+        }
+    }
+
+    /// Writes the row and lighting for the style's highlight; false if it has none.
+    pub(super) fn prepare(&mut self, cx: &FrameContext<'_>) -> bool {
+        let Some(highlight) = &cx.style.highlight else {
+            return false;
+        };
+        let material = highlight.material;
+        let exponent = material.shininess.clamp(1.0, 128.0) + 1.0;
+        if self.row_exponent != Some(exponent) {
+            let row = crate::highlight::table::CosPowerRow::new(exponent);
+            cx.queue
+                .write_buffer(&self.cos_power, 0, bytemuck::cast_slice(row.values()));
+            self.row_exponent = Some(exponent);
+        }
+        let light = match highlight.light {
+            Light::Directional(d) => {
+                let d = Vec3::from(d).normalize_or(Vec3::Z);
+                [d.x, d.y, d.z, 0.0]
+            }
+            Light::Point([x, y, z]) => [x, y, z, 1.0],
+        };
+        // K by the first instance (for one asset: the camera's distance to its centre).
+        let k = highlight.k.unwrap_or_else(|| {
+            cx.instances.first().map_or(1.0, |d| {
+                d.camera.eye().truncate().distance(d.asset.center())
+            })
+        });
+        let [r, g, b] = highlight.color;
+        let lighting = layout::Lighting {
+            light,
+            color: [r, g, b, k],
+            material: [
+                material.diffuse,
+                material.specular,
+                exponent - 1.0,
+                highlight.ambient.clamp(0.0, 1.0),
+            ],
+        };
+        cx.queue
+            .write_buffer(&self.lighting, 0, bytemuck::bytes_of(&lighting));
+        true
+    }
+
+    pub(super) fn gpu_bytes(&self) -> u64 {
+        self.cos_power.size() + self.lighting.size()
+    }
+}

@@ -1,0 +1,183 @@
+//! The joined technique's shaders and pipelines, per device and target.
+
+use chamfer_shaders as wgsl;
+
+use super::bindings::{ARGS, CLASSIFY, CULL, DRAW, JOIN, RECORDS, SEGMENTS};
+use crate::render::modules::{Program, Shader};
+use crate::render::pipelines::{PipelineSet, Raster};
+use crate::render::{Pipelines as Cache, RenderError};
+
+/// Cluster culling and edge classification.
+fn classify() -> Shader {
+    Shader::new(
+        "classify.wgsl",
+        &[
+            wgsl::COMMON,
+            wgsl::HIGHLIGHT,
+            wgsl::LISTS,
+            wgsl::COMPUTE,
+            wgsl::CULL,
+            wgsl::CLASSIFY,
+        ],
+        vec![
+            Program::compute("mark", &CLASSIFY),
+            Program::compute("classify", &CLASSIFY),
+            Program::compute("classify_clusters", &CLASSIFY),
+            Program::compute("cull", &CULL),
+            Program::compute("cull_args", &CULL),
+        ],
+    )
+}
+
+/// The frame's bookkeeping over the lists.
+fn args() -> Shader {
+    Shader::new(
+        "args.wgsl",
+        &[wgsl::COMMON, wgsl::LISTS, wgsl::ARGS],
+        vec![
+            Program::compute("reset", &ARGS),
+            Program::compute("args", &ARGS),
+            Program::compute("finish", &ARGS),
+        ],
+    )
+}
+
+/// Joins and caps, by next-index walk or cap buffer.
+fn joins() -> Shader {
+    Shader::new(
+        "joins.wgsl",
+        &[
+            wgsl::COMMON,
+            wgsl::HIGHLIGHT,
+            wgsl::LISTS,
+            wgsl::COMPUTE,
+            wgsl::JOINS,
+        ],
+        vec![
+            Program::compute("joins_next", &JOIN),
+            Program::compute("joins_heads", &JOIN),
+            Program::compute("clear_joins", &JOIN),
+        ],
+    )
+}
+
+/// Chamfer records of highlighted edges.
+fn chamfers() -> Shader {
+    Shader::new(
+        "chamfers.wgsl",
+        &[
+            wgsl::COMMON,
+            wgsl::HIGHLIGHT,
+            wgsl::LISTS,
+            wgsl::COMPUTE,
+            wgsl::CHAMFERS,
+        ],
+        vec![Program::compute("chamfer_records", &RECORDS)],
+    )
+}
+
+/// Compacted edge quads.
+fn edges() -> Shader {
+    Shader::new(
+        "edges.wgsl",
+        &[wgsl::COMMON, wgsl::HIGHLIGHT, wgsl::DRAW, wgsl::EDGES],
+        vec![Program::draw("edge_vertex_main", "edge_fragment", &DRAW)],
+    )
+}
+
+/// Round caps.
+fn caps() -> Shader {
+    Shader::new(
+        "caps.wgsl",
+        &[wgsl::COMMON, wgsl::HIGHLIGHT, wgsl::DRAW, wgsl::CAPS],
+        vec![Program::draw("cap_vertex_main", "cap_fragment", &DRAW)],
+    )
+}
+
+/// Intersection edges.
+fn intersections() -> Shader {
+    Shader::new(
+        "intersections.wgsl",
+        &[wgsl::COMMON, wgsl::INTERSECTIONS],
+        vec![Program::draw(
+            "segment_vertex",
+            "segment_fragment",
+            &SEGMENTS,
+        )],
+    )
+}
+
+/// Every module the technique compiles.
+pub(crate) fn shaders() -> Vec<Shader> {
+    vec![
+        classify(),
+        args(),
+        joins(),
+        chamfers(),
+        edges(),
+        caps(),
+        intersections(),
+    ]
+}
+
+/// The technique's pipelines.
+#[derive(Debug)]
+pub(crate) struct JoinedPipelines {
+    pub(crate) reset: wgpu::ComputePipeline,
+    pub(crate) mark: wgpu::ComputePipeline,
+    pub(crate) classify: wgpu::ComputePipeline,
+    pub(crate) cull: wgpu::ComputePipeline,
+    pub(crate) cull_args: wgpu::ComputePipeline,
+    pub(crate) classify_clusters: wgpu::ComputePipeline,
+    pub(crate) finish: wgpu::ComputePipeline,
+    pub(crate) args: wgpu::ComputePipeline,
+    pub(crate) joins_next: wgpu::ComputePipeline,
+    pub(crate) joins_heads: wgpu::ComputePipeline,
+    pub(crate) clear_joins: wgpu::ComputePipeline,
+    pub(crate) chamfer_records: wgpu::ComputePipeline,
+    pub(crate) edges: wgpu::RenderPipeline,
+    pub(crate) caps: wgpu::RenderPipeline,
+    pub(crate) segments: wgpu::RenderPipeline,
+}
+
+impl PipelineSet for JoinedPipelines {
+    fn new(cache: &Cache) -> Result<Self, RenderError> {
+        let [classify, args, joins, chamfers, edges, caps, intersections] = shaders()
+            .try_into()
+            .map_err(|_| RenderError::Internal("the joined technique's shaders".into()))?;
+        let classify = cache.compile(&classify)?;
+        let args = cache.compile(&args)?;
+        let joins = cache.compile(&joins)?;
+        let chamfers = cache.compile(&chamfers)?;
+        let over_mesh = || Raster::over_mesh(cache.target());
+        Ok(Self {
+            reset: args.compute("reset")?,
+            mark: classify.compute("mark")?,
+            classify: classify.compute("classify")?,
+            cull: classify.compute("cull")?,
+            cull_args: classify.compute("cull_args")?,
+            classify_clusters: classify.compute("classify_clusters")?,
+            finish: args.compute("finish")?,
+            args: args.compute("args")?,
+            joins_next: joins.compute("joins_next")?,
+            joins_heads: joins.compute("joins_heads")?,
+            clear_joins: joins.compute("clear_joins")?,
+            chamfer_records: chamfers.compute("chamfer_records")?,
+            edges: cache.compile(&edges)?.render(
+                "edge_vertex_main",
+                Some("edge_fragment"),
+                over_mesh(),
+            )?,
+            caps: cache.compile(&caps)?.render(
+                "cap_vertex_main",
+                Some("cap_fragment"),
+                over_mesh(),
+            )?,
+            segments: cache.compile(&intersections)?.render(
+                "segment_vertex",
+                Some("segment_fragment"),
+                over_mesh(),
+            )?,
+        })
+    }
+}

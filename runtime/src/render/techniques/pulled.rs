@@ -1,0 +1,279 @@
+//! The skeleton of the techniques that pull their geometry from the asset's sections in the vertex
+//! shader (McGuire–Hughes, the §9.3 shapes, fins, the wireframe, surface angle, the inverted hull;
+//! hardware contours use its [`Instances`]): per instance a `Frame` block and a parameters block,
+//! per asset one bind group over its sections, one draw call sequence per instance. A technique of
+//! this kind implements [`Pull`] with only what differs; [`PullModule`] makes it a [`Module`].
+
+use std::marker::PhantomData;
+use std::sync::Arc;
+
+use super::{Blocks, Drawn, FrameContext, FrameOptions, Module, PerAsset, TechniqueFrame};
+use crate::render::bindings::{self, Binding, Bindings};
+use crate::render::layout::{Frame, Layout};
+use crate::render::modules::Shader;
+use crate::render::pipelines::PipelineSet;
+use crate::render::{AssetExtras, GpuAsset, Pipelines, RenderError, Target, Technique};
+
+/// What a vertex-pulled technique declares; the rest is [`PullModule`]'s.
+pub(crate) trait Pull: Send + Sync + 'static {
+    /// The parameters block (`#[repr(C)]`, its WGSL twin named in [`Pull::structs`]); `()` for
+    /// none, and then [`Pull::BINDINGS`] has no [`bindings::PARAMS`].
+    type Params: bytemuck::Pod + Send + Sync;
+    /// The compiled pipelines, per device and target.
+    type Pipelines: PipelineSet;
+    /// What the draw calls take from the style beyond the blocks (`()` for nothing).
+    type Draw: Copy + Default + std::fmt::Debug + Send + Sync;
+    /// The bindings of the technique's one layout: [`bindings::FRAME`], [`bindings::PARAMS`] and
+    /// the asset sections it reads.
+    const BINDINGS: &'static Bindings;
+
+    /// The technique's WGSL modules and their programs (all with [`Pull::BINDINGS`]).
+    #[cfg_attr(not(test), allow(dead_code))]
+    fn shaders(target: &Target) -> Vec<Shader>;
+
+    /// The Rust twins of its WGSL structs.
+    #[cfg_attr(not(test), allow(dead_code))]
+    fn structs() -> Vec<Layout>;
+
+    /// The parameters of `drawn` this frame; `None` if the style's technique is not this module's.
+    fn params(cx: &FrameContext<'_>, drawn: &Drawn<'_>) -> Option<Self::Params>;
+
+    /// The draw calls' state for this frame.
+    fn draw_state(_cx: &FrameContext<'_>) -> Self::Draw {
+        Self::Draw::default()
+    }
+
+    /// What an asset must be uploaded with: by default, the extras its bindings read.
+    fn needs(_technique: &Technique) -> AssetExtras {
+        AssetExtras::read_by(Self::BINDINGS)
+    }
+
+    /// The resource of one of the asset's section bindings (by default the asset's own section).
+    fn resource<'a>(
+        asset: &'a GpuAsset,
+        binding: Binding,
+        technique: &Technique,
+    ) -> Result<wgpu::BindingResource<'a>, RenderError> {
+        asset.resource(binding, technique.name())
+    }
+
+    /// Draws one instance of `asset` (its bind group is set).
+    fn draw(
+        pipelines: &Self::Pipelines,
+        state: Self::Draw,
+        pass: &mut wgpu::RenderPass<'_>,
+        asset: &GpuAsset,
+    );
+}
+
+/// The [`Module`] of a [`Pull`] technique.
+pub(crate) struct PullModule<T>(PhantomData<fn() -> T>);
+
+impl<T> PullModule<T> {
+    pub(crate) const fn new() -> Self {
+        Self(PhantomData)
+    }
+}
+
+impl<T: Pull> Module for PullModule<T> {
+    fn shaders(&self, target: &Target) -> Vec<Shader> {
+        T::shaders(target)
+    }
+
+    fn structs(&self) -> Vec<Layout> {
+        T::structs()
+    }
+
+    fn needs(&self, technique: &Technique) -> AssetExtras {
+        T::needs(technique)
+    }
+
+    fn new_frame(
+        &self,
+        pipelines: &Pipelines,
+        _options: &FrameOptions,
+    ) -> Result<Box<dyn TechniqueFrame>, RenderError> {
+        Ok(Box::new(PulledFrame::<T> {
+            set: pipelines.get::<T::Pipelines>()?,
+            layout: pipelines.layout(T::BINDINGS),
+            instances: Instances::new(pipelines, T::BINDINGS.label),
+            state: T::Draw::default(),
+        }))
+    }
+}
+
+/// The frame of a [`Pull`] technique.
+struct PulledFrame<T: Pull> {
+    set: Arc<T::Pipelines>,
+    layout: wgpu::BindGroupLayout,
+    instances: Instances<T::Params>,
+    state: T::Draw,
+}
+
+impl<T: Pull> std::fmt::Debug for PulledFrame<T> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("PulledFrame")
+            .field("technique", &T::BINDINGS.label)
+            .field("state", &self.state)
+            .finish_non_exhaustive()
+    }
+}
+
+impl<T: Pull> TechniqueFrame for PulledFrame<T> {
+    fn prepare(
+        &mut self,
+        cx: &FrameContext<'_>,
+        _encoder: &mut wgpu::CommandEncoder,
+    ) -> Result<(), RenderError> {
+        self.state = T::draw_state(cx);
+        let technique = cx.style.technique;
+        self.instances.prepare(
+            cx,
+            T::BINDINGS,
+            &self.layout,
+            |d| T::params(cx, d),
+            |asset, binding| T::resource(asset, binding, &technique),
+        )
+    }
+
+    fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
+        self.instances.each(pass, |pass, asset| {
+            T::draw(&self.set, self.state, pass, asset)
+        });
+    }
+
+    fn gpu_bytes(&self) -> u64 {
+        self.instances.gpu_bytes()
+    }
+}
+
+/// Per frame, the instances of a technique with one layout: a `Frame` and a `P` block each, and one
+/// bind group per asset over the blocks and its sections.
+#[derive(Debug)]
+pub(crate) struct Instances<P> {
+    pub(crate) frames: Blocks,
+    /// `None` when `P` is `()`.
+    params: Option<Blocks>,
+    groups: PerAsset<wgpu::BindGroup>,
+    /// Per instance: its asset's group and its blocks' offsets.
+    draws: Vec<(usize, [u32; 2])>,
+    /// The technique the groups bind for: another one may bind other resources.
+    made_for: Option<Technique>,
+    _params: PhantomData<fn() -> P>,
+}
+
+impl<P: bytemuck::Pod> Instances<P> {
+    pub(crate) fn new(cache: &Pipelines, label: &'static str) -> Self {
+        let size = std::mem::size_of::<P>();
+        Self {
+            frames: Blocks::new(cache, label, std::mem::size_of::<Frame>()),
+            params: (size > 0).then(|| Blocks::new(cache, label, size)),
+            groups: PerAsset::default(),
+            draws: Vec::new(),
+            made_for: None,
+            _params: PhantomData,
+        }
+    }
+
+    /// Writes each instance's blocks (its parameters from `params`) and makes the group of each new
+    /// asset over `bindings`, the sections' resources from `resource`.
+    pub(crate) fn prepare<'a>(
+        &mut self,
+        cx: &FrameContext<'a>,
+        bindings: &'static Bindings,
+        layout: &wgpu::BindGroupLayout,
+        params: impl Fn(&Drawn<'_>) -> Option<P>,
+        resource: impl for<'g> Fn(
+            &'g GpuAsset,
+            Binding,
+        ) -> Result<wgpu::BindingResource<'g>, RenderError>,
+    ) -> Result<(), RenderError> {
+        let frames: Vec<Frame> = cx
+            .instances
+            .iter()
+            .enumerate()
+            .map(|(i, d)| super::frame_uniform(cx, d, i))
+            .collect();
+        let blocks = cx
+            .instances
+            .iter()
+            .map(|d| params(d).ok_or_else(|| super::mismatch(cx)))
+            .collect::<Result<Vec<P>, RenderError>>()?;
+        let mut regrown = self.frames.write(cx.pipelines, cx.queue, &frames);
+        if let Some(params) = &mut self.params {
+            regrown |= params.write(cx.pipelines, cx.queue, &blocks);
+        }
+        if regrown || self.made_for != Some(cx.style.technique) {
+            self.groups.clear();
+            self.made_for = Some(cx.style.technique);
+        }
+        self.groups.retain(cx.instances);
+        self.draws.clear();
+        let device = cx.pipelines.device();
+        for (i, drawn) in cx.instances.iter().enumerate() {
+            let (frames, params) = (&self.frames, &self.params);
+            let group = self.groups.index(drawn.asset, |asset| {
+                bindings.group(device, layout, |binding| {
+                    match block(frames, params, binding) {
+                        Some(block) => Ok(block),
+                        None => resource(asset, binding),
+                    }
+                })
+            })?;
+            let params = self.params.as_ref().map_or(0, |p| p.offset(i));
+            self.draws.push((group, [self.frames.offset(i), params]));
+        }
+        Ok(())
+    }
+
+    /// The resource of [`bindings::FRAME`] or [`bindings::PARAMS`] (the blocks' buffers).
+    pub(crate) fn block(&self, binding: Binding) -> Option<wgpu::BindingResource<'_>> {
+        block(&self.frames, &self.params, binding)
+    }
+
+    /// The dynamic offsets of an instance's blocks, in binding order.
+    fn offsets<'o>(&self, offsets: &'o [u32; 2]) -> &'o [u32] {
+        if self.params.is_some() {
+            offsets
+        } else {
+            &offsets[..1]
+        }
+    }
+
+    /// For each instance: sets its group and blocks on `pass` and calls `draw` with its asset.
+    pub(crate) fn each(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        mut draw: impl FnMut(&mut wgpu::RenderPass<'_>, &GpuAsset),
+    ) {
+        for (group, offsets) in &self.draws {
+            let (asset, bind_group) = self.groups.get(*group);
+            pass.set_bind_group(0, bind_group, self.offsets(offsets));
+            draw(pass, asset);
+        }
+    }
+
+    /// Per instance, its asset and its blocks' offsets (for passes with other groups).
+    pub(crate) fn draws(&self) -> impl Iterator<Item = (&GpuAsset, &[u32])> + '_ {
+        self.draws.iter().map(|(group, offsets)| {
+            let (asset, _) = self.groups.get(*group);
+            (asset, self.offsets(offsets))
+        })
+    }
+
+    pub(crate) fn gpu_bytes(&self) -> u64 {
+        self.frames.gpu_bytes() + self.params.as_ref().map_or(0, Blocks::gpu_bytes)
+    }
+}
+
+fn block<'b>(
+    frames: &'b Blocks,
+    params: &'b Option<Blocks>,
+    binding: Binding,
+) -> Option<wgpu::BindingResource<'b>> {
+    match binding {
+        bindings::FRAME => Some(frames.binding()),
+        bindings::PARAMS => params.as_ref().map(Blocks::binding),
+        _ => None,
+    }
+}
