@@ -15,9 +15,6 @@ const HOUSE: u32 = 4u;
 
 struct AlternateParams {
     shape: u32,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
 }
 
 @group(0) @binding(15) var<uniform> params: AlternateParams;

@@ -14,7 +14,6 @@ struct FinParams {
     in_pixels: u32,
     // How far crease fins move towards the camera, world units.
     z_bias: f32,
-    _pad: u32,
 }
 
 @group(0) @binding(15) var<uniform> params: FinParams;

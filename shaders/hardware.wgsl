@@ -26,7 +26,6 @@ struct HardwareParams {
     offset_px: f32,
     // §4.7's crease angle, radians.
     crease_angle: f32,
-    _pad: u32,
 }
 
 @group(0) @binding(15) var<uniform> params: HardwareParams;

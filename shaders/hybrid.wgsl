@@ -22,8 +22,6 @@ struct HybridParams {
     range: f32,
     // 1: only over the object (its mask's Laplacian outline and its pixels, §3.1).
     object_only: u32,
-    _pad0: u32,
-    _pad1: u32,
 }
 
 @group(0) @binding(15) var<uniform> params: HybridParams;

@@ -16,9 +16,6 @@ struct ImageParams {
     step_px: f32,
     // ...scaled with depth if 1.
     depth_scaled: u32,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
 }
 
 @group(0) @binding(15) var<uniform> params: ImageParams;

@@ -6,9 +6,6 @@
 
 struct HullParams {
     smooth_normals: u32,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
 }
 
 @group(0) @binding(15) var<uniform> params: HullParams;

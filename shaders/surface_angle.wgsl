@@ -5,9 +5,6 @@
 
 struct AngleParams {
     threshold: f32,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
 }
 
 @group(0) @binding(15) var<uniform> params: AngleParams;

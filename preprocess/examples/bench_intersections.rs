@@ -14,7 +14,7 @@ use std::path::Path;
 use std::time::{Duration, Instant};
 
 use chamfer_preprocess::draw::svg::{SvgOptions, write_svg};
-use chamfer_preprocess::draw::{DrawOptions, View, hidden_lines};
+use chamfer_preprocess::draw::{DrawOptions, hidden_lines};
 use chamfer_preprocess::intersections::{find_intersections, intersect_triangles};
 use chamfer_preprocess::mesh::Mesh;
 use chamfer_preprocess::{BakeOptions, bake, load, weld};
@@ -110,15 +110,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             &Orbit::default(),
             [1024, 768],
         );
-        let view = View {
-            model_view: camera.model_view,
-            projection: camera.projection,
-            viewport: camera.viewport,
-        };
         let mut drawing = None;
         let lines = median(runs, || {
             let start = Instant::now();
-            drawing = Some(hidden_lines(&asset, &view, &DrawOptions::DEFAULT));
+            drawing = Some(hidden_lines(&asset, &camera, &DrawOptions::DEFAULT));
             start.elapsed()
         });
         let drawing = drawing.ok_or("no run")?;

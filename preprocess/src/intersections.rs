@@ -99,7 +99,7 @@ pub fn find_intersections(positions: &[Vec3], triangles: &[[u32; 3]]) -> Interse
     stats.neighbour_pairs = counts.neighbours;
     stats.coplanar_pairs = counts.coplanar;
     stats.crossing_pairs = raw.len() as u64;
-    let (points, edges) = weld(raw);
+    let (points, edges) = join_segment_ends(raw);
     let (segments, starts, closed) = chain(&points, &edges);
     stats.segments = segments.len() as u64;
     stats.polylines = starts.len() as u64;
@@ -523,9 +523,10 @@ fn edge_crossing(u: (u32, Vec3), v: (u32, Vec3), plane: &Plane) -> Vec3 {
     (p.as_dvec3() + (q.as_dvec3() - p.as_dvec3()) * t).as_vec3()
 }
 
-/// Welds the end points; returns the points and each distinct segment as a pair of point indices
+/// Joins segment ends that coincide (bitwise, then within 1e-6 of the largest coordinate: a rule of
+/// its own, not `crate::weld`'s); returns the points and each distinct segment as a pair of point indices
 /// (ascending, sorted).
-fn weld(segments: Vec<[Vec3; 2]>) -> (Vec<Vec3>, Vec<[u32; 2]>) {
+fn join_segment_ends(segments: Vec<[Vec3; 2]>) -> (Vec<Vec3>, Vec<[u32; 2]>) {
     let mut unique: Vec<Vec3> = segments.iter().flatten().copied().collect();
     unique.sort_unstable_by_key(|p| point_key(*p));
     unique.dedup_by_key(|p| point_key(*p));
@@ -772,7 +773,7 @@ mod tests {
         let a = Vec3::new(0.3, 0.7, 0.1);
         let nudged = Vec3::new(f32::from_bits(a.x.to_bits() + 2), a.y, a.z);
         let raw = vec![[Vec3::ZERO, a], [nudged, Vec3::ONE]];
-        let (points, edges) = weld(raw);
+        let (points, edges) = join_segment_ends(raw);
         assert_eq!(points.len(), 3);
         let (segments, starts, closed) = chain(&points, &edges);
         assert_eq!((segments.len(), starts.len(), closed), (2, 1, 0));

@@ -13,6 +13,7 @@
 //! ```
 
 pub mod asset;
+pub mod camera;
 #[cfg(feature = "render")]
 pub mod highlight;
 #[cfg(feature = "render")]

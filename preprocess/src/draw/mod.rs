@@ -16,7 +16,7 @@
 
 pub mod svg;
 
-use glam::{DMat4, DVec3, DVec4, Mat4, Vec3};
+use glam::{DMat4, DVec3, DVec4, Vec3};
 use obvhs::BvhBuildParams;
 use obvhs::aabb::Aabb;
 use obvhs::bvh2::builder::build_bvh2;
@@ -26,24 +26,9 @@ use chamfer_runtime::asset::{Asset, EdgeFlags};
 
 use crate::polylines;
 
-/// The camera: the same matrices as the runtime's `render::Camera` (model → view, right-handed,
-/// looking down −Z; view → wgpu clip space, depth 0..1) and the frame in pixels.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct View {
-    /// Model space to view space.
-    pub model_view: Mat4,
-    /// View space to clip space, perspective or orthographic.
-    pub projection: Mat4,
-    /// Frame size in pixels: drawing coordinates are pixels of this frame, y down.
-    pub viewport: [u32; 2],
-}
-
-impl View {
-    /// True for an orthographic projection (the runtime's test).
-    pub fn is_orthographic(&self) -> bool {
-        self.projection.z_axis.w == 0.0 && self.projection.w_axis.w == 1.0
-    }
-}
+/// The camera of a drawing: the runtime's own (`chamfer render` of the same camera draws the same
+/// lines), its viewport the drawing's frame in pixels, y down.
+pub use chamfer_runtime::camera::Camera;
 
 /// What a line is; drawn in this order, and a mesh edge in several classes takes the first.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -167,7 +152,7 @@ pub struct DrawStats {
 }
 
 /// Draws `asset` from `view`; see the module documentation. Deterministic for any thread count.
-pub fn hidden_lines(asset: &Asset, view: &View, options: &DrawOptions) -> Drawing {
+pub fn hidden_lines(asset: &Asset, view: &Camera, options: &DrawOptions) -> Drawing {
     let scene = Scene::new(asset, view);
     let candidates = candidate_lines(asset, &scene, options);
     let occluders = Occluders::new(asset, &scene);
@@ -236,7 +221,7 @@ struct Scene {
 }
 
 impl Scene {
-    fn new(asset: &Asset, view: &View) -> Self {
+    fn new(asset: &Asset, view: &Camera) -> Self {
         let model_view = view.model_view.as_dmat4();
         let clip = (view.projection * view.model_view).as_dmat4();
         let towards_viewer = if view.is_orthographic() {

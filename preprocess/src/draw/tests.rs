@@ -20,8 +20,8 @@ fn asset_of(positions: &[[f32; 3]], triangles: &[[u32; 3]]) -> Asset {
 }
 
 /// Looking down -Z from z = 5 at 100 px per unit, orthographic, 400 x 300 px.
-fn top_view() -> View {
-    View {
+fn top_view() -> Camera {
+    Camera {
         model_view: look_at_mat4(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, Vec3::Y),
         projection: directx::orthographic(-2.0, 2.0, -1.5, 1.5, 0.1, 10.0),
         viewport: [400, 300],
@@ -128,7 +128,7 @@ fn classes_can_be_left_out_and_lines_outside_the_frame_are_clipped() {
 }
 
 /// The runtime's orbit camera, rebuilt from glam (the same formulas as `Camera::orbit`).
-fn orbit(bounds: [[f32; 3]; 2], azimuth: f32, elevation: f32, viewport: [u32; 2]) -> View {
+fn orbit(bounds: [[f32; 3]; 2], azimuth: f32, elevation: f32, viewport: [u32; 2]) -> Camera {
     let [lo, hi] = bounds.map(Vec3::from);
     let center = (lo + hi) * 0.5;
     let radius = (hi - lo).length() * 0.5;
@@ -145,7 +145,7 @@ fn orbit(bounds: [[f32; 3]; 2], azimuth: f32, elevation: f32, viewport: [u32; 2]
         (distance - radius * 1.5).max(distance * 1e-3),
         distance + radius * 1.5,
     );
-    View {
+    Camera {
         model_view: view,
         projection,
         viewport,

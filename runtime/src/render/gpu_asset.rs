@@ -467,18 +467,22 @@ impl GpuAsset {
 
 /// The vertex buffers of the passes that draw the mesh with vertex buffers: the render positions
 /// at location 0 and the render normals at location 1.
-pub(crate) fn vertex_layouts() -> [Option<wgpu::VertexBufferLayout<'static>>; 2] {
+pub(crate) const VERTEX_LAYOUTS: [Option<wgpu::VertexBufferLayout<'static>>; 2] = {
     const POSITION: [wgpu::VertexAttribute; 1] = wgpu::vertex_attr_array![0 => Float32x3];
     const NORMAL: [wgpu::VertexAttribute; 1] = wgpu::vertex_attr_array![1 => Float32x3];
-    let layout = |attributes: &'static [wgpu::VertexAttribute]| {
+    [
         Some(wgpu::VertexBufferLayout {
             array_stride: 12,
             step_mode: wgpu::VertexStepMode::Vertex,
-            attributes,
-        })
-    };
-    [layout(&POSITION), layout(&NORMAL)]
-}
+            attributes: &POSITION,
+        }),
+        Some(wgpu::VertexBufferLayout {
+            array_stride: 12,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &NORMAL,
+        }),
+    ]
+};
 
 /// A buffer holding `bytes` (wgpu pads it to a multiple of four; an empty section gets four zero
 /// bytes, since a binding cannot be empty).

@@ -238,12 +238,12 @@ pub(crate) const JOIN_BYTES_PER_END: u64 = 8;
 
 /// A Rust struct's layout as the WGSL side must see it: member names with byte offsets, and size
 /// (compared with naga's layout of the WGSL twin by the CPU test in `modules.rs`).
-#[derive(Debug)]
+#[derive(Clone, Copy, Debug)]
 #[cfg_attr(not(test), allow(dead_code))]
 pub(crate) struct Layout {
     pub(crate) wgsl: &'static str,
     pub(crate) size: usize,
-    pub(crate) members: Vec<(&'static str, usize)>,
+    pub(crate) members: &'static [(&'static str, usize)],
 }
 
 /// The [`Layout`] of `$ty`, the WGSL struct `$wgsl`, with these members.
@@ -252,7 +252,7 @@ macro_rules! layout {
         $crate::render::layout::Layout {
             wgsl: $wgsl,
             size: std::mem::size_of::<$ty>(),
-            members: vec![$((stringify!($field), std::mem::offset_of!($ty, $field))),*],
+            members: &[$((stringify!($field), std::mem::offset_of!($ty, $field))),*],
         }
     };
 }

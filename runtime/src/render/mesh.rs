@@ -5,7 +5,7 @@ use std::sync::Arc;
 use glam::Vec3;
 
 use super::bindings::{Binding, Bindings, Kind};
-use super::gpu_asset::vertex_layouts;
+use super::gpu_asset::VERTEX_LAYOUTS;
 use super::layout::MeshFrame;
 use super::modules::{Program, Shader};
 use super::pipelines::{PipelineSet, Raster};
@@ -74,7 +74,7 @@ impl PipelineSet for Pipeline {
             "mesh_vertex",
             Some("mesh_fragment"),
             Raster {
-                buffers: &vertex_layouts(),
+                buffers: &VERTEX_LAYOUTS,
                 primitive: wgpu::PrimitiveState::default(),
                 depth_stencil: target.depth(true, wgpu::CompareFunction::Less),
                 multisample: target.multisample(),

@@ -45,7 +45,6 @@
 //! thumbnails, the `chamfer render` command).
 
 mod bindings;
-mod camera;
 mod derived;
 mod error;
 mod gpu_asset;
@@ -61,7 +60,7 @@ mod target;
 mod technique;
 mod techniques;
 
-pub use camera::{Camera, Orbit};
+pub use crate::camera::{Camera, Orbit};
 pub use derived::AssetExtras;
 pub use error::RenderError;
 pub use gpu_asset::GpuAsset;

@@ -299,7 +299,7 @@ pub(crate) mod tests {
                 continue;
             };
             seen.push(rust.wgsl);
-            for &(member, offset) in &rust.members {
+            for &(member, offset) in rust.members {
                 let wgsl = members.iter().find(|(m, _)| m == member);
                 if wgsl.map(|&(_, o)| o as usize) != Some(offset) {
                     found.push(format!(

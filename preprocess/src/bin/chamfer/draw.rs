@@ -5,7 +5,7 @@ use std::time::Instant;
 
 use anyhow::{Context, bail};
 use chamfer_preprocess::draw::svg::{SvgOptions, mm_per_px, write_svg};
-use chamfer_preprocess::draw::{DrawOptions, LineClass, View, hidden_lines};
+use chamfer_preprocess::draw::{DrawOptions, LineClass, hidden_lines};
 use chamfer_preprocess::write::{ensure_not_an_input, write_atomically};
 use chamfer_runtime::asset::Asset;
 use clap::{Args, ValueEnum};
@@ -85,11 +85,6 @@ pub fn run(args: &DrawArgs) -> anyhow::Result<()> {
     let camera = args
         .camera
         .camera([asset.header.bounds_min, asset.header.bounds_max]);
-    let view = View {
-        model_view: camera.model_view,
-        projection: camera.projection,
-        viewport: camera.viewport,
-    };
     let classes: Vec<LineClass> = args
         .classes
         .iter()
@@ -105,7 +100,7 @@ pub fn run(args: &DrawArgs) -> anyhow::Result<()> {
         .with_classes(&classes)
         .with_hidden(args.hidden);
     let start = Instant::now();
-    let drawing = hidden_lines(&asset, &view, &options);
+    let drawing = hidden_lines(&asset, &camera, &options);
     let drawn = start.elapsed();
 
     let name = args.input.file_name().map_or_else(

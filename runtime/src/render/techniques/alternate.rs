@@ -9,27 +9,19 @@
 //! [`Technique::HalfHexPlug`]: crate::render::Technique::HalfHexPlug
 //! [`Technique::House`]: crate::render::Technique::House
 
-use super::pulled::{Pull, PullModule};
+use chamfer_shaders as wgsl;
+
+use super::pulled::{Draws, Pull, PullModule};
 use super::{Drawn, FrameContext};
 use crate::render::bindings::{Bindings, FRAME, PARAMS, asset};
 use crate::render::layout::{Layout, layout};
-use crate::render::modules::{Program, Shader};
-use crate::render::pipelines::{PipelineSet, Raster};
-use crate::render::{GpuAsset, Pipelines, RenderError, Target, Technique};
+use crate::render::modules::Program;
+use crate::render::{GpuAsset, Pipelines, Technique};
 
 pub(crate) static MODULE: PullModule<Alternate> = PullModule::new();
 
-const BINDINGS: Bindings = Bindings::draw(
-    "alternate edges",
-    &[
-        FRAME,
-        PARAMS,
-        asset::TOPOLOGY,
-        asset::EDGE_VERTICES,
-        asset::ATTRIBUTES,
-        asset::VERTEX_NORMALS,
-    ],
-);
+#[derive(Debug)]
+pub(crate) struct Alternate;
 
 /// `AlternateParams` in `shaders/alternate.wgsl`.
 #[repr(C)]
@@ -37,16 +29,24 @@ const BINDINGS: Bindings = Bindings::draw(
 pub(crate) struct AlternateParams {
     /// The shape `alternate.wgsl` switches on.
     shape: u32,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
 }
 
-pub(crate) struct Alternate;
-
-fn shader() -> Shader {
-    use chamfer_shaders as wgsl;
-    Shader::new(
+impl Pull for Alternate {
+    type Params = AlternateParams;
+    /// True for the house's fan of triangles.
+    type Draw = bool;
+    const BINDINGS: &'static Bindings = &Bindings::draw(
+        "alternate edges",
+        &[
+            FRAME,
+            PARAMS,
+            asset::TOPOLOGY,
+            asset::EDGE_VERTICES,
+            asset::ATTRIBUTES,
+            asset::VERTEX_NORMALS,
+        ],
+    );
+    const SHADER: (&'static str, &'static [&'static str]) = (
         "alternate.wgsl",
         &[
             wgsl::COMMON,
@@ -54,61 +54,26 @@ fn shader() -> Shader {
             wgsl::VERTEX_EDGES,
             wgsl::ALTERNATE,
         ],
-        vec![Program::draw(
-            "alternate_vertex",
-            "flat_fragment",
-            &BINDINGS,
-        )],
-    )
-}
+    );
+    /// Twelve indexed vertices per edge (`draw` picks the shape's indices).
+    const DRAWS: Draws = Draws::PerEdge(12);
+    const PROGRAMS: &'static [Program] = &[Program::draw(
+        "alternate_vertex",
+        "flat_fragment",
+        Self::BINDINGS,
+    )];
+    const STRUCTS: &'static [Layout] = &[layout!("AlternateParams", AlternateParams, [shape])];
 
-/// The one pipeline, per device and target.
-#[derive(Debug)]
-pub(crate) struct AlternatePipelines {
-    shapes: wgpu::RenderPipeline,
-    /// The four triangles of the half hex and the plug over their six points.
-    hex_plug: wgpu::Buffer,
-    /// The house's fan.
-    house: wgpu::Buffer,
-}
-
-impl PipelineSet for AlternatePipelines {
-    fn new(cache: &Pipelines) -> Result<Self, RenderError> {
-        let shader = shader();
-        let compiled = cache.compile(&shader)?;
-        Ok(Self {
-            shapes: compiled.render(
-                "alternate_vertex",
-                Some("flat_fragment"),
-                Raster::over_mesh(cache.target()),
-            )?,
-            hex_plug: super::corner_indices(
+    /// The four triangles of the half hex and the plug over their six points, and the house's fan.
+    fn index_buffers(cache: &Pipelines) -> Vec<wgpu::Buffer> {
+        vec![
+            super::corner_indices(
                 cache,
                 "half hex, plug",
                 &[0, 1, 2, 0, 2, 3, 0, 3, 4, 1, 5, 2],
             ),
-            house: super::corner_indices(cache, "house", &[0, 1, 2, 0, 2, 3, 0, 3, 4, 0, 4, 5]),
-        })
-    }
-}
-
-impl Pull for Alternate {
-    type Params = AlternateParams;
-    type Pipelines = AlternatePipelines;
-    /// True for the house's fan of triangles.
-    type Draw = bool;
-    const BINDINGS: &'static Bindings = &BINDINGS;
-
-    fn shaders(_target: &Target) -> Vec<Shader> {
-        vec![shader()]
-    }
-
-    fn structs() -> Vec<Layout> {
-        vec![layout!(
-            "AlternateParams",
-            AlternateParams,
-            [shape, _pad0, _pad1, _pad2]
-        )]
+            super::corner_indices(cache, "house", &[0, 1, 2, 0, 2, 3, 0, 3, 4, 0, 4, 5]),
+        ]
     }
 
     fn params(cx: &FrameContext<'_>, _: &Drawn<'_>) -> Option<AlternateParams> {
@@ -119,12 +84,7 @@ impl Pull for Alternate {
             Technique::House => 4,
             _ => return None,
         };
-        Some(AlternateParams {
-            shape,
-            _pad0: 0,
-            _pad1: 0,
-            _pad2: 0,
-        })
+        Some(AlternateParams { shape })
     }
 
     fn draw_state(cx: &FrameContext<'_>) -> bool {
@@ -132,13 +92,17 @@ impl Pull for Alternate {
     }
 
     fn draw(
-        set: &AlternatePipelines,
+        pipelines: &[wgpu::RenderPipeline],
+        indices: &[wgpu::Buffer],
         house: bool,
         pass: &mut wgpu::RenderPass<'_>,
         asset: &GpuAsset,
     ) {
-        let indices = if house { &set.house } else { &set.hex_plug };
-        pass.set_pipeline(&set.shapes);
+        let ([shapes], [hex_plug, house_fan]) = (pipelines, indices) else {
+            return;
+        };
+        let indices = if house { house_fan } else { hex_plug };
+        pass.set_pipeline(shapes);
         pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint16);
         pass.draw_indexed(0..12, 0, 0..asset.edge_count);
     }

@@ -11,11 +11,10 @@ use std::sync::Arc;
 use super::pulled::Instances;
 use super::{FrameContext, FrameOptions, Module, PerAsset, TechniqueFrame};
 use crate::render::bindings::{Binding, Bindings, FRAME, Kind, PARAMS, asset};
-use crate::render::gpu_asset::vertex_layouts;
+use crate::render::gpu_asset::VERTEX_LAYOUTS;
 use crate::render::layout::{Layout, layout};
 use crate::render::modules::{Program, Shader};
 use crate::render::pipelines::{PipelineSet, Raster};
-use crate::render::target::checked;
 use crate::render::{
     AssetExtras, HardwareContour, Pipelines as Cache, RenderError, Target, Technique,
 };
@@ -49,7 +48,6 @@ pub(crate) struct HardwareParams {
     back_only: u32,
     offset_px: f32,
     crease_angle: f32,
-    _pad: u32,
 }
 
 /// The module.
@@ -87,7 +85,7 @@ impl Module for Hardware {
         vec![layout!(
             "HardwareParams",
             HardwareParams,
-            [back_only, offset_px, crease_angle, _pad]
+            [back_only, offset_px, crease_angle]
         )]
     }
 
@@ -104,16 +102,7 @@ impl Module for Hardware {
         cache: &Cache,
         _options: &FrameOptions,
     ) -> Result<Box<dyn TechniqueFrame>, RenderError> {
-        Ok(Box::new(Frame {
-            pipelines: cache.get::<HardwarePipelines>()?,
-            layout: cache.layout(&BINDINGS),
-            valley_layout: cache.layout(&VALLEY_BINDINGS),
-            instances: Instances::new(cache, "hardware contours"),
-            method: HardwareContour::BackFaces,
-            back_depth: None,
-            valley_groups: PerAsset::default(),
-            valleys: Vec::new(),
-        }))
+        Ok(Box::new(Frame::new(cache)?))
     }
 }
 
@@ -229,7 +218,7 @@ impl PipelineSet for HardwarePipelines {
             depth_only: stencil_only(
                 "hw_depth_vertex",
                 Raster {
-                    buffers: &vertex_layouts()[..1],
+                    buffers: &VERTEX_LAYOUTS[..1],
                     ..triangles(target.depth(true, wgpu::CompareFunction::Less), no_color)
                 },
             )?,
@@ -247,7 +236,7 @@ impl PipelineSet for HardwarePipelines {
                 "hw_depth_vertex",
                 None,
                 Raster {
-                    buffers: &vertex_layouts()[..1],
+                    buffers: &VERTEX_LAYOUTS[..1],
                     primitive: wgpu::PrimitiveState {
                         cull_mode: Some(wgpu::Face::Front),
                         ..Default::default()
@@ -291,33 +280,32 @@ struct Frame {
 }
 
 impl Frame {
+    fn new(cache: &Cache) -> Result<Self, RenderError> {
+        Ok(Self {
+            pipelines: cache.get::<HardwarePipelines>()?,
+            layout: cache.layout(&BINDINGS),
+            valley_layout: cache.layout(&VALLEY_BINDINGS),
+            instances: Instances::new(cache, "hardware contours"),
+            method: HardwareContour::BackFaces,
+            back_depth: None,
+            valley_groups: PerAsset::default(),
+            valleys: Vec::new(),
+        })
+    }
+
     /// Raskar's back-face depth for `size`, made or remade when the viewport changes.
     fn ensure_back_depth(&mut self, cache: &Cache, size: [u32; 2]) -> Result<(), RenderError> {
         if self.back_depth.as_ref().is_some_and(|b| b.size == size) {
             return Ok(());
         }
-        let device = cache.device();
-        let texture = checked(device, "the back faces' depth", || {
-            device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("back faces' depth"),
-                size: wgpu::Extent3d {
-                    width: size[0],
-                    height: size[1],
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: BACK_DEPTH_FORMAT,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT
-                    | wgpu::TextureUsages::TEXTURE_BINDING,
-                view_formats: &[],
-            })
-        })?;
-        self.back_depth = Some(BackDepth {
+        let view = super::texture(
+            cache,
+            "back faces' depth",
             size,
-            view: texture.create_view(&Default::default()),
-        });
+            BACK_DEPTH_FORMAT,
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+        )?;
+        self.back_depth = Some(BackDepth { size, view });
         Ok(())
     }
 
@@ -375,6 +363,35 @@ impl Frame {
     }
 }
 
+impl Frame {
+    /// A stencil method's passes: the stencil cleared, `draw` of every instance into it, then one
+    /// cover where it equals `reference` (the methods outline the union of what they draw); the
+    /// pass's stencil reference is left at 0.
+    fn stencil_outline(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        stencil: &StencilPipelines,
+        (cover, reference): (&wgpu::RenderPipeline, u32),
+        mut draw: impl FnMut(&mut wgpu::RenderPass<'_>, &crate::render::GpuAsset),
+    ) {
+        pass.set_stencil_reference(0);
+        let mut first = true;
+        self.instances.each(pass, |pass, asset| {
+            if std::mem::take(&mut first) {
+                pass.set_pipeline(&stencil.clear);
+                pass.draw(0..3, 0..1);
+            }
+            draw(pass, asset);
+        });
+        if !first {
+            pass.set_stencil_reference(reference);
+            pass.set_pipeline(cover);
+            pass.draw(0..3, 0..1);
+            pass.set_stencil_reference(0);
+        }
+    }
+}
+
 impl TechniqueFrame for Frame {
     fn prepare(
         &mut self,
@@ -390,7 +407,6 @@ impl TechniqueFrame for Frame {
             back_only: 0,
             offset_px: 0.0,
             crease_angle: 0.0,
-            _pad: 0,
         };
         match method {
             HardwareContour::RossignacVanEmmerik | HardwareContour::OffsetBackFaces => {
@@ -457,15 +473,7 @@ impl TechniqueFrame for Frame {
             }),
             HardwareContour::StencilShifted => {
                 if let Some(s) = &p.stencil {
-                    // The stencil of every instance, then one cover: the method outlines the
-                    // union of what it draws.
-                    pass.set_stencil_reference(0);
-                    let mut first = true;
-                    self.instances.each(pass, |pass, asset| {
-                        if std::mem::take(&mut first) {
-                            pass.set_pipeline(&s.clear);
-                            pass.draw(0..3, 0..1);
-                        }
+                    self.stencil_outline(pass, s, (&s.shifted_cover, 2), |pass, asset| {
                         let triangles = asset.index_count / 3;
                         pass.set_pipeline(&s.shifted);
                         // Four renders of the mesh, one per shift (instance / triangles).
@@ -473,32 +481,14 @@ impl TechniqueFrame for Frame {
                             pass.draw(0..3, k * triangles..(k + 1) * triangles);
                         }
                     });
-                    if !first {
-                        pass.set_stencil_reference(2);
-                        pass.set_pipeline(&s.shifted_cover);
-                        pass.draw(0..3, 0..1);
-                        pass.set_stencil_reference(0);
-                    }
                 }
             }
             HardwareContour::InvertedStencil => {
                 if let Some(s) = &p.stencil {
-                    pass.set_stencil_reference(0);
-                    let mut first = true;
-                    self.instances.each(pass, |pass, asset| {
-                        if std::mem::take(&mut first) {
-                            pass.set_pipeline(&s.clear);
-                            pass.draw(0..3, 0..1);
-                        }
+                    self.stencil_outline(pass, s, (&s.lines_cover, 1), |pass, asset| {
                         pass.set_pipeline(&s.lines);
                         pass.draw(0..6, 0..asset.index_count / 3);
                     });
-                    if !first {
-                        pass.set_stencil_reference(1);
-                        pass.set_pipeline(&s.lines_cover);
-                        pass.draw(0..3, 0..1);
-                        pass.set_stencil_reference(0);
-                    }
                 }
             }
             HardwareContour::Raskar { .. } => {

@@ -7,15 +7,19 @@
 //! quad's four vertices and each cap pass's three (§8.5 "high duplication of work"), and nothing is
 //! compacted. Per-frame memory: one uniform block per instance.
 
-use super::pulled::{Pull, PullModule};
+use chamfer_shaders as wgsl;
+
+use super::pulled::{Draws, Pull, PullModule};
 use super::{Drawn, FrameContext};
 use crate::render::bindings::{Bindings, FRAME, asset};
 use crate::render::layout::Layout;
-use crate::render::modules::{Program, Shader};
-use crate::render::pipelines::{PipelineSet, Raster};
-use crate::render::{CapMethod, GpuAsset, Pipelines, RenderError, Target, Technique};
+use crate::render::modules::Program;
+use crate::render::{CapMethod, GpuAsset, Pipelines, Technique};
 
 pub(crate) static MODULE: PullModule<McGuireHughes> = PullModule::new();
+
+#[derive(Debug)]
+pub(crate) struct McGuireHughes;
 
 const BINDINGS: Bindings = Bindings::draw(
     "mcguire-hughes",
@@ -28,12 +32,12 @@ const BINDINGS: Bindings = Bindings::draw(
     ],
 );
 
-pub(crate) struct McGuireHughes;
-
-fn shader() -> Shader {
-    use chamfer_shaders as wgsl;
-    let program = |vertex| Program::draw(vertex, "flat_fragment", &BINDINGS);
-    Shader::new(
+impl Pull for McGuireHughes {
+    type Params = ();
+    /// Whether the two cap passes run.
+    type Draw = bool;
+    const BINDINGS: &'static Bindings = &BINDINGS;
+    const SHADER: (&'static str, &'static [&'static str]) = (
         "mcguire_hughes.wgsl",
         &[
             wgsl::COMMON,
@@ -41,57 +45,24 @@ fn shader() -> Shader {
             wgsl::VERTEX_EDGES,
             wgsl::MCGUIRE_HUGHES,
         ],
-        vec![
-            program("mh_edge_vertex"),
-            program("mh_cap0_vertex"),
-            program("mh_cap1_vertex"),
-        ],
-    )
-}
+    );
+    /// The quad, six indexed vertices per edge (`draw` adds the caps).
+    const DRAWS: Draws = Draws::PerEdge(6);
+    /// The edge pass and the two cap passes.
+    const PROGRAMS: &'static [Program] = &[
+        Program::draw("mh_edge_vertex", "flat_fragment", &BINDINGS),
+        Program::draw("mh_cap0_vertex", "flat_fragment", &BINDINGS),
+        Program::draw("mh_cap1_vertex", "flat_fragment", &BINDINGS),
+    ];
+    const STRUCTS: &'static [Layout] = &[];
 
-/// The edge pass and the two cap passes, per device and target.
-#[derive(Debug)]
-pub(crate) struct McGuireHughesPipelines {
-    edges: wgpu::RenderPipeline,
-    cap0: wgpu::RenderPipeline,
-    cap1: wgpu::RenderPipeline,
     /// The quad's two triangles over its four edge vertices.
-    quad: wgpu::Buffer,
-}
-
-impl PipelineSet for McGuireHughesPipelines {
-    fn new(cache: &Pipelines) -> Result<Self, RenderError> {
-        let shader = shader();
-        let compiled = cache.compile(&shader)?;
-        let pipeline = |vertex| {
-            compiled.render(
-                vertex,
-                Some("flat_fragment"),
-                Raster::over_mesh(cache.target()),
-            )
-        };
-        Ok(Self {
-            edges: pipeline("mh_edge_vertex")?,
-            cap0: pipeline("mh_cap0_vertex")?,
-            cap1: pipeline("mh_cap1_vertex")?,
-            quad: super::corner_indices(cache, "edge quad", &[0, 1, 2, 0, 2, 3]),
-        })
-    }
-}
-
-impl Pull for McGuireHughes {
-    type Params = ();
-    type Pipelines = McGuireHughesPipelines;
-    /// Whether the two cap passes run.
-    type Draw = bool;
-    const BINDINGS: &'static Bindings = &BINDINGS;
-
-    fn shaders(_target: &Target) -> Vec<Shader> {
-        vec![shader()]
-    }
-
-    fn structs() -> Vec<Layout> {
-        Vec::new()
+    fn index_buffers(cache: &Pipelines) -> Vec<wgpu::Buffer> {
+        vec![super::corner_indices(
+            cache,
+            "edge quad",
+            &[0, 1, 2, 0, 2, 3],
+        )]
     }
 
     fn params(cx: &FrameContext<'_>, _: &Drawn<'_>) -> Option<()> {
@@ -103,20 +74,24 @@ impl Pull for McGuireHughes {
     }
 
     fn draw(
-        set: &McGuireHughesPipelines,
+        pipelines: &[wgpu::RenderPipeline],
+        indices: &[wgpu::Buffer],
         caps: bool,
         pass: &mut wgpu::RenderPass<'_>,
         asset: &GpuAsset,
     ) {
-        let edges = asset.edge_count;
-        pass.set_pipeline(&set.edges);
-        pass.set_index_buffer(set.quad.slice(..), wgpu::IndexFormat::Uint16);
-        pass.draw_indexed(0..6, 0, 0..edges);
+        let ([edges, cap0, cap1], [quad]) = (pipelines, indices) else {
+            return;
+        };
+        let count = asset.edge_count;
+        pass.set_pipeline(edges);
+        pass.set_index_buffer(quad.slice(..), wgpu::IndexFormat::Uint16);
+        pass.draw_indexed(0..6, 0, 0..count);
         if caps {
-            pass.set_pipeline(&set.cap0);
-            pass.draw(0..3, 0..edges);
-            pass.set_pipeline(&set.cap1);
-            pass.draw(0..3, 0..edges);
+            pass.set_pipeline(cap0);
+            pass.draw(0..3, 0..count);
+            pass.set_pipeline(cap1);
+            pass.draw(0..3, 0..count);
         }
     }
 }

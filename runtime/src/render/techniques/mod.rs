@@ -370,6 +370,34 @@ impl<T> PerAsset<T> {
     }
 }
 
+/// A single-sampled 2D texture of the frame's own, `size` pixels, and its view.
+pub(crate) fn texture(
+    cache: &Pipelines,
+    label: &str,
+    size: [u32; 2],
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> Result<wgpu::TextureView, RenderError> {
+    let device = cache.device();
+    let texture = super::target::checked(device, label, || {
+        device.create_texture(&wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d {
+                width: size[0],
+                height: size[1],
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage,
+            view_formats: &[],
+        })
+    })?;
+    Ok(texture.create_view(&Default::default()))
+}
+
 /// Draws `asset`'s triangles with its position and normal vertex buffers.
 pub(crate) fn draw_mesh(pass: &mut wgpu::RenderPass<'_>, asset: &GpuAsset) {
     pass.set_vertex_buffer(0, asset.render_positions.slice(..));

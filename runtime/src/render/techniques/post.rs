@@ -3,7 +3,7 @@
 //! the `Post` uniform.
 
 use crate::render::bindings::{Binding, Bindings, Kind};
-use crate::render::gpu_asset::vertex_layouts;
+use crate::render::gpu_asset::VERTEX_LAYOUTS;
 use crate::render::layout::Post;
 use crate::render::pipelines::{Compiled, Raster};
 use crate::render::target::checked;
@@ -131,30 +131,16 @@ impl Own {
         format: wgpu::TextureFormat,
         with_depth: bool,
     ) -> Result<Self, RenderError> {
-        let device = cache.device();
-        let texture = |format, usage| {
-            checked(device, label, || {
-                device.create_texture(&wgpu::TextureDescriptor {
-                    label: Some(label),
-                    size: wgpu::Extent3d {
-                        width: size[0],
-                        height: size[1],
-                        depth_or_array_layers: 1,
-                    },
-                    mip_level_count: 1,
-                    sample_count: 1,
-                    dimension: wgpu::TextureDimension::D2,
-                    format,
-                    usage,
-                    view_formats: &[],
-                })
-            })
-        };
         let attachment = wgpu::TextureUsages::RENDER_ATTACHMENT;
-        let view = texture(format, attachment | wgpu::TextureUsages::TEXTURE_BINDING)?
-            .create_view(&Default::default());
+        let view = super::texture(
+            cache,
+            label,
+            size,
+            format,
+            attachment | wgpu::TextureUsages::TEXTURE_BINDING,
+        )?;
         let depth = if with_depth {
-            Some(texture(OWN_DEPTH, attachment)?.create_view(&Default::default()))
+            Some(super::texture(cache, label, size, OWN_DEPTH, attachment)?)
         } else {
             None
         };
@@ -232,7 +218,7 @@ pub(crate) fn own_pipeline(
         vertex,
         Some(fragment),
         Raster {
-            buffers: &vertex_layouts(),
+            buffers: &VERTEX_LAYOUTS,
             primitive: wgpu::PrimitiveState::default(),
             depth_stencil: depth.then_some(wgpu::DepthStencilState {
                 format: OWN_DEPTH,
@@ -358,5 +344,186 @@ pub(crate) fn depth_source(target: &crate::render::Target) -> &'static str {
         chamfer_shaders::DEPTH_MULTI
     } else {
         chamfer_shaders::DEPTH_SINGLE
+    }
+}
+
+/// What a post-process declares; the rest is [`PostModule`]'s: a frame that, before the
+/// application's pass, draws the instances' meshes into a texture of its own (when
+/// [`PostProcess::params`] asks), and after it runs one full-screen pass over the finished colour,
+/// reading the application's depth and that texture.
+pub(crate) trait PostProcess: std::fmt::Debug + Send + Sync + 'static {
+    /// The parameters (`#[repr(C)]`, its WGSL twin named in [`PostProcess::structs`]), at
+    /// [`PARAMS`].
+    type Params: bytemuck::Pod + std::fmt::Debug + Send + Sync;
+    /// The full-screen pass's bindings: [`POST`], [`PARAMS`], [`DEPTH`] and [`PostProcess::OWN`].
+    const BINDINGS: &'static Bindings;
+    /// The frame's own texture, as the full-screen pass binds it.
+    const OWN: Binding;
+    const OWN_FORMAT: wgpu::TextureFormat;
+    /// The mesh pass into the own texture tests depth (against a depth texture of its own).
+    const OWN_DEPTH: bool;
+    /// How the full-screen pass meets the scene colour.
+    const BLEND: Blend;
+
+    /// The module: its first program the full-screen pass (`post_vertex` + its fragment, with
+    /// [`PostProcess::BINDINGS`]), its second the mesh pass into the own texture (with
+    /// [`MESH_PASS`]).
+    fn shader(target: &crate::render::Target) -> crate::render::modules::Shader;
+
+    /// The Rust twins of its WGSL structs.
+    #[cfg_attr(not(test), allow(dead_code))]
+    fn structs() -> Vec<crate::render::layout::Layout>;
+
+    /// This frame's parameters, and whether it draws the own texture; `None` if the style's
+    /// technique is not this module's.
+    fn params(cx: &FrameContext<'_>) -> Option<(Self::Params, bool)>;
+}
+
+/// The [`Module`](super::Module) of a [`PostProcess`].
+pub(crate) struct PostModule<T>(std::marker::PhantomData<fn() -> T>);
+
+impl<T> PostModule<T> {
+    pub(crate) const fn new() -> Self {
+        Self(std::marker::PhantomData)
+    }
+}
+
+impl<T: PostProcess> super::Module for PostModule<T> {
+    fn shaders(&self, target: &crate::render::Target) -> Vec<crate::render::modules::Shader> {
+        vec![T::shader(target)]
+    }
+
+    fn structs(&self) -> Vec<crate::render::layout::Layout> {
+        T::structs()
+    }
+
+    fn is_post_process(&self) -> bool {
+        true
+    }
+
+    fn new_frame(
+        &self,
+        cache: &Cache,
+        _options: &super::FrameOptions,
+    ) -> Result<Box<dyn super::TechniqueFrame>, RenderError> {
+        let label = T::BINDINGS.label;
+        Ok(Box::new(PostFrame::<T> {
+            pipelines: cache.get::<PostPipelines<T>>()?,
+            cache: cache.clone(),
+            uniform: uniform_buffer(cache, label, std::mem::size_of::<Post>()),
+            params: uniform_buffer(cache, label, std::mem::size_of::<T::Params>()),
+            blocks: super::Blocks::new(cache, label, std::mem::size_of::<Post>()),
+            group: None,
+            own: None,
+            placeholder: Own::new(cache, label, [1, 1], T::OWN_FORMAT, T::OWN_DEPTH)?,
+        }))
+    }
+}
+
+/// A post-process's full-screen pass and mesh pass, per device and target.
+#[derive(Debug)]
+pub(crate) struct PostPipelines<T> {
+    full_screen: wgpu::RenderPipeline,
+    mesh: wgpu::RenderPipeline,
+    _technique: std::marker::PhantomData<fn() -> T>,
+}
+
+impl<T: PostProcess> crate::render::pipelines::PipelineSet for PostPipelines<T> {
+    fn new(cache: &Cache) -> Result<Self, RenderError> {
+        let shader = T::shader(cache.target());
+        let compiled = cache.compile(&shader)?;
+        let [full_screen, mesh] = [0, 1].map(|i| shader.programs.get(i));
+        let missing = || RenderError::Internal(format!("{} declares two programs", shader.label));
+        let (full_screen, mesh) = (full_screen.ok_or_else(missing)?, mesh.ok_or_else(missing)?);
+        Ok(Self {
+            full_screen: pipeline(
+                &compiled,
+                cache,
+                full_screen.fragment.ok_or_else(missing)?,
+                T::BLEND,
+            )?,
+            mesh: own_pipeline(
+                &compiled,
+                cache,
+                (mesh.entry, mesh.fragment.ok_or_else(missing)?),
+                T::OWN_FORMAT,
+                T::OWN_DEPTH,
+            )?,
+            _technique: std::marker::PhantomData,
+        })
+    }
+}
+
+/// A post-process's frame: the uniforms, the instances' blocks of the mesh pass, the own texture
+/// while it is drawn.
+#[derive(Debug)]
+struct PostFrame<T: PostProcess> {
+    pipelines: std::sync::Arc<PostPipelines<T>>,
+    cache: Cache,
+    uniform: wgpu::Buffer,
+    params: wgpu::Buffer,
+    /// Per instance, the mesh pass's matrix.
+    blocks: super::Blocks,
+    group: Option<wgpu::BindGroup>,
+    own: Option<Own>,
+    /// Fills the own texture's binding on frames that do not draw it (the shader reads it only
+    /// when they do).
+    placeholder: Own,
+}
+
+impl<T: PostProcess> super::TechniqueFrame for PostFrame<T> {
+    fn prepare(
+        &mut self,
+        cx: &FrameContext<'_>,
+        encoder: &mut wgpu::CommandEncoder,
+    ) -> Result<(), RenderError> {
+        let (params, draws_own) = T::params(cx).ok_or_else(|| super::mismatch(cx))?;
+        cx.queue
+            .write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform(cx)));
+        cx.queue
+            .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+        if !draws_own {
+            self.own = None;
+            return Ok(());
+        }
+        let size = cx.camera.viewport.map(|v| v.max(1));
+        if self.own.as_ref().is_none_or(|own| own.size != size) {
+            let own = Own::new(
+                cx.pipelines,
+                T::BINDINGS.label,
+                size,
+                T::OWN_FORMAT,
+                T::OWN_DEPTH,
+            )?;
+            self.own = Some(own);
+        }
+        let meshes = instance_blocks(cx, &mut self.blocks, &mut self.group);
+        let group = block_group(cx.pipelines, &self.blocks, &mut self.group)?;
+        if let Some(own) = &self.own {
+            own.draw_meshes(cx.pipelines, encoder, &self.pipelines.mesh, group, &meshes);
+        }
+        Ok(())
+    }
+
+    fn render(&self, _pass: &mut wgpu::RenderPass<'_>) {}
+
+    fn finish(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        views: &FrameViews<'_>,
+    ) -> Result<(), RenderError> {
+        let own = &self.own.as_ref().unwrap_or(&self.placeholder).view;
+        full_screen(
+            &self.cache,
+            encoder,
+            views,
+            (T::BINDINGS, &self.pipelines.full_screen),
+            (&self.uniform, &self.params),
+            (T::OWN, own),
+        )
+    }
+
+    fn gpu_bytes(&self) -> u64 {
+        self.uniform.size() + self.params.size() + self.own.as_ref().map_or(0, Own::bytes)
     }
 }

@@ -10,30 +10,44 @@ use std::sync::Arc;
 use super::{Blocks, Drawn, FrameContext, FrameOptions, Module, PerAsset, TechniqueFrame};
 use crate::render::bindings::{self, Binding, Bindings};
 use crate::render::layout::{Frame, Layout};
-use crate::render::modules::Shader;
-use crate::render::pipelines::PipelineSet;
+use crate::render::modules::{Program, Shader};
+use crate::render::pipelines::{PipelineSet, Raster};
 use crate::render::{AssetExtras, GpuAsset, Pipelines, RenderError, Target, Technique};
 
 /// What a vertex-pulled technique declares; the rest is [`PullModule`]'s.
-pub(crate) trait Pull: Send + Sync + 'static {
+pub(crate) trait Pull: std::fmt::Debug + Send + Sync + 'static {
     /// The parameters block (`#[repr(C)]`, its WGSL twin named in [`Pull::structs`]); `()` for
     /// none, and then [`Pull::BINDINGS`] has no [`bindings::PARAMS`].
-    type Params: bytemuck::Pod + Send + Sync;
-    /// The compiled pipelines, per device and target.
-    type Pipelines: PipelineSet;
+    type Params: bytemuck::Pod + std::fmt::Debug + Send + Sync;
     /// What the draw calls take from the style beyond the blocks (`()` for nothing).
     type Draw: Copy + Default + std::fmt::Debug + Send + Sync;
     /// The bindings of the technique's one layout: [`bindings::FRAME`], [`bindings::PARAMS`] and
     /// the asset sections it reads.
     const BINDINGS: &'static Bindings;
 
-    /// The technique's WGSL modules and their programs (all with [`Pull::BINDINGS`]).
-    #[cfg_attr(not(test), allow(dead_code))]
-    fn shaders(target: &Target) -> Vec<Shader>;
-
+    /// The WGSL module's name (its pass's file) and parts, shared files first.
+    const SHADER: (&'static str, &'static [&'static str]);
+    /// Its programs (all with [`Pull::BINDINGS`]), each compiled into one pipeline, in order, drawn
+    /// as [`Pull::raster`] says.
+    const PROGRAMS: &'static [Program];
     /// The Rust twins of its WGSL structs.
-    #[cfg_attr(not(test), allow(dead_code))]
-    fn structs() -> Vec<Layout>;
+    const STRUCTS: &'static [Layout];
+
+    /// The module [`Pull::SHADER`] and [`Pull::PROGRAMS`] declare.
+    fn shader() -> Shader {
+        let (label, parts) = Self::SHADER;
+        Shader::new(label, parts, Self::PROGRAMS.to_vec())
+    }
+
+    /// How its pipelines draw: by default pulled triangles over the mesh ([`Raster::over_mesh`]).
+    fn raster(target: &Target) -> Raster<'static> {
+        Raster::over_mesh(target)
+    }
+
+    /// The index buffers of fixed shapes its draws use, made once per device and target.
+    fn index_buffers(_cache: &Pipelines) -> Vec<wgpu::Buffer> {
+        Vec::new()
+    }
 
     /// The parameters of `drawn` this frame; `None` if the style's technique is not this module's.
     fn params(cx: &FrameContext<'_>, drawn: &Drawn<'_>) -> Option<Self::Params>;
@@ -57,13 +71,64 @@ pub(crate) trait Pull: Send + Sync + 'static {
         asset.resource(binding, technique.name())
     }
 
-    /// Draws one instance of `asset` (its bind group is set).
+    /// What each of its pipelines draws per instance of an asset.
+    const DRAWS: Draws;
+
+    /// Draws one instance of `asset` (its bind group is set) with `pipelines`, one per program of
+    /// [`Pull::PROGRAMS`] in its order, and its [`Pull::index_buffers`]: by default each pipeline
+    /// draws what [`Pull::DRAWS`] says.
     fn draw(
-        pipelines: &Self::Pipelines,
-        state: Self::Draw,
+        pipelines: &[wgpu::RenderPipeline],
+        _indices: &[wgpu::Buffer],
+        _state: Self::Draw,
         pass: &mut wgpu::RenderPass<'_>,
         asset: &GpuAsset,
-    );
+    ) {
+        for pipeline in pipelines {
+            pass.set_pipeline(pipeline);
+            match Self::DRAWS {
+                Draws::PerEdge(vertices) => pass.draw(0..vertices, 0..asset.edge_count),
+                Draws::PerTriangle(vertices) => pass.draw(0..vertices, 0..asset.index_count / 3),
+                Draws::Mesh => super::draw_mesh(pass, asset),
+            }
+        }
+    }
+}
+
+/// What a [`Pull`] pipeline draws per instance of an asset.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Draws {
+    /// This many vertices for each edge (instance = edge).
+    PerEdge(u32),
+    /// This many vertices for each triangle (instance = triangle).
+    PerTriangle(u32),
+    /// The mesh, indexed, from its vertex buffers.
+    Mesh,
+}
+
+/// A [`Pull`] technique's pipelines, per device and target.
+#[derive(Debug)]
+pub(crate) struct PullPipelines<T: Pull> {
+    pipelines: Vec<wgpu::RenderPipeline>,
+    indices: Vec<wgpu::Buffer>,
+    _technique: PhantomData<fn() -> T>,
+}
+
+impl<T: Pull> PipelineSet for PullPipelines<T> {
+    fn new(cache: &Pipelines) -> Result<Self, RenderError> {
+        let shader = T::shader();
+        let compiled = cache.compile(&shader)?;
+        let pipelines = shader
+            .programs
+            .iter()
+            .map(|p| compiled.render(p.entry, p.fragment, T::raster(cache.target())))
+            .collect::<Result<_, _>>()?;
+        Ok(Self {
+            pipelines,
+            indices: T::index_buffers(cache),
+            _technique: PhantomData,
+        })
+    }
 }
 
 /// The [`Module`] of a [`Pull`] technique.
@@ -76,12 +141,12 @@ impl<T> PullModule<T> {
 }
 
 impl<T: Pull> Module for PullModule<T> {
-    fn shaders(&self, target: &Target) -> Vec<Shader> {
-        T::shaders(target)
+    fn shaders(&self, _target: &Target) -> Vec<Shader> {
+        vec![T::shader()]
     }
 
     fn structs(&self) -> Vec<Layout> {
-        T::structs()
+        T::STRUCTS.to_vec()
     }
 
     fn needs(&self, technique: &Technique) -> AssetExtras {
@@ -94,7 +159,7 @@ impl<T: Pull> Module for PullModule<T> {
         _options: &FrameOptions,
     ) -> Result<Box<dyn TechniqueFrame>, RenderError> {
         Ok(Box::new(PulledFrame::<T> {
-            set: pipelines.get::<T::Pipelines>()?,
+            set: pipelines.get::<PullPipelines<T>>()?,
             layout: pipelines.layout(T::BINDINGS),
             instances: Instances::new(pipelines, T::BINDINGS.label),
             state: T::Draw::default(),
@@ -103,20 +168,12 @@ impl<T: Pull> Module for PullModule<T> {
 }
 
 /// The frame of a [`Pull`] technique.
+#[derive(Debug)]
 struct PulledFrame<T: Pull> {
-    set: Arc<T::Pipelines>,
+    set: Arc<PullPipelines<T>>,
     layout: wgpu::BindGroupLayout,
     instances: Instances<T::Params>,
     state: T::Draw,
-}
-
-impl<T: Pull> std::fmt::Debug for PulledFrame<T> {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("PulledFrame")
-            .field("technique", &T::BINDINGS.label)
-            .field("state", &self.state)
-            .finish_non_exhaustive()
-    }
 }
 
 impl<T: Pull> TechniqueFrame for PulledFrame<T> {
@@ -137,8 +194,9 @@ impl<T: Pull> TechniqueFrame for PulledFrame<T> {
     }
 
     fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
+        let set = &self.set;
         self.instances.each(pass, |pass, asset| {
-            T::draw(&self.set, self.state, pass, asset)
+            T::draw(&set.pipelines, &set.indices, self.state, pass, asset)
         });
     }
 

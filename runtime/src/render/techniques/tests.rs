@@ -3,15 +3,15 @@
 //! [`Pull`] skeleton alone, passes the same CPU checks of its WGSL, and draws; and a frame kept from
 //! one technique of a module does not skip the checks another technique of it needs.
 
-use super::pulled::{Pull, PullModule};
+use super::pulled::{Draws, Pull, PullModule};
 use super::{Drawn, FrameContext};
 use crate::asset::Asset;
 use crate::render::bindings::{Bindings, FRAME, PARAMS};
-use crate::render::gpu_asset::vertex_layouts;
+use crate::render::gpu_asset::VERTEX_LAYOUTS;
 use crate::render::layout::{Layout, layout};
 use crate::render::modules::tests::{binding_mismatches, parse, struct_mismatches};
 use crate::render::modules::{Program, Shader};
-use crate::render::pipelines::{PipelineSet, Raster};
+use crate::render::pipelines::Raster;
 use crate::render::{
     Camera, EdgeStyle, GpuAsset, HardwareContour, Instance, Offscreen, Orbit, Pipelines,
     RenderError, SceneRenderer, Target, Technique,
@@ -36,8 +36,6 @@ fn silhouette_fragment() -> @location(0) vec4<f32> {
 }
 ";
 
-const BINDINGS: Bindings = Bindings::draw("silhouette", &[FRAME, PARAMS]);
-
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 struct SilhouetteParams {
@@ -45,66 +43,38 @@ struct SilhouetteParams {
 }
 
 /// A flat-colour silhouette, declared outside the core's lists.
+#[derive(Debug)]
 struct Silhouette;
 
 static SILHOUETTE: PullModule<Silhouette> = PullModule::new();
 
-fn shader() -> Shader {
-    Shader::new(
-        "silhouette (test)",
-        &[chamfer_shaders::COMMON, SILHOUETTE_WGSL],
-        vec![Program::draw(
-            "silhouette_vertex",
-            "silhouette_fragment",
-            &BINDINGS,
-        )],
-    )
-}
-
-#[derive(Debug)]
-struct SilhouettePipelines {
-    fill: wgpu::RenderPipeline,
-}
-
-impl PipelineSet for SilhouettePipelines {
-    fn new(cache: &Pipelines) -> Result<Self, RenderError> {
-        let shader = shader();
-        Ok(Self {
-            fill: cache.compile(&shader)?.render(
-                "silhouette_vertex",
-                Some("silhouette_fragment"),
-                Raster {
-                    buffers: &vertex_layouts(),
-                    ..Raster::over_mesh(cache.target())
-                },
-            )?,
-        })
-    }
-}
-
 impl Pull for Silhouette {
     type Params = SilhouetteParams;
-    type Pipelines = SilhouettePipelines;
     type Draw = ();
-    const BINDINGS: &'static Bindings = &BINDINGS;
+    const BINDINGS: &'static Bindings = &Bindings::draw("silhouette", &[FRAME, PARAMS]);
+    const SHADER: (&'static str, &'static [&'static str]) = (
+        "silhouette (test)",
+        &[chamfer_shaders::COMMON, SILHOUETTE_WGSL],
+    );
+    const DRAWS: Draws = Draws::Mesh;
+    const PROGRAMS: &'static [Program] = &[Program::draw(
+        "silhouette_vertex",
+        "silhouette_fragment",
+        Self::BINDINGS,
+    )];
+    const STRUCTS: &'static [Layout] = &[layout!("SilhouetteParams", SilhouetteParams, [color])];
 
-    fn shaders(_target: &Target) -> Vec<Shader> {
-        vec![shader()]
-    }
-
-    fn structs() -> Vec<Layout> {
-        vec![layout!("SilhouetteParams", SilhouetteParams, [color])]
+    fn raster(target: &Target) -> Raster<'static> {
+        Raster {
+            buffers: &VERTEX_LAYOUTS,
+            ..Raster::over_mesh(target)
+        }
     }
 
     fn params(cx: &FrameContext<'_>, _: &Drawn<'_>) -> Option<SilhouetteParams> {
         Some(SilhouetteParams {
             color: cx.style.colors.contour,
         })
-    }
-
-    fn draw(set: &SilhouettePipelines, _: (), pass: &mut wgpu::RenderPass<'_>, asset: &GpuAsset) {
-        pass.set_pipeline(&set.fill);
-        super::draw_mesh(pass, asset);
     }
 }
 
@@ -132,7 +102,7 @@ fn a_technique_outside_the_core_lists_is_checked_like_the_others() {
         Some(wgpu::TextureFormat::Depth32Float),
         1,
     );
-    let shader = shader();
+    let shader = Silhouette::shader();
     assert!(binding_mismatches(&shader, &target).is_empty());
     let (module, _) = parse(shader.label, &shader.source);
     let structs = <Silhouette as Pull>::structs();

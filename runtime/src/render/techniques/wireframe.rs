@@ -3,26 +3,19 @@
 //! coordinates from its triangle; here the vertex shader pulls the triangle's three corners from the
 //! asset's render sections (instance = triangle, vertex = corner) and does the same.
 
-use super::pulled::{Pull, PullModule};
+use chamfer_shaders as wgsl;
+
+use super::pulled::{Draws, Pull, PullModule};
 use super::{Drawn, FrameContext};
 use crate::render::bindings::{Binding, Bindings, FRAME, PARAMS, asset};
 use crate::render::layout::{Layout, layout};
-use crate::render::modules::{Program, Shader};
-use crate::render::pipelines::{PipelineSet, Raster};
-use crate::render::{AssetExtras, GpuAsset, Pipelines, RenderError, Target, Technique};
+use crate::render::modules::Program;
+use crate::render::{AssetExtras, GpuAsset, RenderError, Technique};
 
 pub(crate) static MODULE: PullModule<Wireframe> = PullModule::new();
 
-const BINDINGS: Bindings = Bindings::draw(
-    "wireframe",
-    &[
-        FRAME,
-        PARAMS,
-        asset::RENDER_POSITIONS,
-        asset::MESH_INDICES,
-        asset::TRIANGLE_EDGES,
-    ],
-);
+#[derive(Debug)]
+pub(crate) struct Wireframe;
 
 /// `WireParams` in `shaders/wireframe.wgsl`.
 #[repr(C)]
@@ -32,37 +25,6 @@ pub(crate) struct WireParams {
     smooth_border: u32,
     feature_only: u32,
     naive_threshold: f32,
-}
-
-pub(crate) struct Wireframe;
-
-fn shader() -> Shader {
-    use chamfer_shaders as wgsl;
-    Shader::new(
-        "wireframe.wgsl",
-        &[wgsl::COMMON, wgsl::TRIANGLES, wgsl::WIREFRAME],
-        vec![Program::draw("wire_vertex", "wire_fragment", &BINDINGS)],
-    )
-}
-
-/// The wireframe pipeline, per device and target.
-#[derive(Debug)]
-pub(crate) struct WirePipelines {
-    wire: wgpu::RenderPipeline,
-}
-
-impl PipelineSet for WirePipelines {
-    fn new(cache: &Pipelines) -> Result<Self, RenderError> {
-        let shader = shader();
-        let compiled = cache.compile(&shader)?;
-        Ok(Self {
-            wire: compiled.render(
-                "wire_vertex",
-                Some("wire_fragment"),
-                Raster::over_mesh(cache.target()),
-            )?,
-        })
-    }
 }
 
 fn feature_only(technique: &Technique) -> bool {
@@ -77,21 +39,32 @@ fn feature_only(technique: &Technique) -> bool {
 
 impl Pull for Wireframe {
     type Params = WireParams;
-    type Pipelines = WirePipelines;
     type Draw = ();
-    const BINDINGS: &'static Bindings = &BINDINGS;
-
-    fn shaders(_target: &Target) -> Vec<Shader> {
-        vec![shader()]
-    }
-
-    fn structs() -> Vec<Layout> {
-        vec![layout!(
-            "WireParams",
-            WireParams,
-            [naive, smooth_border, feature_only, naive_threshold]
-        )]
-    }
+    const BINDINGS: &'static Bindings = &Bindings::draw(
+        "wireframe",
+        &[
+            FRAME,
+            PARAMS,
+            asset::RENDER_POSITIONS,
+            asset::MESH_INDICES,
+            asset::TRIANGLE_EDGES,
+        ],
+    );
+    const SHADER: (&'static str, &'static [&'static str]) = (
+        "wireframe.wgsl",
+        &[wgsl::COMMON, wgsl::TRIANGLES, wgsl::WIREFRAME],
+    );
+    const DRAWS: Draws = Draws::PerTriangle(3);
+    const PROGRAMS: &'static [Program] = &[Program::draw(
+        "wire_vertex",
+        "wire_fragment",
+        Self::BINDINGS,
+    )];
+    const STRUCTS: &'static [Layout] = &[layout!(
+        "WireParams",
+        WireParams,
+        [naive, smooth_border, feature_only, naive_threshold]
+    )];
 
     fn needs(technique: &Technique) -> AssetExtras {
         if feature_only(technique) {
@@ -130,10 +103,5 @@ impl Pull for Wireframe {
                 .or_else(|_| asset.resource(asset::MESH_INDICES, technique.name()));
         }
         asset.resource(binding, technique.name())
-    }
-
-    fn draw(set: &WirePipelines, _: (), pass: &mut wgpu::RenderPass<'_>, asset: &GpuAsset) {
-        pass.set_pipeline(&set.wire);
-        pass.draw(0..3, 0..asset.index_count / 3);
     }
 }

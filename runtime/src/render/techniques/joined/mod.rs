@@ -37,9 +37,7 @@ use crate::render::bindings::{Binding, asset as section};
 use crate::render::layout::{self, ChamferRecord, ScreenRecord};
 use crate::render::modules::Shader;
 use crate::render::target::checked;
-use crate::render::{
-    CapMethod, DrawCounts, GpuAsset, Pipelines as Cache, RenderError, Target, Technique,
-};
+use crate::render::{CapMethod, DrawCounts, GpuAsset, Pipelines as Cache, RenderError, Target};
 
 pub(crate) static MODULE: Joined = Joined;
 
@@ -56,22 +54,7 @@ impl Module for Joined {
         cache: &Cache,
         options: &FrameOptions,
     ) -> Result<Box<dyn TechniqueFrame>, RenderError> {
-        Ok(Box::new(Frame {
-            pipelines: cache.get::<JoinedPipelines>()?,
-            cache: cache.clone(),
-            blocks: Blocks::new(cache, "edge frame", std::mem::size_of::<layout::Frame>()),
-            lists: None,
-            assets: PerAsset::default(),
-            args_group: None,
-            draw_group: None,
-            highlight: HighlightUniforms::new(cache),
-            needed: Needed::new(cache),
-            runs: Vec::new(),
-            culling: true,
-            highlighted: false,
-            caps: CapMethod::NextIndex,
-            wanted_slots: options.first_slots,
-        }))
+        Ok(Box::new(Frame::new(cache, options)?))
     }
 }
 
@@ -151,6 +134,25 @@ impl<'r> Resources<'r> {
 }
 
 impl Frame {
+    fn new(cache: &Cache, options: &FrameOptions) -> Result<Self, RenderError> {
+        Ok(Self {
+            pipelines: cache.get::<JoinedPipelines>()?,
+            cache: cache.clone(),
+            blocks: Blocks::new(cache, "edge frame", std::mem::size_of::<layout::Frame>()),
+            lists: None,
+            assets: PerAsset::default(),
+            args_group: None,
+            draw_group: None,
+            highlight: HighlightUniforms::new(cache),
+            needed: Needed::new(cache),
+            runs: Vec::new(),
+            culling: true,
+            highlighted: false,
+            caps: CapMethod::NextIndex,
+            wanted_slots: options.first_slots,
+        })
+    }
+
     /// The lists for this frame, made or remade when they are too small.
     fn ensure_lists(&mut self, cx: &FrameContext<'_>) -> Result<(), RenderError> {
         let instances = (cx.instances.len() as u32).max(1);
@@ -311,9 +313,6 @@ impl TechniqueFrame for Frame {
         cx: &FrameContext<'_>,
         encoder: &mut wgpu::CommandEncoder,
     ) -> Result<(), RenderError> {
-        if cx.style.technique != Technique::Joined {
-            return Err(super::mismatch(cx));
-        }
         let device = cx.pipelines.device().clone();
         if let Some(needed) = self.needed.poll(&device)
             && let Some(lists) = &self.lists

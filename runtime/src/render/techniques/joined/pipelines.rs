@@ -7,9 +7,11 @@ use crate::render::modules::{Program, Shader};
 use crate::render::pipelines::{PipelineSet, Raster};
 use crate::render::{Pipelines as Cache, RenderError};
 
-/// Cluster culling and edge classification.
-fn classify() -> Shader {
-    Shader::new(
+/// Every module the technique compiles: its name, its parts after the shared constants, its
+/// programs.
+const SHADERS: [(&str, &[&str], &[Program]); 7] = [
+    // Cluster culling and edge classification.
+    (
         "classify.wgsl",
         &[
             wgsl::COMMON,
@@ -19,32 +21,26 @@ fn classify() -> Shader {
             wgsl::CULL,
             wgsl::CLASSIFY,
         ],
-        vec![
+        &[
             Program::compute("mark", &CLASSIFY),
             Program::compute("classify", &CLASSIFY),
             Program::compute("classify_clusters", &CLASSIFY),
             Program::compute("cull", &CULL),
             Program::compute("cull_args", &CULL),
         ],
-    )
-}
-
-/// The frame's bookkeeping over the lists.
-fn args() -> Shader {
-    Shader::new(
+    ),
+    // The frame's bookkeeping over the lists.
+    (
         "args.wgsl",
         &[wgsl::COMMON, wgsl::LISTS, wgsl::ARGS],
-        vec![
+        &[
             Program::compute("reset", &ARGS),
             Program::compute("args", &ARGS),
             Program::compute("finish", &ARGS),
         ],
-    )
-}
-
-/// Joins and caps, by next-index walk or cap buffer.
-fn joins() -> Shader {
-    Shader::new(
+    ),
+    // Joins and caps, by next-index walk or cap buffer.
+    (
         "joins.wgsl",
         &[
             wgsl::COMMON,
@@ -53,17 +49,14 @@ fn joins() -> Shader {
             wgsl::COMPUTE,
             wgsl::JOINS,
         ],
-        vec![
+        &[
             Program::compute("joins_next", &JOIN),
             Program::compute("joins_heads", &JOIN),
             Program::compute("clear_joins", &JOIN),
         ],
-    )
-}
-
-/// Chamfer records of highlighted edges.
-fn chamfers() -> Shader {
-    Shader::new(
+    ),
+    // Chamfer records of highlighted edges.
+    (
         "chamfers.wgsl",
         &[
             wgsl::COMMON,
@@ -72,52 +65,38 @@ fn chamfers() -> Shader {
             wgsl::COMPUTE,
             wgsl::CHAMFERS,
         ],
-        vec![Program::compute("chamfer_records", &RECORDS)],
-    )
-}
-
-/// Compacted edge quads.
-fn edges() -> Shader {
-    Shader::new(
+        &[Program::compute("chamfer_records", &RECORDS)],
+    ),
+    // Compacted edge quads.
+    (
         "edges.wgsl",
         &[wgsl::COMMON, wgsl::HIGHLIGHT, wgsl::DRAW, wgsl::EDGES],
-        vec![Program::draw("edge_vertex_main", "edge_fragment", &DRAW)],
-    )
-}
-
-/// Round caps.
-fn caps() -> Shader {
-    Shader::new(
+        &[Program::draw("edge_vertex_main", "edge_fragment", &DRAW)],
+    ),
+    // Round caps.
+    (
         "caps.wgsl",
         &[wgsl::COMMON, wgsl::HIGHLIGHT, wgsl::DRAW, wgsl::CAPS],
-        vec![Program::draw("cap_vertex_main", "cap_fragment", &DRAW)],
-    )
-}
-
-/// Intersection edges.
-fn intersections() -> Shader {
-    Shader::new(
+        &[Program::draw("cap_vertex_main", "cap_fragment", &DRAW)],
+    ),
+    // Baked intersection edges.
+    (
         "intersections.wgsl",
         &[wgsl::COMMON, wgsl::INTERSECTIONS],
-        vec![Program::draw(
+        &[Program::draw(
             "segment_vertex",
             "segment_fragment",
             &SEGMENTS,
         )],
-    )
-}
+    ),
+];
 
 /// Every module the technique compiles.
 pub(crate) fn shaders() -> Vec<Shader> {
-    vec![
-        classify(),
-        args(),
-        joins(),
-        chamfers(),
-        edges(),
-        caps(),
-        intersections(),
-    ]
+    SHADERS
+        .iter()
+        .map(|&(label, parts, programs)| Shader::new(label, parts, programs.to_vec()))
+        .collect()
 }
 
 /// The technique's pipelines.

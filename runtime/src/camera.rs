@@ -1,4 +1,6 @@
-//! The camera the renderers are given each frame, and an orbit helper that frames a model.
+//! The camera the renderers are given each frame, and an orbit helper that frames a model. Pure
+//! math (no GPU): the bake's hidden-line drawings use the same camera as the renderer, so a drawing
+//! lies on the picture of the same view pixel for pixel.
 
 use glam::camera::rh::{proj::directx, view::look_at_mat4};
 use glam::{Mat4, Vec3, Vec4};
