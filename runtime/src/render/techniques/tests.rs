@@ -105,9 +105,8 @@ fn a_technique_outside_the_core_lists_is_checked_like_the_others() {
     let shader = Silhouette::shader();
     assert!(binding_mismatches(&shader, &target).is_empty());
     let (module, _) = parse(shader.label, &shader.source);
-    let structs = <Silhouette as Pull>::structs();
     assert!(
-        struct_mismatches(shader.label, &module, &structs)
+        struct_mismatches(shader.label, &module, Silhouette::STRUCTS)
             .0
             .is_empty()
     );
