@@ -66,7 +66,7 @@ def from_trimesh(mesh, *, name=None, **options):
         mesh = mesh.to_mesh() if hasattr(mesh, "to_mesh") else mesh.dump(concatenate=True)
     if name is None:
         metadata = getattr(mesh, "metadata", None) or {}
-        name = metadata.get("file_name") or "trimesh"
+        name = metadata.get("file_name") or metadata.get("name") or "trimesh"
     try:
         vertices, faces = mesh.vertices, mesh.faces
     except AttributeError as missing:

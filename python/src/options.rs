@@ -1,6 +1,6 @@
 //! Bake options from Python keyword arguments: one table, [`OPTIONS`], maps each keyword to the
-//! `BakeOptions::with_*` setter it calls, so a new option of the library is one line here (and one
-//! in the stub's `BakeOptions` TypedDict). The names are the `chamfer bake` flags with `_` for `-`,
+//! `BakeOptions::with_*` setter it calls, so a new option of the library is one entry here (and one
+//! line in the stub's `BakeOptions` TypedDict). The names are the `chamfer bake` flags with `_` for `-`,
 //! and the same keywords give the same asset as the same flags (tests/test_bake.py checks it).
 //! `None` leaves an option at its default; the library's `validate` checks the ranges.
 

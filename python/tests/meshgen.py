@@ -117,7 +117,7 @@ BROKEN = {
         "FormatError",
     ),
     "broken-nan.obj": (b"v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n", "MeshError"),
-    "broken-index.obj": (b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "MeshError"),
+    "broken-index.obj": (b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "FormatError"),
     "broken-empty.obj": (b"# nothing here\n", "MeshError"),
     "broken-garbage.glb": (b"glTF\x02\0\0\0" + b"\xff" * 64, "FormatError"),
 }

@@ -75,8 +75,12 @@ def test_a_folder_bakes_as_the_cli_bakes_it_and_a_rerun_skips_it(client, library
     assert seen[-1] == (200, 200)
     assert "195 baked, 0 skipped (up to date), 5 failed" in report.summary()
 
-    again = bake_folder(src, dst, client)
+    # A temporary file a killed worker left is removed at the end. The client is the current one.
+    orphan = dst / "props" / ".chamfer-KILLED.tmp"
+    orphan.write_bytes(b"half an asset")
+    again = bake_folder(src, dst)
     assert (len(again.baked), len(again.skipped), len(again.failed)) == (0, 195, 5)
+    assert again.orphans_removed == 1 and not orphan.exists()
     check_against_cli(again, src, broken, expected, dst)
 
     # A changed input, or changed options, bake again (in a copy: the library is the other tests').
@@ -117,6 +121,8 @@ def test_a_worker_killed_mid_batch_changes_nothing(client, library, tmp_path):
         os.kill(pid, 0)
     check_against_cli(report, src, broken, expected, dst)
     assert len(report.baked) + len(report.skipped) == 195
+    print(f"\nkilled {worker} (pid {pid}) while it had {len(tasks)} tasks; {len(report.skipped)} files found up to "
+          f"date when their task ran again, {report.orphans_removed} temporary files removed")
     client.wait_for_workers(2, timeout=60)
 
 
