@@ -5,7 +5,7 @@
 //! the Dask runner; the stubs are `chamfer/_chamfer.pyi`.
 //!
 //! Every function releases the interpreter while it reads, bakes, draws or writes, and every
-//! failure is an exception of `chamfer.ChamferError`'s family naming the file ([`errors`]).
+//! failure is an exception of `chamfer.ChamferError`'s family naming the file (`errors.rs`).
 
 mod arrays;
 mod asset;

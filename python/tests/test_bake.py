@@ -172,3 +172,22 @@ def test_help_is_useful():
         assert len(function.__doc__) > 100, function
     assert "numpy" in chamfer.Asset.__doc__
     assert isinstance(chamfer.ReadError("x"), chamfer.ChamferError)
+
+
+def test_the_stubs_name_what_the_module_has():
+    import ast
+    from pathlib import Path
+
+    stub = ast.parse((Path(chamfer._chamfer.__file__).parent / "_chamfer.pyi").read_text())
+    names = set()
+    for node in stub.body:
+        if isinstance(node, (ast.FunctionDef, ast.ClassDef)):
+            names.add(node.name)
+        elif isinstance(node, ast.AnnAssign):
+            names.add(node.target.id)
+    public = {n for n in dir(chamfer._chamfer) if not n.startswith("_") or n == "__version__"}
+    assert public == names - {"BakeOptions"}
+    options = next(n for n in stub.body if isinstance(n, ast.ClassDef) and n.name == "BakeOptions")
+    keys = [s.target.id for s in options.body if isinstance(s, ast.AnnAssign)]
+    assert keys == [name for name, _, _ in chamfer.OPTIONS]
+    assert (Path(chamfer.__file__).parent / "py.typed").is_file()
