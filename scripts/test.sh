@@ -25,7 +25,7 @@ cargo package --workspace --locked --allow-dirty --exclude chamfer-tests --exclu
 # same target folder, so only our crates compile again) and installed into .venv, then its tests (pytest:
 # the bindings against the chamfer binary cargo test built, and the Dask batch bakes on a LocalCluster).
 rm -rf "$target/wheels/sdist"
-.venv/bin/maturin sdist -q -m python/Cargo.toml -o "$target/wheels/sdist"
+.venv/bin/maturin sdist -m python/Cargo.toml -o "$target/wheels/sdist"
 PATH="$PWD/.venv/bin:$PATH" CARGO_TARGET_DIR="$(cd "$target" && pwd)" .venv/bin/python -m pip wheel -q --disable-pip-version-check --no-deps \
     --no-build-isolation -w "$target/wheels/sdist" "$target"/wheels/sdist/chamfer-*.tar.gz
 .venv/bin/python -m pip install -q --disable-pip-version-check --no-deps --force-reinstall "$target"/wheels/sdist/chamfer-*.whl
