@@ -40,3 +40,39 @@ if ! command -v cargo >/dev/null; then
         export PATH="$HOME/.cargo/bin:$PATH"
     fi
 fi
+
+# The Python package (python/, issue 27): a virtual environment .venv/ with what building and testing it
+# needs (python/requirements-test.txt, installed only when missing), then the package built by maturin from
+# this tree (release; the library without the wgpu renderer) and installed into it as a wheel.
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+if [[ ! -x "$root/.venv/bin/python" ]]; then
+    echo "setup: creating $root/.venv"
+    if ! python3 -m venv "$root/.venv" 2>/dev/null; then
+        sudo=""
+        [[ $(id -u) -ne 0 ]] && sudo="sudo"
+        $sudo apt-get update -qq
+        DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq python3-venv >/dev/null
+        python3 -m venv "$root/.venv"
+    fi
+fi
+if ! "$root/.venv/bin/python" - "$root/python/requirements-test.txt" <<'PY'
+import sys
+from importlib import metadata
+for line in open(sys.argv[1]):
+    requirement = line.split("#")[0].strip()
+    if requirement:
+        name, version = requirement.split("==")
+        try:
+            if metadata.version(name.split("[")[0]) != version:
+                sys.exit(1)
+        except metadata.PackageNotFoundError:
+            sys.exit(1)
+PY
+then
+    echo "setup: installing the Python test requirements into .venv"
+    "$root/.venv/bin/python" -m pip install -q --disable-pip-version-check -r "$root/python/requirements-test.txt"
+fi
+echo "setup: building the Python package (maturin)"
+rm -rf "$root/target/wheels/tree"
+"$root/.venv/bin/maturin" build --release --locked -q -m "$root/python/Cargo.toml" -o "$root/target/wheels/tree"
+"$root/.venv/bin/python" -m pip install -q --disable-pip-version-check --no-deps --force-reinstall "$root"/target/wheels/tree/chamfer-*.whl

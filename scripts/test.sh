@@ -19,4 +19,14 @@ rm -rf "${CARGO_HOME:-$HOME/.cargo}"/registry/src/*/chamfer-{shaders,runtime,pre
 if [ -d "$target/debug/.fingerprint" ]; then
     find "$target/debug/.fingerprint" -maxdepth 1 -name 'chamfer-*' -exec rm -rf {} +
 fi
-cargo package --workspace --locked --allow-dirty --exclude chamfer-tests --exclude chamfer-build-script-example
+cargo package --workspace --locked --allow-dirty --exclude chamfer-tests --exclude chamfer-build-script-example \
+    --exclude chamfer-python  # PyPI, not crates.io: its sdist and wheel are built below
+# The Python package (python/, issue 27), as users get it: its sdist, a wheel built from that sdist (into the
+# same target folder, so only our crates compile again) and installed into .venv, then its tests (pytest:
+# the bindings against the chamfer binary cargo test built, and the Dask batch bakes on a LocalCluster).
+rm -rf "$target/wheels/sdist"
+.venv/bin/maturin sdist -m python/Cargo.toml -o "$target/wheels/sdist"
+PATH="$PWD/.venv/bin:$PATH" CARGO_TARGET_DIR="$(cd "$target" && pwd)" .venv/bin/python -m pip wheel -q --disable-pip-version-check --no-deps \
+    --no-build-isolation -w "$target/wheels/sdist" "$target"/wheels/sdist/chamfer-*.tar.gz
+.venv/bin/python -m pip install -q --disable-pip-version-check --no-deps --force-reinstall "$target"/wheels/sdist/chamfer-*.whl
+.venv/bin/python -m pytest python/tests -q

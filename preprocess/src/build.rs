@@ -12,8 +12,9 @@
 //!
 //! `assets/props/crate.glb` becomes `$OUT_DIR/props/crate.chamfer`. Cargo is told to re-run the
 //! script when the folder or any input changes. Each output has a sidecar `.chamfer.key` holding a
-//! hash of the input's bytes, the options and this crate's version; when it matches, the bake is
-//! skipped. A broken input fails the build with its path and what is wrong.
+//! hash of the input's bytes, the options, this crate's version and the format version; when it
+//! matches, the bake is skipped ([`bake_if_changed`], which batch bakers such as the Python
+//! package's Dask runner call per file). A broken input fails the build with its path and what is wrong.
 
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
@@ -68,34 +69,46 @@ pub fn bake_dir_into(
     let mut results = Vec::with_capacity(jobs.len());
     for (input, output) in jobs {
         cargo(format!("cargo:rerun-if-changed={}", input.display()));
-        let key_path = output.with_extension("chamfer.key");
-        let bytes = load::read(&input, &options.limits)?; // inflated if .gz
-        let key = format!(
-            "{:016x}\n",
-            content_key(&bytes, &companions(&input, options)?, options)
-        );
-        let up_to_date =
-            output.is_file() && std::fs::read_to_string(&key_path).is_ok_and(|k| k == key);
-        if !up_to_date {
-            let baked = bake_bytes(&input, &bytes, options)?;
-            if let Some(parent) = output.parent() {
-                std::fs::create_dir_all(parent).map_err(|source| Error::Write {
-                    path: parent.to_owned(),
-                    source,
-                })?;
-            }
-            write_atomically(&output, |out| baked.asset.encode(out))?;
-            write_atomically(&key_path, |out| {
-                std::io::Write::write_all(out, key.as_bytes())
-            })?;
-        }
+        let baked = bake_if_changed(&input, &output, options)?;
         results.push(BakedFile {
             input,
             output,
-            baked: !up_to_date,
+            baked,
         });
     }
     Ok(results)
+}
+
+/// Bakes `input` into `output` unless `output` exists and its sidecar `.chamfer.key` (beside it)
+/// holds the key of the input's bytes, its companion files, the options, this crate's version and
+/// the asset format version. Returns true when it baked, false when the asset was up to date.
+///
+/// Both files are written atomically, the asset first: a process killed in between leaves an asset
+/// whose key does not match its input, so the next call bakes it again, never a stale asset under a
+/// fresh key. Parent folders of `output` are created. Errors name the input (or the output).
+pub fn bake_if_changed(input: &Path, output: &Path, options: &BakeOptions) -> Result<bool, Error> {
+    options.validate()?;
+    let key_path = output.with_extension("chamfer.key");
+    let bytes = load::read(input, &options.limits)?; // inflated if .gz
+    let key = format!(
+        "{:016x}\n",
+        content_key(&bytes, &companions(input, options)?, options)
+    );
+    if output.is_file() && std::fs::read_to_string(&key_path).is_ok_and(|k| k == key) {
+        return Ok(false);
+    }
+    let baked = bake_bytes(input, &bytes, options)?;
+    if let Some(parent) = output.parent() {
+        std::fs::create_dir_all(parent).map_err(|source| Error::Write {
+            path: parent.to_owned(),
+            source,
+        })?;
+    }
+    write_atomically(output, |out| baked.asset.encode(out))?;
+    write_atomically(&key_path, |out| {
+        std::io::Write::write_all(out, key.as_bytes())
+    })?;
+    Ok(true)
 }
 
 /// Every mesh under `dir` paired with its asset under `out_dir` (`props/crate.glb` ->
@@ -266,7 +279,8 @@ fn companions(input: &Path, options: &BakeOptions) -> Result<Vec<Vec<u8>>, Error
         .collect()
 }
 
-/// FNV-1a over the input, its companions, the options and this crate's version: stable across runs
+/// FNV-1a over the input, its companions, the options, this crate's version and the asset format
+/// version (which changes between releases while the crate's version may not): stable across runs
 /// and toolchains.
 fn content_key(bytes: &[u8], companions: &[Vec<u8>], options: &BakeOptions) -> u64 {
     let mut hash = 0xcbf2_9ce4_8422_2325u64;
@@ -281,6 +295,7 @@ fn content_key(bytes: &[u8], companions: &[Vec<u8>], options: &BakeOptions) -> u
         feed(companion);
     }
     feed(env!("CARGO_PKG_VERSION").as_bytes());
+    feed(&chamfer_runtime::asset::FORMAT_VERSION.to_le_bytes());
     for (name, value) in options.describe() {
         feed(name.as_bytes());
         feed(value.as_bytes());

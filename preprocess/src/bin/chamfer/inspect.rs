@@ -4,9 +4,9 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use chamfer_preprocess::Limits;
+use chamfer_preprocess::inspect::summary;
 use chamfer_runtime::asset::{Asset, SectionKind};
 use clap::Args;
-use serde_json::json;
 
 /// Show the counts, edge classes and section sizes of a .chamfer asset.
 #[derive(Args)]
@@ -45,87 +45,6 @@ pub fn run(args: &InspectArgs) -> anyhow::Result<()> {
         )?;
         crate::say(text.trim_end())
     }
-}
-
-/// Bytes of the sections that describe edges, per kept edge: the figure the thesis compares (§11.2).
-pub fn edge_bytes(asset: &Asset) -> u64 {
-    [
-        SectionKind::EdgeVertices,
-        SectionKind::EdgeAttributes,
-        SectionKind::NextEnds,
-        SectionKind::CapHeads,
-    ]
-    .iter()
-    .map(|&k| asset.section_bytes(k).len() as u64)
-    .sum()
-}
-
-/// The report `--json` prints; the table shows the same numbers.
-pub fn summary(asset: &Asset, total_bytes: u64) -> serde_json::Value {
-    let s = &asset.header.stats;
-    let e = &s.edges;
-    // The file's own table when the asset was read from one, else what encoding it writes.
-    let table = if asset.header.sections.is_empty() {
-        asset.encoded_sections()
-    } else {
-        asset.header.sections.clone()
-    };
-    let length = |k: SectionKind| {
-        table
-            .iter()
-            .find(|s| s.kind == k as u32)
-            .map_or(0, |s| s.length)
-    };
-    let per_section: serde_json::Map<String, serde_json::Value> = SectionKind::ALL
-        .iter()
-        .map(|&k| (k.name().to_owned(), json!(length(k))))
-        .collect();
-    let per_edge = if asset.edge_count() == 0 {
-        0.0
-    } else {
-        edge_bytes(asset) as f64 / asset.edge_count() as f64
-    };
-    json!({
-        "source": asset.header.source,
-        "generator": asset.header.generator,
-        "settings": asset.header.settings.iter().cloned().collect::<std::collections::BTreeMap<_, _>>(),
-        "vertices": s.input_vertices,
-        "welded_vertices": s.welded_vertices,
-        "render_vertices": asset.render_positions.len(),
-        "input_triangles": s.input_triangles,
-        "triangles": asset.triangle_count(),
-        "degenerate_triangles": s.degenerate_triangles,
-        "edges": {
-            "total": e.total,
-            "kept": e.kept,
-            "boundary": e.boundary,
-            "crease": e.crease,
-            "ridge": e.ridge,
-            "valley": e.valley,
-            "marked": e.marked,
-            "material": e.material,
-            "non_manifold": e.non_manifold,
-            "smooth": e.smooth,
-            "coplanar_dropped": e.coplanar_dropped,
-            "flipped": e.flipped,
-            "marks_unmatched": e.marks_unmatched,
-        },
-        "chamfer": {
-            "edges": s.chamfer.edges,
-            "clamped": s.chamfer.clamped,
-            "radius_min": s.chamfer.radius_min,
-            "radius_max": s.chamfer.radius_max,
-        },
-        "caps": asset.cap_heads.len(),
-        "intersections": {
-            "segments": asset.intersection_segments.len(),
-            "polylines": asset.intersection_starts.len(),
-            "closed": asset.intersection_polylines().filter(|p| p.first().map(|s| s[0]) == p.last().map(|s| s[1])).count(),
-            "length": asset.intersection_length(),
-        },
-        "bounds": { "min": asset.header.bounds_min, "max": asset.header.bounds_max },
-        "bytes": { "total": total_bytes, "per_section": per_section, "per_edge": per_edge },
-    })
 }
 
 /// The readable report: the same numbers as `--json`.

@@ -1,0 +1,105 @@
+"""Chamfer from Python: bake the feature edges of meshes into compact ``.chamfer`` assets.
+
+    import chamfer
+    asset = chamfer.bake("part.obj", crease_deg=40, radius_rel=0.005)
+    asset.stats["edges"]["crease"]          # the keys of `chamfer inspect --json`
+    asset.edge_vertices                     # numpy view of the section, no copy
+    asset.save("part.chamfer")              # atomic: temporary file, then rename
+    svg = chamfer.draw_svg(asset, azimuth=30, hidden=True)
+
+Meshes in memory: ``bake_arrays(vertices, faces)`` or ``from_trimesh(mesh)``. Batch bakes of whole
+folders on a Dask cluster: ``chamfer.dask.bake_folder`` (and ``python -m chamfer.dask``).
+
+Every function releases the interpreter while it works, and every error is a ``ChamferError``
+(ReadError, WriteError, FormatError, UnsupportedError, MeshError, LimitError, OptionsError,
+ArrayError, AssetError) whose message names the file and the problem; ``error.path`` is the file.
+The bake options are listed in ``help(chamfer.bake)`` and in ``chamfer.OPTIONS``.
+"""
+
+import enum as _enum
+
+from . import _chamfer
+from ._chamfer import (
+    FORMAT_VERSION,
+    OPTIONS,
+    ArrayError,
+    Asset,
+    AssetError,
+    ChamferError,
+    FormatError,
+    LimitError,
+    MeshError,
+    OptionsError,
+    ReadError,
+    UnsupportedError,
+    WriteError,
+    __version__,
+    annotate,
+    bake,
+    bake_arrays,
+    bake_if_changed,
+    decode,
+    draw_svg,
+    load,
+    plan_folder,
+    settings,
+)
+
+EdgeFlags = _enum.IntFlag("EdgeFlags", dict(_chamfer.EDGE_FLAGS))
+EdgeFlags.__doc__ = """The classes of an edge, bits of ``Asset.edge_flags`` (several can be set).
+
+An edge with none of the bits is smooth: kept because it can become a contour. CREASE is
+RIDGE | VALLEY.
+"""
+EdgeFlags.__module__ = __name__
+
+
+def from_trimesh(mesh, *, name=None, **options):
+    """Bakes a trimesh mesh (``trimesh.Trimesh``, or a ``trimesh.Scene``, flattened) into an Asset.
+
+    The same as ``bake_arrays(mesh.vertices, mesh.faces, name=name, **options)``; ``name``
+    defaults to the file trimesh loaded the mesh from. trimesh itself is not needed to import
+    chamfer: anything with ``vertices`` (N, 3) and ``faces`` (M, 3) arrays works.
+    """
+    if not hasattr(mesh, "faces") and hasattr(mesh, "geometry"):
+        # A Scene: its meshes with their transforms applied, as one mesh.
+        mesh = mesh.to_mesh() if hasattr(mesh, "to_mesh") else mesh.dump(concatenate=True)
+    if name is None:
+        metadata = getattr(mesh, "metadata", None) or {}
+        name = metadata.get("file_name") or metadata.get("name") or "trimesh"
+    try:
+        vertices, faces = mesh.vertices, mesh.faces
+    except AttributeError as missing:
+        error = ArrayError(f"{name}: from_trimesh() needs a mesh with vertices and faces ({missing})")
+        error.path = name
+        raise error from None
+    return bake_arrays(vertices, faces, name=name, **options)
+
+
+__all__ = [
+    "FORMAT_VERSION",
+    "OPTIONS",
+    "ArrayError",
+    "Asset",
+    "AssetError",
+    "ChamferError",
+    "EdgeFlags",
+    "FormatError",
+    "LimitError",
+    "MeshError",
+    "OptionsError",
+    "ReadError",
+    "UnsupportedError",
+    "WriteError",
+    "__version__",
+    "annotate",
+    "bake",
+    "bake_arrays",
+    "bake_if_changed",
+    "decode",
+    "draw_svg",
+    "from_trimesh",
+    "load",
+    "plan_folder",
+    "settings",
+]
