@@ -4,11 +4,9 @@
 use std::path::PathBuf;
 
 use chamfer_preprocess::draw::svg::{SvgOptions, write_svg};
-use chamfer_preprocess::draw::{DrawOptions, LineClass, View, hidden_lines};
+use chamfer_preprocess::draw::{Camera, DrawOptions, LineClass, hidden_lines};
 use chamfer_preprocess::write::{ensure_not_an_input, write_atomically};
 use chamfer_runtime::asset::Asset;
-use glam::Vec3;
-use glam::camera::rh::{proj::directx, view::look_at_mat4};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -25,9 +23,6 @@ struct Orbit {
     distance: Option<f32>,
     ortho: bool,
 }
-
-/// The vertical field of view of the perspective camera, degrees (the runtime's `Orbit` default).
-const FOV_Y_DEG: f32 = 35.0;
 
 impl Orbit {
     /// The checks of `chamfer draw`'s camera flags, as OptionsError.
@@ -64,56 +59,16 @@ impl Orbit {
         flags
     }
 
-    /// The view framing `bounds` from this orbit.
-    ///
-    /// The same arithmetic as `chamfer_runtime::render::Camera::orbit`, which lives behind the
-    /// runtime's wgpu feature that this package does not build; tests/test_draw.py checks that the
-    /// drawings equal `chamfer draw`'s byte for byte, so the two cannot drift apart unseen.
-    fn view(&self, bounds: [[f32; 3]; 2]) -> View {
-        let viewport = [self.width, self.height];
-        let [lo, hi] = bounds.map(Vec3::from);
-        let center = (lo + hi) * 0.5;
-        let radius = ((hi - lo).length() * 0.5).max(1e-6);
-        let aspect = viewport[0].max(1) as f32 / viewport[1].max(1) as f32;
-        let (azimuth, elevation) = (self.azimuth.to_radians(), self.elevation.to_radians());
-        let towards_eye = Vec3::new(
-            elevation.cos() * azimuth.sin(),
-            elevation.sin(),
-            elevation.cos() * azimuth.cos(),
-        );
-        let fov_y = FOV_Y_DEG.to_radians().clamp(1e-3, 3.0);
-        let fov_x = 2.0 * ((fov_y * 0.5).tan() * aspect).atan();
-        let fit = radius / (fov_y.min(fov_x) * 0.5).sin();
-        let distance = self.distance.unwrap_or(fit * 1.02).max(1e-6);
-        let eye = center + towards_eye * distance;
-        let up = if towards_eye.y.abs() > 0.999 {
-            Vec3::Z
-        } else {
-            Vec3::Y
+    /// The camera framing `bounds` from this orbit: the runtime's own, as `chamfer draw` uses it.
+    fn view(&self, bounds: [[f32; 3]; 2]) -> Camera {
+        let orbit = chamfer_runtime::camera::Orbit {
+            azimuth_deg: self.azimuth,
+            elevation_deg: self.elevation,
+            distance: self.distance,
+            orthographic: self.ortho,
+            ..Default::default()
         };
-        let model_view = look_at_mat4(eye, center, up);
-        let (near, far) = (
-            (distance - radius * 1.5).max(distance * 1e-3),
-            distance + radius * 1.5,
-        );
-        let projection = if self.ortho {
-            let half_height = radius * 1.02 * aspect.recip().max(1.0);
-            directx::orthographic(
-                -half_height * aspect,
-                half_height * aspect,
-                -half_height,
-                half_height,
-                distance - radius * 1.5,
-                far,
-            )
-        } else {
-            directx::perspective(fov_y, aspect, near, far)
-        };
-        View {
-            model_view,
-            projection,
-            viewport,
-        }
+        Camera::orbit(bounds, &orbit, [self.width, self.height])
     }
 }
 
