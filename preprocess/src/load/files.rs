@@ -224,3 +224,25 @@ pub(crate) fn kind_of(meta: &Metadata) -> &'static str {
     }
     "a special file"
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_allocation_that_fails_while_inflating_names_the_sizes_and_the_limit() {
+        let mut bytes = vec![0u8; 10];
+        let error = reserve(&mut bytes, usize::MAX / 2, u64::MAX).expect_err("cannot allocate");
+        let text = error.to_string();
+        assert_eq!(error.kind(), io::ErrorKind::OutOfMemory);
+        assert!(
+            text.contains("10 bytes inflated") && text.contains("--max-input-bytes"),
+            "{text}"
+        );
+        // Growth doubles, but never past the limit.
+        let mut bytes = Vec::with_capacity(600);
+        bytes.resize(600, 0);
+        reserve(&mut bytes, 100, 1000).expect("fits");
+        assert_eq!(bytes.capacity(), 1000);
+    }
+}
