@@ -240,8 +240,8 @@ mod tests {
             "{text}"
         );
         // Growth doubles, but never past the limit.
-        let mut bytes = Vec::with_capacity(600);
-        bytes.resize(600, 0);
+        let mut bytes = vec![0u8; 600];
+        assert_eq!(bytes.capacity(), 600);
         reserve(&mut bytes, 100, 1000).expect("fits");
         assert_eq!(bytes.capacity(), 1000);
     }
