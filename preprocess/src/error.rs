@@ -58,6 +58,16 @@ pub enum Error {
         /// What is wrong with the mesh.
         source: MeshError,
     },
+    /// One mesh of a glTF scene (`bake --scene`) cannot be baked.
+    #[error("{}: mesh {mesh}: {source}", path.display())]
+    SceneMesh {
+        /// The file.
+        path: PathBuf,
+        /// The glTF mesh's index.
+        mesh: usize,
+        /// What is wrong with that mesh.
+        source: MeshError,
+    },
     /// The bake options are out of range.
     #[error(transparent)]
     Options(#[from] OptionsError),

@@ -33,6 +33,7 @@ pub mod degenerate;
 pub mod draw;
 mod edge_order;
 mod error;
+pub mod input;
 pub mod inspect;
 pub mod intersections;
 pub mod limits;

@@ -31,6 +31,15 @@ pub struct Mesh {
     pub marks: Vec<Mark>,
 }
 
+/// The first position with a coordinate that is not a finite number: (vertex, axis 0-2, value).
+/// The loaders name it in the file's own terms (a PLY property, an OBJ line).
+pub(crate) fn first_non_finite(positions: &[Vec3]) -> Option<(usize, usize, f32)> {
+    let vertex = positions.par_iter().position_first(|p| !p.is_finite())?;
+    let position = positions[vertex].to_array();
+    let axis = position.iter().position(|c| !c.is_finite())?;
+    Some((vertex, axis, position[axis]))
+}
+
 /// What makes a mesh unusable; the loaders add the file name.
 #[derive(Debug, thiserror::Error, PartialEq)]
 pub enum MeshError {

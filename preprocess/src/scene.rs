@@ -28,8 +28,10 @@ pub struct BakedScene {
 /// Bakes every mesh a glTF/GLB file's scene draws, each in its own space, and lists the instances.
 /// `stem` names the assets (`{stem}.mesh{N}.chamfer`).
 ///
-/// Fails, naming the file, for other formats (`--scene` keeps a glTF node graph; an OBJ or PLY has
-/// none), for whatever [`bake_file`](crate::bake_file) fails on, and for a scene with no mesh.
+/// A mesh without triangles (only points or lines) is left out with a warning naming it, with its
+/// instances. Fails, naming the file, for other formats (`--scene` keeps a glTF node graph; an OBJ
+/// or PLY has none), for whatever [`bake_file`](crate::bake_file) fails on (a mesh that cannot be
+/// baked is named: `file: mesh N: ...`), and for a scene with no mesh that has triangles.
 pub fn bake_scene(path: &Path, stem: &str, options: &BakeOptions) -> Result<BakedScene, Error> {
     options.validate()?;
     if load::format_of(path) != Some(Format::Gltf) {
@@ -47,20 +49,46 @@ pub fn bake_scene(path: &Path, stem: &str, options: &BakeOptions) -> Result<Bake
             what: "a scene that draws no mesh".into(),
         });
     }
-    let source = path.display().to_string();
+    // A mesh without triangles (points, lines) has nothing to bake: it is left out, not fatal.
     let mut assets = Vec::with_capacity(parsed.meshes.len());
-    for (index, mesh) in parsed.meshes {
-        let source = format!("{source} mesh {index}");
-        let baked = bake(mesh, &source, options)?;
+    let mut asset_of = vec![None; parsed.meshes.len()];
+    for (k, (index, mesh, holds)) in parsed.meshes.into_iter().enumerate() {
+        if mesh.triangles.is_empty() {
+            let dropped = parsed.instances.iter().filter(|&&(m, _)| m == k).count();
+            warnings.push(format!(
+                "mesh {index} holds {} and no triangles: not baked, its {dropped} instance(s) left out of the scene",
+                holds.unwrap_or("nothing to draw")
+            ));
+            continue;
+        }
+        let baked = bake(mesh, &format!("{} mesh {index}", path.display()), options).map_err(
+            |e| match e {
+                Error::Mesh { source, .. } => Error::SceneMesh {
+                    path: path.to_owned(),
+                    mesh: index,
+                    source,
+                },
+                other => other,
+            },
+        )?;
+        asset_of[k] = Some(assets.len() as u32);
         assets.push((format!("{stem}.mesh{index}.chamfer"), baked));
+    }
+    if assets.is_empty() {
+        return Err(Error::Unsupported {
+            path: path.to_owned(),
+            what: "nothing to bake: no mesh the scene draws has triangles".into(),
+        });
     }
     let instances = parsed
         .instances
         .into_iter()
-        .map(|(asset, transform)| SceneInstance {
-            asset: asset as u32,
-            transform: transform.to_cols_array(),
-            name: None,
+        .filter_map(|(mesh, transform)| {
+            Some(SceneInstance {
+                asset: asset_of.get(mesh).copied().flatten()?,
+                transform: transform.to_cols_array(),
+                name: None,
+            })
         })
         .collect();
     let scene = SceneFile::new(

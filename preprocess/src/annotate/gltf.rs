@@ -1,6 +1,7 @@
 //! glTF / GLB out: per triangle primitive, `extras.chamfer` and, if asked, the
 //! `EXT_mesh_primitive_edge_visibility` and `CESIUM_primitive_outline` extensions, whose data is
-//! appended in new buffer views (the existing buffer bytes are never moved or changed).
+//! appended in new buffer views (the existing buffer bytes are never moved or changed). The
+//! buffer and image files it refers to are copied beside the output (`companions.rs`).
 
 use std::borrow::Cow;
 use std::collections::HashSet;
@@ -10,7 +11,7 @@ use base64::Engine;
 use glam::Vec3;
 use serde_json::{Map, Value, json};
 
-use super::{Annotated, EdgeKind, EdgeKinds, GltfEdges, MarkedEdges};
+use super::{Annotated, EdgeKind, EdgeKinds, GltfEdges, MarkedEdges, companions};
 use crate::Error;
 use crate::load::gltf::PrimitiveSpan;
 use crate::load::gltf::marks::SCHEMA_VERSION;
@@ -40,6 +41,7 @@ pub(super) fn write(
     output: &Path,
     baked: &BakedEdges,
     dialects: &GltfEdges,
+    limit: u64,
 ) -> Result<Annotated, Error> {
     let invalid = |message: String| Error::Parse {
         path: input.to_owned(),
@@ -58,8 +60,9 @@ pub(super) fn write(
     };
     let mut document: Value =
         serde_json::from_slice(chunks.json).map_err(|e| invalid(e.to_string()))?;
-    let mut data = Appended::new(&document);
     let mut annotated = Annotated::default();
+    let companions = companions::plan(input, output, &document, limit, &mut annotated.warnings)?;
+    let mut data = Appended::new(&document);
     let mut used = Vec::new();
 
     for span in baked.spans {
@@ -161,6 +164,8 @@ pub(super) fn write(
         .map_err(|e| invalid(e.to_string()))?;
 
     let text = serde_json::to_vec_pretty(&document).map_err(|e| invalid(e.to_string()))?;
+    // The files it refers to first: an output is never left naming files that are not there.
+    annotated.copied = companions::copy(input, &companions, limit)?;
     write_atomically(output, |out| {
         use std::io::Write;
         if !glb {

@@ -3,7 +3,7 @@
 //!
 //! The mesh is baked with the given options (file marks first, then the radius rule, then clamping),
 //! and its edges are written:
-//! - PLY: every element and property of the input is kept; an `edge` element
+//! - PLY: every element and property of the input is kept, byte for byte; an `edge` element
 //!   (`vertex1 vertex2 radius class`) replaces any existing one and lists every marked or chamfer
 //!   edge. `class` is the edge's [`EdgeFlags`] bits; `radius` 0 means marked without a chamfer.
 //! - glTF / GLB, in the dialects [`GltfEdges`] picks:
@@ -20,7 +20,9 @@
 //!   Occurrences are counted by welded position, so an edge split by a normal or UV seam is one edge.
 //!   The rest of the JSON keeps its content and key order. Without the extensions buffers are not
 //!   touched (a GLB's binary chunk is copied byte for byte); with them their data is appended: to a
-//!   GLB's binary chunk (earlier bytes unchanged), or as a new embedded buffer of a `.gltf`.
+//!   GLB's binary chunk (earlier bytes unchanged), or as a new embedded buffer of a `.gltf`. The
+//!   buffer and image files the input names by `uri` are copied beside an output in another
+//!   folder, so it reads back (a file there with other bytes is an error, never replaced).
 //! - OBJ has nowhere to keep edges: an OBJ is written as a new PLY (vertices, triangles) or glTF /
 //!   GLB (one primitive per material), chosen by the output's extension, then annotated as above.
 //!
@@ -28,6 +30,7 @@
 //! extensions when a primitive has both: `load/gltf/marks.rs`); the
 //! extensions alone read back as marks on exactly the hard edges.
 
+mod companions;
 mod convert;
 mod gltf;
 mod ply;
@@ -53,8 +56,12 @@ pub struct Annotated {
     pub hard_edges: usize,
     /// Silhouette edges written to `EXT_mesh_primitive_edge_visibility` (once per primitive).
     pub silhouette_edges: usize,
-    /// What the loader skipped, and extensions that did not apply to a primitive.
+    /// What the loader skipped, extensions that did not apply to a primitive, and images that
+    /// could not be copied.
     pub warnings: Vec<String>,
+    /// The buffer and image files the output refers to, copied beside it (a `.gltf` written to
+    /// another folder than its input's; empty otherwise).
+    pub copied: Vec<std::path::PathBuf>,
 }
 
 /// Which glTF dialects [`annotate_with`] writes. Start from [`GltfEdges::DEFAULT`].
@@ -227,7 +234,14 @@ pub fn annotate_with(
                 triangles: &triangles,
                 spans: &spans,
             };
-            gltf::write(input, &bytes, output, &baked_edges, dialects)?
+            gltf::write(
+                input,
+                &bytes,
+                output,
+                &baked_edges,
+                dialects,
+                options.limits.max_input_bytes,
+            )?
         }
     };
     warnings.append(&mut annotated.warnings);

@@ -12,7 +12,16 @@ use crate::{Error, Limits};
 
 /// Reads the input file `path`, inflating it if its name ends in `.gz`; refuses anything but a
 /// regular file and more than `limits.max_input_bytes` (compressed or inflated).
-pub(crate) fn read_input(path: &Path, limits: &Limits) -> Result<Vec<u8>, Error> {
+///
+/// While a `.gz` is inflated, `check_prefix` sees the bytes inflated so far after each chunk until
+/// it returns `Ok(true)`; its error ends the read (a header that declares too much is refused from
+/// its first kilobytes, not after gigabytes of inflating). Running out of memory while inflating is
+/// an error that says how far it got and what the limit is.
+pub(crate) fn read_input(
+    path: &Path,
+    limits: &Limits,
+    check_prefix: &dyn Fn(&[u8]) -> Result<bool, Error>,
+) -> Result<Vec<u8>, Error> {
     let read_error = |source| Error::Read {
         path: path.to_owned(),
         source,
@@ -20,24 +29,63 @@ pub(crate) fn read_input(path: &Path, limits: &Limits) -> Result<Vec<u8>, Error>
     let (file, length) = open_regular(path)?;
     limits.check(path, Limited::InputBytes, length)?;
     let compressed = path.to_string_lossy().to_ascii_lowercase().ends_with(".gz");
-    let bytes = if compressed {
-        read_capped(
-            flate2::read::GzDecoder::new(io::BufReader::new(file)),
-            0,
-            limits.max_input_bytes,
-        )
-    } else {
-        read_capped(file, length, limits.max_input_bytes)
+    let over_limit = || Error::LimitExceeded {
+        path: path.to_owned(),
+        what: Limited::InputBytes,
+        count: limits.max_input_bytes.saturating_add(1),
+        limit: limits.max_input_bytes,
     };
-    match bytes.map_err(read_error)? {
-        Some(bytes) => Ok(bytes),
-        None => Err(Error::LimitExceeded {
-            path: path.to_owned(),
-            what: Limited::InputBytes,
-            count: limits.max_input_bytes.saturating_add(1),
-            limit: limits.max_input_bytes,
-        }),
+    if !compressed {
+        return read_capped(file, length, limits.max_input_bytes)
+            .map_err(read_error)?
+            .ok_or_else(over_limit);
     }
+    let mut inflated = Vec::new();
+    let mut checked = false;
+    let mut chunk = vec![0u8; INFLATE_CHUNK];
+    let mut source = flate2::read::GzDecoder::new(io::BufReader::new(file));
+    loop {
+        let n = match source.read(&mut chunk) {
+            Ok(0) => return Ok(inflated),
+            Ok(n) => n,
+            Err(e) if e.kind() == io::ErrorKind::Interrupted => continue,
+            Err(e) => return Err(read_error(e)),
+        };
+        if inflated.len() as u64 + n as u64 > limits.max_input_bytes {
+            return Err(over_limit());
+        }
+        reserve(&mut inflated, n, limits.max_input_bytes).map_err(read_error)?;
+        inflated.extend_from_slice(&chunk[..n]);
+        if !checked {
+            checked = check_prefix(&inflated)?;
+        }
+    }
+}
+
+/// Bytes inflated per read.
+const INFLATE_CHUNK: usize = 1 << 16;
+
+/// Makes room for `more` bytes in `bytes`, doubling as `Vec` does but never past `limit`, and
+/// reports a failed allocation as an error naming the sizes instead of aborting.
+fn reserve(bytes: &mut Vec<u8>, more: usize, limit: u64) -> io::Result<()> {
+    let needed = bytes.len() + more;
+    if needed <= bytes.capacity() {
+        return Ok(());
+    }
+    let cap = usize::try_from(limit).unwrap_or(usize::MAX);
+    let target = needed
+        .max(bytes.capacity().saturating_mul(2))
+        .min(cap.max(needed));
+    bytes.try_reserve_exact(target - bytes.len()).map_err(|_| {
+        io::Error::new(
+            io::ErrorKind::OutOfMemory,
+            format!(
+                "out of memory while inflating: {} bytes inflated, {target} could not be allocated \
+                 (the input limit is {limit} bytes, --max-input-bytes)",
+                bytes.len()
+            ),
+        )
+    })
 }
 
 /// Why a file an input refers to was not read.
@@ -56,13 +104,22 @@ pub(crate) fn read_reference(
     reference: &Path,
     limit: u64,
 ) -> Result<Vec<u8>, RefusedReference> {
+    let (file, length) = open_reference(input, reference, limit)?;
+    read_capped(file, length, limit)
+        .map_err(refused_by)?
+        .ok_or_else(|| too_large(limit))
+}
+
+/// Opens `reference` as [`read_reference`] would read it: inside the folder of `input` after
+/// following links, a regular file, at most `limit` bytes. Returns it and its length.
+pub(crate) fn open_reference(
+    input: &Path,
+    reference: &Path,
+    limit: u64,
+) -> Result<(File, u64), RefusedReference> {
     let folder = folder_of(input);
-    let refused = |e: io::Error| match e.kind() {
-        io::ErrorKind::NotFound => RefusedReference::Missing,
-        _ => RefusedReference::Refused(format!("cannot be read: {e}")),
-    };
-    let base = folder.canonicalize().map_err(refused)?;
-    let target = folder.join(reference).canonicalize().map_err(refused)?;
+    let base = folder.canonicalize().map_err(refused_by)?;
+    let target = folder.join(reference).canonicalize().map_err(refused_by)?;
     if !target.starts_with(&base) {
         return Err(RefusedReference::Refused(
             "resolves outside the file's folder (only files beside it or below it are read)".into(),
@@ -72,20 +129,26 @@ pub(crate) fn read_reference(
         Error::NotAFile { kind, .. } => {
             RefusedReference::Refused(format!("is {kind}, not a regular file"))
         }
-        Error::Read { source, .. } => refused(source),
+        Error::Read { source, .. } => refused_by(source),
         other => RefusedReference::Refused(other.to_string()),
     })?;
-    let too_large = || {
-        RefusedReference::Refused(format!(
-            "is larger than the limit of {limit} bytes (raise it with --max-input-bytes or Limits)"
-        ))
-    };
     if length > limit {
-        return Err(too_large());
+        return Err(too_large(limit));
     }
-    read_capped(file, length, limit)
-        .map_err(refused)?
-        .ok_or_else(too_large)
+    Ok((file, length))
+}
+
+fn refused_by(e: io::Error) -> RefusedReference {
+    match e.kind() {
+        io::ErrorKind::NotFound => RefusedReference::Missing,
+        _ => RefusedReference::Refused(format!("cannot be read: {e}")),
+    }
+}
+
+fn too_large(limit: u64) -> RefusedReference {
+    RefusedReference::Refused(format!(
+        "is larger than the limit of {limit} bytes (raise it with --max-input-bytes or Limits)"
+    ))
 }
 
 /// The folder an input's references are relative to (`.` for a bare file name).
@@ -160,4 +223,26 @@ pub(crate) fn kind_of(meta: &Metadata) -> &'static str {
         }
     }
     "a special file"
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_allocation_that_fails_while_inflating_names_the_sizes_and_the_limit() {
+        let mut bytes = vec![0u8; 10];
+        let error = reserve(&mut bytes, usize::MAX / 2, u64::MAX).expect_err("cannot allocate");
+        let text = error.to_string();
+        assert_eq!(error.kind(), io::ErrorKind::OutOfMemory);
+        assert!(
+            text.contains("10 bytes inflated") && text.contains("--max-input-bytes"),
+            "{text}"
+        );
+        // Growth doubles, but never past the limit.
+        let mut bytes = vec![0u8; 600];
+        assert_eq!(bytes.capacity(), 600);
+        reserve(&mut bytes, 100, 1000).expect("fits");
+        assert_eq!(bytes.capacity(), 1000);
+    }
 }

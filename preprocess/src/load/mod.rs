@@ -9,7 +9,9 @@ pub(crate) mod files;
 pub(crate) mod gltf;
 mod obj;
 pub(crate) mod ply;
+mod ply_ascii;
 mod ply_bulk;
+pub(crate) mod ply_header;
 
 use std::path::Path;
 
@@ -76,9 +78,17 @@ pub fn load_bytes(path: &Path, bytes: &[u8], limits: &Limits) -> Result<Loaded, 
 }
 
 /// Reads an input file (a mesh, or an asset): only a regular file, never a FIFO or device, at most
-/// `limits.max_input_bytes`, inflated as a stream if its name ends in `.gz`.
+/// `limits.max_input_bytes`, inflated as a stream if its name ends in `.gz`. A PLY's declared counts
+/// are checked against `limits` as soon as its header has been inflated.
 pub fn read(path: &Path, limits: &Limits) -> Result<Vec<u8>, Error> {
-    files::read_input(path, limits)
+    let ply = format_of(path) == Some(Format::Ply);
+    files::read_input(path, limits, &|prefix| {
+        if ply {
+            ply_header::check_stream_prefix(path, prefix, limits)
+        } else {
+            Ok(true)
+        }
+    })
 }
 
 /// Splits a polygon into a triangle fan, the convention of OBJ and PLY readers (trimesh, tobj).

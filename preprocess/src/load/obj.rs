@@ -1,7 +1,14 @@
 //! OBJ via tobj: every object and group, polygons fanned into triangles, normals and uvs optional.
-//! Each `usemtl` material (from the `mtllib` files beside the OBJ) is a material id; a missing
-//! `.mtl` leaves one material, one outside the OBJ's folder or not a regular file is an error.
-//! A leading UTF-8 byte-order mark is skipped; errors name the line they are on.
+//! Each `usemtl` material (from the `mtllib` files beside the OBJ) is a material id.
+//!
+//! Material libraries are optional, so one rule covers every library that is not read — missing,
+//! outside the OBJ's folder (absolute or `..`, after following links), not a regular file, over
+//! the size limit or unreadable: a warning names it, its line and why, and the faces of its
+//! materials get the default material. Nothing outside the folder is opened.
+//!
+//! A leading UTF-8 byte-order mark is skipped; errors name the line they are on and say what is
+//! wrong with it (a position that is not three numbers, a corner that is not `v/vt/vn`, a
+//! non-finite position in the PLY loader's words).
 
 use std::cell::{Cell, RefCell};
 use std::io::{BufRead, Read};
@@ -11,7 +18,7 @@ use glam::{Vec2, Vec3};
 
 use super::files::{RefusedReference, read_reference};
 use crate::limits::Limited;
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, first_non_finite};
 use crate::{Error, Limits};
 
 pub(super) fn parse(
@@ -34,35 +41,25 @@ pub(super) fn parse(
         ignore_lines: true,
     };
     let consumed = Cell::new(0);
-    let missing = RefCell::new(Vec::new());
-    let refused = RefCell::new(None);
-    let load_mtl = |mtl: &Path| match read_reference(path, mtl, limits.max_input_bytes) {
-        Ok(text) => tobj::load_mtl_buf(&mut text.as_slice()),
-        Err(RefusedReference::Missing) => {
-            missing.borrow_mut().push(mtl.display().to_string());
-            Ok(Default::default())
-        }
-        Err(RefusedReference::Refused(problem)) => {
-            refused.borrow_mut().get_or_insert(Error::Reference {
-                path: path.to_owned(),
-                reference: format!(
-                    "material library '{}' on line {}",
-                    mtl.display(),
-                    line_at(bytes, consumed.get())
-                ),
-                problem,
-            });
-            Ok(Default::default())
-        }
+    let skipped = RefCell::new(Vec::new());
+    let load_mtl = |mtl: &Path| {
+        let problem = match read_reference(path, mtl, limits.max_input_bytes) {
+            Ok(text) => return tobj::load_mtl_buf(&mut text.as_slice()),
+            Err(RefusedReference::Missing) => "does not exist".to_owned(),
+            Err(RefusedReference::Refused(problem)) => problem,
+        };
+        skipped.borrow_mut().push(format!(
+            "material library '{}' on line {} {problem}: not read, its faces get the default material",
+            mtl.display(),
+            line_at(bytes, consumed.get())
+        ));
+        Ok(Default::default())
     };
     let mut reader = Counted {
         bytes,
         consumed: &consumed,
     };
     let parsed = tobj::load_obj_buf(&mut reader, &options, load_mtl);
-    if let Some(error) = refused.into_inner() {
-        return Err(error);
-    }
     let (models, _materials) = parsed.map_err(|e| {
         let located = match e {
             // Found when an object is finished, not on the face's own line: look for it.
@@ -72,16 +69,16 @@ pub(super) fn parse(
             _ => Some(line_at(bytes, consumed.get())),
         };
         invalid(match located {
-            Some(line) => format!("line {line}: {e} ({})", quote_line(bytes, line)),
+            Some(line) => format!(
+                "line {line}: {} ({})",
+                explain(&e, line_text(bytes, line)),
+                quote_line(bytes, line)
+            ),
             None => e.to_string(),
         })
     })?;
+    warnings.extend(skipped.into_inner());
 
-    for mtl in missing.into_inner() {
-        warnings.push(format!(
-            "material library {mtl} not found: all faces get one material"
-        ));
-    }
     let vertices: u64 = models
         .iter()
         .map(|m| m.mesh.positions.len() as u64 / 3)
@@ -109,7 +106,80 @@ pub(super) fn parse(
         };
         mesh.append(part);
     }
+    if first_non_finite(&mesh.positions).is_some() {
+        if let Some((line, axis, value)) = first_non_finite_line(bytes) {
+            return Err(invalid(format!(
+                "line {line}: non-finite position: {} is {value} ({})",
+                ["x", "y", "z"][axis],
+                quote_line(bytes, line)
+            )));
+        }
+    }
     Ok(mesh)
+}
+
+/// What is wrong with the line tobj refused, in words: tobj's own names ("color parse error")
+/// often point elsewhere.
+fn explain(error: &tobj::LoadError, line: &str) -> String {
+    use tobj::LoadError;
+    let values: Vec<&str> = line.split_whitespace().skip(1).collect();
+    let not_a_number = values.iter().find(|v| v.parse::<f32>().is_err());
+    let numbers = |what: &str| match not_a_number {
+        Some(v) => format!("'{v}' is not a number ({what})"),
+        None => format!("{what}, not {} numbers", values.len()),
+    };
+    match error {
+        LoadError::PositionParseError | LoadError::ColorParseError => {
+            numbers("a position is `v x y z`, optionally followed by w or by r g b")
+        }
+        LoadError::NormalParseError => numbers("a normal is `vn x y z`"),
+        LoadError::TexcoordParseError => numbers("a texture coordinate is `vt u v`"),
+        LoadError::ScalingByZeroError => "a position's w is 0 (x y z are divided by it)".into(),
+        LoadError::FaceParseError => {
+            let corner = |c: &&&str| {
+                let parts: Vec<&str> = c.split('/').collect();
+                parts.len() > 3
+                    || parts
+                        .iter()
+                        .any(|p| !p.is_empty() && p.parse::<i64>().is_err())
+                    || parts[0].is_empty()
+            };
+            match values.iter().find(corner) {
+                Some(c) => {
+                    format!("'{c}' is not a face corner (v, v/vt, v//vn or v/vt/vn, whole numbers)")
+                }
+                None => error.to_string(),
+            }
+        }
+        _ => error.to_string(),
+    }
+}
+
+/// The first `v` line with a coordinate that is not a finite number once read as tobj reads it
+/// (as f32, divided by w when there is one): (1-based line, axis, value).
+fn first_non_finite_line(bytes: &[u8]) -> Option<(usize, usize, f32)> {
+    bytes
+        .split(|&b| b == b'\n')
+        .enumerate()
+        .find_map(|(number, line)| {
+            let line = String::from_utf8_lossy(line);
+            let mut words = line.split_whitespace();
+            (words.next() == Some("v")).then_some(())?;
+            let values: Vec<f32> = words.filter_map(|w| w.parse().ok()).collect();
+            let w = if values.len() == 4 { values[3] } else { 1.0 };
+            let position = values.get(..3)?.iter().map(|&c| c / w);
+            let (axis, value) = position.enumerate().find(|(_, c)| !c.is_finite())?;
+            Some((number + 1, axis, value))
+        })
+}
+
+/// Line `line` (1-based) as text.
+fn line_text(bytes: &[u8], line: usize) -> &str {
+    let text = bytes
+        .split(|&b| b == b'\n')
+        .nth(line.saturating_sub(1))
+        .unwrap_or_default();
+    std::str::from_utf8(text).unwrap_or_default()
 }
 
 /// The OBJ text as tobj reads it, remembering how far it got so errors can name the line.

@@ -1,6 +1,7 @@
 //! PLY via ply-rs-bw (the maintained fork of ply-rs, which is unmaintained since 2018; the fork reads
-//! ASCII and both binary encodings, caps preallocation from hostile element counts, and lets us
-//! parse into typed structs instead of one hash map per vertex).
+//! both binary encodings, caps preallocation from hostile element counts, and lets us parse into
+//! typed structs instead of one hash map per vertex). The header (`ply_header`) and ASCII element
+//! lines (`ply_ascii`) are read by this crate, so their errors name the line, property and value.
 //!
 //! Reads `vertex` (`x y z`, optional `nx ny nz`), `face` (`vertex_indices` or `vertex_index`, lists
 //! of any integer type and length, fanned into triangles), `tristrips` (the same lists as triangle
@@ -10,21 +11,20 @@
 //! Binary bodies of the common layout are read in bulk by `ply_bulk`, which leaves every other
 //! file, and every file it finds wrong, to the per-element reader here.
 //!
-//! Header lines that are not PLY keywords (Blender 2.4x wrote an unprefixed "Created by Blender"
-//! line) are read as comments, with a warning, as other readers do.
+//! A position that is not a finite number is an error naming the vertex and the property, in the
+//! OBJ loader's words ("non-finite position").
 
-use std::borrow::Cow;
-use std::io::{BufRead, BufReader, Read};
+use std::io::BufRead;
 use std::path::Path;
 
 use glam::Vec3;
-use ply_rs_bw::parser::{Parser, Reader};
+use ply_rs_bw::parser::Parser;
 use ply_rs_bw::ply::{
     BeginList, ElementDef, Encoding, Header, Property, PropertyAccess, PropertyAccessResult,
 };
 
 use crate::limits::Limited;
-use crate::mesh::{Mark, Mesh};
+use crate::mesh::{Mark, Mesh, first_non_finite};
 use crate::{Error, Limits};
 
 pub(crate) fn parse(
@@ -50,16 +50,18 @@ pub(crate) fn parse_with(
         format: "PLY",
         message,
     };
-    let mut reader = Reader::new(BufReader::new(lenient_header(bytes, warnings)));
-    let header = Parser::<Skip>::new()
-        .read_header(&mut reader)
-        .map_err(|e| parse_error(e.to_string()))?;
+    let parsed = super::ply_header::parse(bytes, true)
+        .map_err(parse_error)?
+        .ok_or_else(|| parse_error("the header has no end_header line".into()))?;
+    warnings.extend(parsed.warnings);
+    let header = parsed.header;
+    let body = &bytes[parsed.body_start..];
     if bulk {
-        if let Some(mesh) = super::ply_bulk::read(&header, &bytes[body_start(bytes)..], limits) {
-            return Ok(mesh);
+        if let Some(mesh) = super::ply_bulk::read(&header, body, limits) {
+            return finite(mesh, &header).map_err(parse_error);
         }
     }
-    let input = reader.get_mut();
+    let input = &mut &body[..];
 
     let mut mesh = Mesh::default();
     for (name, element) in header.elements.iter() {
@@ -178,82 +180,19 @@ pub(crate) fn parse_with(
         }
     }
     mesh.materials = vec![0; mesh.triangles.len()];
-    Ok(mesh)
+    finite(mesh, &header).map_err(parse_error)
 }
 
-/// The PLY header keywords; any other header line is read as a comment.
-const HEADER_KEYWORDS: [&str; 7] = [
-    "ply",
-    "format",
-    "comment",
-    "obj_info",
-    "element",
-    "property",
-    "end_header",
-];
-
-/// Where the body starts: after the line whose first word is `end_header` (the header parser has
-/// accepted the header, so there is one), as [`lenient_header`] splits the file.
-fn body_start(bytes: &[u8]) -> usize {
-    lines(bytes)
-        .find(|line| first_word(&bytes[line.clone()]) == "end_header")
-        .map_or(bytes.len(), |line| line.end)
-}
-
-/// The lines of `bytes` as byte ranges, each with its `\n` (the last one may have none).
-fn lines(bytes: &[u8]) -> impl Iterator<Item = std::ops::Range<usize>> + '_ {
-    let mut at = 0;
-    std::iter::from_fn(move || {
-        (at < bytes.len()).then(|| {
-            let end = bytes[at..]
-                .iter()
-                .position(|&b| b == b'\n')
-                .map_or(bytes.len(), |n| at + n + 1);
-            let line = at..end;
-            at = end;
-            line
-        })
-    })
-}
-
-fn first_word(line: &[u8]) -> String {
-    let text = String::from_utf8_lossy(line);
-    text.split_whitespace().next().unwrap_or("").to_owned()
-}
-
-/// The file with every header line that is not a PLY keyword turned into a `comment` (one warning
-/// each), so the strict header parser accepts what other readers accept. The body is not copied.
-pub(crate) fn lenient_header<'a>(bytes: &'a [u8], warnings: &mut Vec<String>) -> impl Read + 'a {
-    let mut header: Cow<'a, [u8]> = Cow::Borrowed(&[]);
-    let mut at = 0;
-    for range in lines(bytes) {
-        let line = &bytes[range.clone()];
-        let text = String::from_utf8_lossy(line);
-        let keyword = text.split_whitespace().next().unwrap_or("");
-        if !text.trim().is_empty() && !HEADER_KEYWORDS.contains(&keyword) {
-            let owned = header.to_mut();
-            if owned.is_empty() {
-                owned.extend_from_slice(&bytes[..range.start]);
-            }
-            warnings.push(format!(
-                "header line {:?} is not a PLY keyword; read as a comment",
-                text.trim()
-            ));
-            owned.extend_from_slice(b"comment ");
-            owned.extend_from_slice(line);
-        } else if let Cow::Owned(owned) = &mut header {
-            owned.extend_from_slice(line);
-        }
-        at = range.end;
-        if keyword == "end_header" {
-            break;
-        }
+/// The mesh, or which vertex property is not a finite number (the OBJ loader's words).
+fn finite(mesh: Mesh, header: &Header) -> Result<Mesh, String> {
+    match first_non_finite(&mesh.positions) {
+        None => Ok(mesh),
+        Some((vertex, axis, value)) => Err(format!(
+            "element 'vertex' number {vertex} of {}: non-finite position: property '{}' is {value}",
+            header.elements.get("vertex").map_or(0, |v| v.count),
+            ["x", "y", "z"][axis],
+        )),
     }
-    let header = match header {
-        Cow::Borrowed(_) => Cow::Borrowed(&bytes[..at]),
-        owned => owned,
-    };
-    std::io::Cursor::new(header).chain(&bytes[at..])
 }
 
 /// Triangles of a `tristrips` list: `-1` ends a strip; within a strip triangle `j` is
@@ -292,20 +231,31 @@ fn for_each_element<E: PropertyAccess>(
 ) -> Result<(), (usize, String)> {
     let parser = Parser::<E>::new();
     let mut line = String::new();
+    let binary_error = |e: ply_rs_bw::parser::ParseError| {
+        let e = std::io::Error::from(e);
+        match e.kind() {
+            std::io::ErrorKind::UnexpectedEof => "the file ends inside it".to_owned(),
+            _ => e.to_string(),
+        }
+    };
     for index in 0..element.count {
         let parsed = match header.encoding {
             Encoding::Ascii => {
                 line.clear();
                 match input.read_line(&mut line) {
-                    Ok(0) => return Err((index, "unexpected end of file".into())),
-                    Ok(_) => parser.read_ascii_element(&line, element),
+                    Ok(0) => return Err((index, "the file ends before it".into())),
+                    Ok(_) => super::ply_ascii::read_element(&line, element),
                     Err(e) => return Err((index, e.to_string())),
                 }
             }
-            Encoding::BinaryLittleEndian => parser.read_little_endian_element(input, element),
-            Encoding::BinaryBigEndian => parser.read_big_endian_element(input, element),
+            Encoding::BinaryLittleEndian => parser
+                .read_little_endian_element(input, element)
+                .map_err(binary_error),
+            Encoding::BinaryBigEndian => parser
+                .read_big_endian_element(input, element)
+                .map_err(binary_error),
         };
-        let value = parsed.map_err(|e| (index, e.to_string()))?;
+        let value = parsed.map_err(|e| (index, e))?;
         consume(value).map_err(|message| (index, message))?;
     }
     Ok(())

@@ -81,6 +81,12 @@ pub fn run(args: &AnnotateArgs) -> anyhow::Result<()> {
             annotated.hard_edges, annotated.silhouette_edges
         );
     }
+    if !annotated.copied.is_empty() {
+        written += &format!(
+            "; {} file(s) it refers to copied beside it",
+            annotated.copied.len()
+        );
+    }
     crate::say(format_args!(
         "{} -> {}: {written} written",
         args.input.display(),

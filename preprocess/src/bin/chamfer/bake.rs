@@ -18,8 +18,10 @@ use crate::memory::peak_rss_bytes;
 /// What every command that reads a mesh says about limits and companion files.
 pub const SAFETY_HELP: &str = "Limits: a file asking for more than --max-triangles, --max-vertices, \
 --max-instances (glTF node and primitive instances) or --max-input-bytes (per file, after inflating .gz) \
-is refused before the work is done. Files a mesh refers to (OBJ mtllib, glTF buffer uri) are read only \
-when they are regular files inside the mesh's folder (after following links). Outputs replace only \
+is refused before the work is done (a .ply.gz as soon as its header is inflated). Files a mesh refers to \
+(OBJ mtllib, glTF buffer uri) are read only when they are regular files inside the mesh's folder (after \
+following links); an mtllib that is not read is a warning (its faces get the default material), a buffer \
+an error. Outputs replace only \
 regular files (never a FIFO or device), keep the mode of the file they replace, and are otherwise \
 created with the usual mode (0666 minus the umask).";
 

@@ -3,11 +3,10 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use anyhow::{Context, bail};
+use anyhow::bail;
 use chamfer_preprocess::draw::svg::{SvgOptions, mm_per_px, write_svg};
 use chamfer_preprocess::draw::{DrawOptions, LineClass, hidden_lines};
 use chamfer_preprocess::write::{ensure_not_an_input, write_atomically};
-use chamfer_runtime::asset::Asset;
 use clap::{Args, ValueEnum};
 
 use crate::bake::OptionArgs;
@@ -68,18 +67,12 @@ pub fn run(args: &DrawArgs) -> anyhow::Result<()> {
     }
     ensure_not_an_input(&args.output, &[&args.input])?;
     let start = Instant::now();
-    let asset = if args
-        .input
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("chamfer"))
-    {
-        let bytes = std::fs::read(&args.input)
-            .with_context(|| format!("{}: cannot read", args.input.display()))?;
-        Asset::decode(&bytes).with_context(|| format!("{}", args.input.display()))?
-    } else {
-        let options = args.options.to_options()?.with_intersections(true);
-        chamfer_preprocess::bake_file(&args.input, &options)?.asset
-    };
+    let options = args.options.to_options()?.with_intersections(true);
+    let read = chamfer_preprocess::input::read_asset(&args.input, &options)?;
+    for warning in &read.warnings {
+        crate::warn(format_args!("warning: {}: {warning}", args.input.display()));
+    }
+    let asset = read.asset;
     let loaded = start.elapsed();
 
     let camera = args

@@ -373,16 +373,12 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let (assets, instances) = if name.ends_with(".scene.json") {
         let scene = chamfer_preprocess::scene::read_scene(&args.input, &options.limits)?;
         (scene.assets, scene.instances)
-    } else if name.ends_with(".chamfer") {
-        let bytes = chamfer_preprocess::load::read(&args.input, &options.limits)?;
-        let asset = Asset::decode(&bytes).with_context(|| format!("{}", args.input.display()))?;
-        (vec![asset], vec![(0, Mat4::IDENTITY)])
     } else {
-        let baked = chamfer_preprocess::bake_file(&args.input, &options)?;
-        for warning in &baked.warnings {
+        let read = chamfer_preprocess::input::read_asset(&args.input, &options)?;
+        for warning in &read.warnings {
             crate::warn(format_args!("warning: {}: {warning}", args.input.display()));
         }
-        (vec![baked.asset], vec![(0, Mat4::IDENTITY)])
+        (vec![read.asset], vec![(0, Mat4::IDENTITY)])
     };
     let (image, adapter) = render_scene(&assets, &instances, &args.view)
         .with_context(|| format!("{}: cannot render", args.input.display()))?;

@@ -72,7 +72,10 @@ fn decode_data_uri(uri: &str) -> Option<Vec<u8>> {
 }
 
 /// A URI that stays inside the `.gltf`'s folder: relative, no scheme, no `..`, percent-decoded.
-fn relative_path(uri: &str) -> Result<std::path::PathBuf, String> {
+pub(crate) fn relative_path(uri: &str) -> Result<std::path::PathBuf, String> {
+    if uri.is_empty() {
+        return Err("uri is empty (it must name a file beside the glTF, or be a data: URI)".into());
+    }
     if uri.contains("://") || uri.starts_with('/') || uri.starts_with('\\') {
         return Err(format!("uri '{uri}' is not a relative file path"));
     }
@@ -114,6 +117,7 @@ mod tests {
         assert!(relative_path("mesh%20data.bin").is_ok_and(|p| p == Path::new("mesh data.bin")));
         assert!(relative_path("sub/mesh.bin").is_ok());
         for bad in [
+            "",
             "../secret.bin",
             "/etc/passwd",
             "http://example.com/a.bin",

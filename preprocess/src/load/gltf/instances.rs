@@ -4,25 +4,46 @@
 //! parents: forty nodes that each list the next one twice draw 2⁴⁰ instances from 1.5 KB. So the
 //! graph is walked once, each node once, to count how many node and primitive instances it would
 //! expand into (a node reached again through its own subtree is a cycle and refused); only when
-//! that count is within [`Limits::max_instances`] is it expanded.
+//! that count is within [`Limits::max_instances`] is it expanded. A node with
+//! `EXT_mesh_gpu_instancing` counts its mesh's primitives once per instance (`gpu_instancing.rs`);
+//! those instances are expanded once the buffers holding their transforms are read.
 
 use std::path::Path;
 
 use glam::Mat4;
 use gltf::json;
 
-use super::local_transform;
+use super::{gpu_instancing, local_transform};
 use crate::limits::Limited;
 use crate::{Error, Limits};
 
-/// Every (mesh, world transform) the document draws: the default scene's node graph, or each mesh
-/// once, untransformed, when the file has no scene. Refuses cycles and more instances (a node
-/// drawn once per path from a scene root, plus each primitive of its mesh) than `limits` allow.
+/// One node drawing its mesh: the mesh, the node's world transform, and how many GPU instances
+/// of it the node draws (`None`: once, without `EXT_mesh_gpu_instancing`).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct NodeMesh {
+    pub mesh: usize,
+    pub world: Mat4,
+    /// The node, for its `EXT_mesh_gpu_instancing` accessors (`None` when the file has no scene).
+    pub node: Option<usize>,
+    pub gpu_instances: Option<u64>,
+}
+
+impl NodeMesh {
+    /// How many times the node draws its mesh.
+    pub fn copies(&self) -> u64 {
+        self.gpu_instances.unwrap_or(1)
+    }
+}
+
+/// Every node that draws a mesh, with its world transform: the default scene's node graph, or each
+/// mesh once, untransformed, when the file has no scene. Refuses cycles and more instances (a node
+/// drawn once per path from a scene root, plus each primitive of its mesh once per GPU instance)
+/// than `limits` allow.
 pub(super) fn mesh_instances(
     path: &Path,
     root: &json::Root,
     limits: &Limits,
-) -> Result<Vec<(usize, Mat4)>, Error> {
+) -> Result<Vec<NodeMesh>, Error> {
     let invalid = |message: String| Error::Parse {
         path: path.to_owned(),
         format: "glTF",
@@ -39,7 +60,12 @@ pub(super) fn mesh_instances(
             .fold(0u64, |n, m| n.saturating_add(m.primitives.len() as u64));
         limits.check(path, Limited::Instances, primitives)?;
         return Ok((0..root.meshes.len())
-            .map(|m| (m, Mat4::IDENTITY))
+            .map(|mesh| NodeMesh {
+                mesh,
+                world: Mat4::IDENTITY,
+                node: None,
+                gpu_instances: None,
+            })
             .collect());
     };
     let scene = root
@@ -62,7 +88,13 @@ pub(super) fn mesh_instances(
             .ok_or_else(|| invalid(format!("node {index} does not exist")))?;
         let world = parent * local_transform(node);
         if let Some(m) = node.mesh {
-            instances.push((m.value(), world));
+            instances.push(NodeMesh {
+                mesh: m.value(),
+                world,
+                node: Some(index),
+                gpu_instances: gpu_instancing::count(root, node)
+                    .map_err(|e| invalid(format!("node {index}: {e}")))?,
+            });
         }
         for child in node.children.iter().flatten() {
             stack.push((child.value(), world));
@@ -73,7 +105,8 @@ pub(super) fn mesh_instances(
 }
 
 /// For every node reachable from `roots`, how many instances its subtree expands into: itself,
-/// the primitives of its mesh, and its children's counts (saturating). Each node is visited once.
+/// the primitives of its mesh (times its GPU instances), and its children's counts (saturating).
+/// Each node is visited once.
 fn count_instances(root: &json::Root, roots: &[usize]) -> Result<Vec<u64>, String> {
     #[derive(Clone, Copy, PartialEq)]
     enum State {
@@ -98,7 +131,13 @@ fn count_instances(root: &json::Root, roots: &[usize]) -> Result<Vec<u64>, Strin
                 .mesh
                 .and_then(|m| root.meshes.get(m.value()))
                 .map_or(0, |m| m.primitives.len() as u64);
-            let mut total = 1u64.saturating_add(primitives);
+            // GPU instances count even when their mesh has no primitive: their transforms are read.
+            let drawn =
+                match gpu_instancing::count(root, n).map_err(|e| format!("node {index}: {e}"))? {
+                    None => primitives,
+                    Some(copies) => primitives.max(1).saturating_mul(copies),
+                };
+            let mut total = 1u64.saturating_add(drawn);
             for child in n.children.iter().flatten() {
                 total = total.saturating_add(count[child.value()]);
             }

@@ -6,10 +6,15 @@
 //! skipped with a warning. Accessors are read here, bounds-checked, with sparse substitution and
 //! KHR_mesh_quantization's integer types; the crate's own validation is bypassed because it rejects
 //! every required extension, quantization included. Each primitive's material is its material id.
-//! Draco and meshopt compressed files are refused with the extension's name.
+//! `EXT_mesh_gpu_instancing` nodes draw their mesh once per instance (`gpu_instancing.rs`). Draco
+//! and meshopt compressed files are refused with the extension's name; other extensions that
+//! change geometry are named in a warning (`extensions.rs`). A file whose meshes hold only points or
+//! lines is refused saying so.
 
 mod accessor;
-mod buffers;
+pub(crate) mod buffers;
+mod extensions;
+mod gpu_instancing;
 mod instances;
 pub mod marks;
 
@@ -24,15 +29,6 @@ use self::accessor::Accessors;
 use crate::limits::Limited;
 use crate::mesh::Mesh;
 use crate::{Error, Limits};
-
-/// Compression schemes whose data this loader cannot decode.
-const COMPRESSION_EXTENSIONS: [&str; 3] = [
-    "KHR_draco_mesh_compression",
-    "EXT_meshopt_compression",
-    "KHR_meshopt_compression",
-];
-/// Required extensions that do not change how geometry is read.
-const HARMLESS_EXTENSIONS: [&str; 1] = ["KHR_mesh_quantization"];
 
 /// Where one primitive's first drawn instance lies in the loaded mesh (for writing marks back).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -90,23 +86,19 @@ pub(crate) fn parse_with_spans(
                     )));
                 };
                 for (p, primitive) in m.primitives.iter().enumerate() {
-                    let local = match read.entry((mesh_index, p)) {
-                        Entry::Occupied(entry) => entry.into_mut(),
+                    let (local, first) = match read.entry((mesh_index, p)) {
+                        Entry::Occupied(entry) => (entry.into_mut(), false),
                         Entry::Vacant(entry) => {
                             let name = format!("mesh {mesh_index} primitive {p}");
-                            entry.insert(
-                                read_primitive(accessors, primitive, &name, warnings)
-                                    .map_err(|e| invalid(format!("{name}: {e}")))?,
-                            )
+                            let local = read_primitive(accessors, primitive, &name, warnings)
+                                .map_err(|e| invalid(format!("{name}: {e}")))?;
+                            (entry.insert(local), true)
                         }
                     };
                     let Some(local) = local else {
                         continue;
                     };
-                    if !spans
-                        .iter()
-                        .any(|s| (s.mesh, s.primitive) == (mesh_index, p))
-                    {
+                    if first {
                         spans.push(PrimitiveSpan {
                             mesh: mesh_index,
                             primitive: p,
@@ -119,9 +111,44 @@ pub(crate) fn parse_with_spans(
                     mesh.append(transformed(local, transform));
                 }
             }
+            if mesh.triangles.is_empty() {
+                let drawn: Vec<usize> = read.keys().map(|&(m, _)| m).collect();
+                if let Some(held) = non_triangle_modes(root, &drawn) {
+                    return Err(Error::Unsupported {
+                        path: path.to_owned(),
+                        what: format!(
+                            "nothing to bake: the meshes it draws hold only {held}, no triangles"
+                        ),
+                    });
+                }
+            }
             Ok(mesh)
         },
     )
+}
+
+/// "points", "lines" or "points and lines": what the primitives of `meshes` hold when none of
+/// them is made of triangles; `None` if one is (or there is no primitive at all).
+pub(crate) fn non_triangle_modes(root: &json::Root, meshes: &[usize]) -> Option<&'static str> {
+    use json::mesh::Mode;
+    let (mut points, mut lines) = (false, false);
+    for primitive in meshes
+        .iter()
+        .filter_map(|&m| root.meshes.get(m))
+        .flat_map(|m| &m.primitives)
+    {
+        match primitive.mode {
+            Checked::Valid(Mode::Points) => points = true,
+            Checked::Valid(Mode::Lines | Mode::LineLoop | Mode::LineStrip) => lines = true,
+            _ => return None,
+        }
+    }
+    match (points, lines) {
+        (true, true) => Some("points and lines"),
+        (true, false) => Some("points"),
+        (false, true) => Some("lines"),
+        (false, false) => None,
+    }
 }
 
 /// The document's scene kept as it is: each mesh the scene draws, once, with its primitives in its
@@ -163,7 +190,7 @@ pub(crate) fn parse_scene(
                         mesh.append(local);
                     }
                 }
-                meshes.push((mesh_index, mesh));
+                meshes.push((mesh_index, mesh, non_triangle_modes(root, &[mesh_index])));
             }
             let instances = instances
                 .into_iter()
@@ -177,8 +204,9 @@ pub(crate) fn parse_scene(
 /// What [`parse_scene`] returns.
 #[derive(Debug)]
 pub(crate) struct SceneMeshes {
-    /// (the document's mesh index, the mesh in its own space).
-    pub(crate) meshes: Vec<(usize, Mesh)>,
+    /// (the document's mesh index, the mesh in its own space, what it holds when it has no
+    /// triangle primitive: "points", "lines" or "points and lines").
+    pub(crate) meshes: Vec<(usize, Mesh, Option<&'static str>)>,
     /// (index into `meshes`, world transform).
     pub(crate) instances: Vec<(usize, Mat4)>,
 }
@@ -206,26 +234,17 @@ fn with_document<R>(
     let gltf =
         gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| invalid(e.to_string()))?;
     let root = gltf.document.as_json();
-    for ext in &root.extensions_required {
-        if COMPRESSION_EXTENSIONS.contains(&ext.as_str()) {
-            return Err(Error::Unsupported {
-                path: path.to_owned(),
-                what: format!(
-                    "{ext} compressed geometry (decompress it first, e.g. `gltf-transform copy`)"
-                ),
-            });
-        }
-        if !HARMLESS_EXTENSIONS.contains(&ext.as_str()) {
-            warnings.push(format!("required extension {ext} is ignored"));
-        }
-    }
+    extensions::check(path, root, warnings)?;
     // Everything the file asks for is counted before any of it is read or expanded.
-    let instances = instances::mesh_instances(path, root, limits)?;
-    let (vertices, triangles) = instances
+    let node_meshes = instances::mesh_instances(path, root, limits)?;
+    let (vertices, triangles) = node_meshes
         .iter()
-        .filter_map(|&(mesh, _)| root.meshes.get(mesh))
-        .flat_map(|m| &m.primitives)
-        .map(|p| primitive_size(root, p))
+        .filter_map(|n| Some((root.meshes.get(n.mesh)?, n.copies())))
+        .flat_map(|(m, copies)| m.primitives.iter().map(move |p| (p, copies)))
+        .map(|(p, copies)| {
+            let (v, t) = primitive_size(root, p);
+            (v.saturating_mul(copies), t.saturating_mul(copies))
+        })
         .fold((0u64, 0u64), |(v, t), (pv, pt)| {
             (v.saturating_add(pv), t.saturating_add(pt))
         });
@@ -237,6 +256,20 @@ fn with_document<R>(
         root,
         buffers: &buffers,
     };
+    let mut instances = Vec::new();
+    for n in node_meshes {
+        match (
+            n.gpu_instances,
+            n.node.and_then(|i| Some((i, root.nodes.get(i)?))),
+        ) {
+            (Some(count), Some((index, node))) => {
+                let local = gpu_instancing::transforms(&accessors, node, count)
+                    .map_err(|e| invalid(format!("node {index}: {e}")))?;
+                instances.extend(local.into_iter().map(|t| (n.mesh, n.world * t)));
+            }
+            _ => instances.push((n.mesh, n.world)),
+        }
+    }
     read(root, &accessors, instances, warnings)
 }
 
@@ -312,11 +345,11 @@ fn read_primitive(
     if primitive
         .extensions
         .as_ref()
-        .is_some_and(|e| e.others.contains_key(COMPRESSION_EXTENSIONS[0]))
+        .is_some_and(|e| e.others.contains_key(extensions::COMPRESSION[0]))
     {
         return Err(format!(
             "{} compressed primitive (decompress it first)",
-            COMPRESSION_EXTENSIONS[0]
+            extensions::COMPRESSION[0]
         ));
     }
     let attribute = |semantic: Semantic| {
