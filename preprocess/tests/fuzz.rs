@@ -21,7 +21,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use chamfer_preprocess::annotate::{GltfEdges, annotate_with};
-use chamfer_preprocess::draw::{DrawOptions, View, hidden_lines};
+use chamfer_preprocess::draw::{Camera, DrawOptions, hidden_lines};
 use chamfer_preprocess::{BakeOptions, Limits, bake, bake_bytes, input, load};
 use chamfer_runtime::asset::Asset;
 use glam::camera::rh::{proj::directx, view::look_at_mat4};
@@ -839,7 +839,7 @@ fn read_and_draw(path: &Path, bytes: &[u8]) -> bool {
         [read.asset.header.bounds_min, read.asset.header.bounds_max].map(glam::Vec3::from);
     let (center, radius) = ((lo + hi) * 0.5, ((hi - lo).length() * 0.5).max(1e-3));
     let eye = center + glam::Vec3::new(0.6, 0.5, 0.7).normalize() * radius * 3.0;
-    let view = View {
+    let view = Camera {
         model_view: look_at_mat4(eye, center, glam::Vec3::Y),
         projection: directx::perspective(0.6, 4.0 / 3.0, radius * 0.5, radius * 6.0),
         viewport: [256, 192],
