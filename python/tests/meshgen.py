@@ -116,7 +116,7 @@ BROKEN = {
         b"property list uchar int vertex_indices\nend_header\n" + b"\0" * 40,
         "FormatError",
     ),
-    "broken-nan.obj": (b"v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n", "FormatError"),  # the OBJ reader refuses the line (issue 23)
+    "broken-nan.obj": (b"v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n", "FormatError"),  # refused at its line
     "broken-index.obj": (b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "FormatError"),
     "broken-empty.obj": (b"# nothing here\n", "MeshError"),
     "broken-garbage.glb": (b"glTF\x02\0\0\0" + b"\xff" * 64, "FormatError"),
