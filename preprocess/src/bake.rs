@@ -1,4 +1,4 @@
-//! The bake pipeline: validate → weld → drop degenerate triangles → adjacency → classify → order
+//! The bake pipeline: validate → weld → drop degenerate triangles → adjacency → stitch → classify → order
 //! the edges into clusters → caps → intersections (optional) → split normals → assemble the asset.
 //! Each step's time is recorded for `chamfer bake --timings` (the edge order counts as `assemble`).
 
@@ -13,7 +13,7 @@ use crate::corners::VertexCorners;
 use crate::mesh::{Mark, Mesh, MeshError};
 use crate::{
     BakeOptions, Error, adjacency, caps, classify, degenerate, edge_order, intersections, load,
-    normals, radii, weld,
+    normals, radii, stitch, weld,
 };
 
 /// A baked asset and what it took.
@@ -31,6 +31,8 @@ pub struct Baked {
     pub intersections: Option<intersections::IntersectionStats>,
     /// The exact radius of each asset edge (the asset stores them as f16); empty when none has one.
     pub radii: Vec<f32>,
+    /// What stitching did (all zero when [`BakeOptions::stitch`] is off or nothing was open).
+    pub stitched: stitch::Stitched,
 }
 
 /// Wall-clock time of each bake step.
@@ -42,6 +44,8 @@ pub struct Timings {
     pub weld: Duration,
     /// Building unique edges.
     pub adjacency: Duration,
+    /// Stitching cracks (zero when off or the mesh is closed).
+    pub stitch: Duration,
     /// Classifying and dropping coplanar edges.
     pub classify: Duration,
     /// Building next-index rings and cap heads.
@@ -59,6 +63,7 @@ impl Timings {
     pub fn processing(&self) -> Duration {
         self.weld
             + self.adjacency
+            + self.stitch
             + self.classify
             + self.caps
             + self.normals
@@ -163,8 +168,14 @@ pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Er
     lap(&mut timings.weld);
 
     let mut edges = adjacency::adjacency(&triangles, &materials, positions.len());
-    drop(materials);
     lap(&mut timings.adjacency);
+    let mut stitched = stitch::Stitched::default();
+    if let Some(tolerance) = options.stitch.distance(&positions) {
+        (edges, stitched) =
+            stitch::stitch(&positions, &mut triangles, &mut materials, edges, tolerance);
+    }
+    drop(materials);
+    lap(&mut timings.stitch);
 
     stats.edges = classify::classify(
         &positions,
@@ -209,6 +220,13 @@ pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Er
     let radii = edges.radii.clone();
     let intersection_stats = found.as_ref().map(|f| f.stats);
     let mut asset = assemble(source, options, stats, &positions, edges, rings, render);
+    if options.stitch != crate::Stitch::Off {
+        // Provenance beside the tolerance: inspect reports it with the boundary edges left.
+        asset.header.settings.push((
+            "stitch_boundary_before".into(),
+            stitched.boundary_before.to_string(),
+        ));
+    }
     if let Some(found) = found {
         asset.intersection_segments = found.segments;
         asset.intersection_starts = found.starts;
@@ -226,6 +244,7 @@ pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Er
         warnings: Vec::new(),
         radii,
         intersections: intersection_stats,
+        stitched,
     })
 }
 

@@ -45,7 +45,7 @@ pub enum Error {
         what: String,
     },
     /// The file's extension is not a mesh format this crate reads.
-    #[error("{}: unknown mesh format (expected .obj, .gltf, .glb, .ply or .ply.gz)", path.display())]
+    #[error("{}: unknown mesh format (expected .obj, .gltf, .glb, .ply, .stl or .3mf; .ply.gz and .stl.gz are inflated)", path.display())]
     UnknownFormat {
         /// The file.
         path: PathBuf,

@@ -77,6 +77,7 @@ pub fn summary(asset: &Asset, total_bytes: u64) -> serde_json::Value {
             "radius_min": s.chamfer.radius_min,
             "radius_max": s.chamfer.radius_max,
         },
+        "stitch": stitch_report(asset),
         "caps": asset.cap_heads.len(),
         "intersections": {
             "segments": asset.intersection_segments.len(),
@@ -86,5 +87,26 @@ pub fn summary(asset: &Asset, total_bytes: u64) -> serde_json::Value {
         },
         "bounds": { "min": asset.header.bounds_min, "max": asset.header.bounds_max },
         "bytes": { "total": total_bytes, "per_section": per_section, "per_edge": per_edge },
+    })
+}
+
+/// What stitching did, from the settings the bake recorded: its tolerance (`"off"`, or absent in
+/// assets baked before stitching existed), the boundary edges before it and those left.
+fn stitch_report(asset: &Asset) -> serde_json::Value {
+    let setting = |key: &str| {
+        asset
+            .header
+            .settings
+            .iter()
+            .find(|(k, _)| k == key)
+            .map(|(_, v)| v.clone())
+    };
+    let remaining = asset.header.stats.edges.boundary;
+    let before = setting("stitch_boundary_before").and_then(|v| v.parse::<u64>().ok());
+    json!({
+        "tolerance": setting("stitch"),
+        "boundary_before": before,
+        "stitched": before.map(|b| b.saturating_sub(remaining)),
+        "remaining": remaining,
     })
 }

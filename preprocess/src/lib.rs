@@ -2,7 +2,7 @@
 //! normals at creases and write the compact `.chamfer` asset that `chamfer-runtime` draws.
 //!
 //! One module per step, each with one public entry and its contract:
-//! [`load`] → [`weld`] → [`degenerate`] → [`adjacency`] → [`classify`] → [`radii`] → [`caps`] →
+//! [`load`] → [`weld`] → [`degenerate`] → [`adjacency`] → [`stitch`] → [`classify`] → [`radii`] → [`caps`] →
 //! [`intersections`] (optional) → [`normals`] → the asset. [`draw`] makes hidden-line drawings (SVG) of
 //! an asset.
 //!
@@ -44,10 +44,11 @@ mod options;
 mod polylines;
 pub mod radii;
 pub mod scene;
+pub mod stitch;
 pub mod weld;
 pub mod write;
 
 pub use bake::{Baked, Timings, bake, bake_bytes, bake_file};
 pub use error::Error;
 pub use limits::Limits;
-pub use options::{BakeOptions, OptionsError, Radius, WeldTolerance};
+pub use options::{BakeOptions, OptionsError, Radius, Stitch, WeldTolerance};

@@ -31,6 +31,50 @@ pub struct BakeOptions {
     /// Also find intersection edges, where triangles cut through each other (thesis §2.2), and
     /// store them in the asset. Default false.
     pub intersections: bool,
+    /// Close the cracks between separately tessellated faces of CAD and BIM exports
+    /// ([`stitch`](crate::stitch)): boundary vertices this close join, and a boundary vertex this
+    /// close to another boundary edge splits it. Default [`Stitch::DEFAULT`].
+    pub stitch: Stitch,
+}
+
+/// How close boundary geometry must be for [`stitch`](crate::stitch) to join it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Stitch {
+    /// No stitching: every boundary edge the weld leaves stays a boundary.
+    Off,
+    /// Within this distance, in mesh units. Must be finite and > 0.
+    Absolute(f32),
+    /// Within this fraction of the bounding box's diagonal. Must be in (0, 0.01].
+    Relative(f32),
+}
+
+impl Stitch {
+    /// The default fraction of the diagonal: 1e-4 (BENCHMARKS.md, "STL and 3MF").
+    pub const DEFAULT_FRACTION: f32 = 1e-4;
+    /// [`DEFAULT_FRACTION`](Self::DEFAULT_FRACTION) of the bounding box's diagonal.
+    pub const DEFAULT: Self = Self::Relative(Self::DEFAULT_FRACTION);
+
+    /// The stitch distance for these positions, or `None` when off.
+    pub fn distance(self, positions: &[Vec3]) -> Option<f32> {
+        match self {
+            Self::Off => None,
+            Self::Absolute(distance) => Some(distance),
+            Self::Relative(fraction) => {
+                let (lo, hi) = positions
+                    .iter()
+                    .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| {
+                        (lo.min(p), hi.max(p))
+                    });
+                Some(fraction * (hi - lo).length()).filter(|d| d.is_finite())
+            }
+        }
+    }
+}
+
+impl Default for Stitch {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
 }
 
 /// The chamfer radius rule.
@@ -106,6 +150,7 @@ impl BakeOptions {
         radius_valleys: false,
         limits: Limits::DEFAULT,
         intersections: false,
+        stitch: Stitch::DEFAULT,
     };
 
     /// Sets [`weld`](Self::weld).
@@ -157,6 +202,11 @@ impl BakeOptions {
         }
     }
 
+    /// Sets [`stitch`](Self::stitch).
+    pub fn with_stitch(self, stitch: Stitch) -> Self {
+        Self { stitch, ..self }
+    }
+
     /// Checks every field's range.
     pub fn validate(&self) -> Result<(), OptionsError> {
         let check = |ok: bool, name, value, reason| {
@@ -196,6 +246,21 @@ impl BakeOptions {
             self.coplanar_deg,
             "must be >= 0 and below crease-deg",
         )?;
+        match self.stitch {
+            Stitch::Off => {}
+            Stitch::Absolute(d) => check(
+                d.is_finite() && d > 0.0,
+                "stitch-epsilon",
+                d,
+                "must be a finite number > 0",
+            )?,
+            Stitch::Relative(f) => check(
+                f > 0.0 && f <= 0.01,
+                "stitch-rel",
+                f,
+                "must be in (0, 0.01]",
+            )?,
+        }
         match self.radius {
             Radius::None => Ok(()),
             Radius::Absolute(r) => check(
@@ -236,6 +301,14 @@ impl BakeOptions {
             ),
             ("radius_valleys".into(), self.radius_valleys.to_string()),
             ("intersections".into(), self.intersections.to_string()),
+            (
+                "stitch".into(),
+                match self.stitch {
+                    Stitch::Off => "off".into(),
+                    Stitch::Absolute(d) => d.to_string(),
+                    Stitch::Relative(f) => format!("{f} x diagonal"),
+                },
+            ),
         ]
     }
 }

@@ -23,7 +23,7 @@
 //!   GLB's binary chunk (earlier bytes unchanged), or as a new embedded buffer of a `.gltf`. The
 //!   buffer and image files the input names by `uri` are copied beside an output in another
 //!   folder, so it reads back (a file there with other bytes is an error, never replaced).
-//! - OBJ has nowhere to keep edges: an OBJ is written as a new PLY (vertices, triangles) or glTF /
+//! - OBJ, STL and 3MF have nowhere to keep edges: they are written as a new PLY (vertices, triangles) or glTF /
 //!   GLB (one primitive per material), chosen by the output's extension, then annotated as above.
 //!
 //! Reading the output back gives the same marks and radii (`extras.chamfer` wins over the
@@ -119,7 +119,8 @@ impl Default for GltfEdges {
 /// Writes `input` to `output` with its marked and chamfer edges embedded, in `extras.chamfer` for
 /// glTF ([`annotate_with`] picks other dialects).
 ///
-/// A PLY or glTF is written in its own format; an OBJ as a PLY, glTF or GLB, as `output` is named.
+/// A PLY or glTF is written in its own format; an OBJ, STL or 3MF as a PLY, glTF or GLB, as
+/// `output` is named.
 /// The output is written to a temporary file and renamed; `input` is never modified, and naming it
 /// as the output is an error.
 pub fn annotate(input: &Path, output: &Path, options: &BakeOptions) -> Result<Annotated, Error> {
@@ -142,13 +143,15 @@ pub fn annotate_with(
         path: output.to_owned(),
         what,
     };
+    let converted = !matches!(input_format, Format::Ply | Format::Gltf);
     let format = match (input_format, output_format) {
-        (Format::Obj, Some(Format::Obj) | None) => {
-            return Err(usage(
-                "OBJ has no place for edge data: name the output .ply, .glb or .gltf".into(),
-            ));
+        (_, Some(out @ (Format::Ply | Format::Gltf))) if converted => out,
+        _ if converted => {
+            return Err(usage(format!(
+                "{} has no place for edge data: name the output .ply, .glb or .gltf",
+                input_format.name()
+            )));
         }
-        (Format::Obj, Some(format)) => format,
         (format, Some(out))
             if out == format
                 && (format != Format::Gltf || extension(input) == extension(output)) =>
@@ -177,13 +180,13 @@ pub fn annotate_with(
     ensure_not_an_input(output, &[input])?;
     let mut warnings = Vec::new();
     let source = load::read(input, &options.limits)?;
-    // An OBJ is first converted, in memory, to the output's format; the rest reads that.
-    let bytes = if input_format == Format::Obj {
+    // An OBJ, STL or 3MF is first converted, in memory, to the output's format; the rest reads that.
+    let bytes = if converted {
         let loaded = load::load_bytes(input, &source, &options.limits)?;
         warnings = loaded.warnings;
         let convert_error = |message: String| Error::Parse {
             path: input.to_owned(),
-            format: "OBJ",
+            format: input_format.name(),
             message,
         };
         match format {

@@ -1,4 +1,5 @@
-//! Loaders: OBJ (tobj), glTF 2.0 / GLB (gltf) and PLY (ply-rs-bw) into one [`Mesh`].
+//! Loaders: OBJ (tobj), glTF 2.0 / GLB (gltf), PLY (ply-rs-bw) and STL (our own bulk reader) into
+//! one [`Mesh`].
 //!
 //! Every loader reads the whole file, checks what it reads, and reports problems as
 //! [`Error`]s naming the file. Loaders never modify their input, read only regular files, read
@@ -12,6 +13,7 @@ pub(crate) mod ply;
 mod ply_ascii;
 mod ply_bulk;
 pub(crate) mod ply_header;
+mod stl;
 
 use std::path::Path;
 
@@ -27,6 +29,20 @@ pub enum Format {
     Gltf,
     /// Stanford PLY, ASCII or binary (`.ply`, or gzip-compressed `.ply.gz`).
     Ply,
+    /// STL, binary or ASCII (`.stl`, or gzip-compressed `.stl.gz`): a triangle soup.
+    Stl,
+}
+
+impl Format {
+    /// The format's name in messages ("OBJ", "glTF", ...).
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Obj => "OBJ",
+            Self::Gltf => "glTF",
+            Self::Ply => "PLY",
+            Self::Stl => "STL",
+        }
+    }
 }
 
 /// The format a path's extension names, if any (case-insensitive).
@@ -37,6 +53,7 @@ pub fn format_of(path: &Path) -> Option<Format> {
         "obj" => Some(Format::Obj),
         "gltf" | "glb" => Some(Format::Gltf),
         "ply" => Some(Format::Ply),
+        "stl" => Some(Format::Stl),
         _ => None,
     }
 }
@@ -69,6 +86,7 @@ pub fn load_bytes(path: &Path, bytes: &[u8], limits: &Limits) -> Result<Loaded, 
         Format::Obj => obj::parse(path, bytes, limits, &mut warnings)?,
         Format::Gltf => gltf::parse(path, bytes, limits, &mut warnings)?,
         Format::Ply => ply::parse(path, bytes, limits, &mut warnings)?,
+        Format::Stl => stl::parse(path, bytes, limits, &mut warnings)?,
     };
     mesh.validate().map_err(|source| Error::Mesh {
         path: path.to_owned(),
@@ -79,15 +97,14 @@ pub fn load_bytes(path: &Path, bytes: &[u8], limits: &Limits) -> Result<Loaded, 
 
 /// Reads an input file (a mesh, or an asset): only a regular file, never a FIFO or device, at most
 /// `limits.max_input_bytes`, inflated as a stream if its name ends in `.gz`. A PLY's declared counts
-/// are checked against `limits` as soon as its header has been inflated.
+/// are checked against `limits` as soon as its header has been inflated; a binary STL's count too,
+/// and its inflating stops as soon as it passes the length that count gives.
 pub fn read(path: &Path, limits: &Limits) -> Result<Vec<u8>, Error> {
-    let ply = format_of(path) == Some(Format::Ply);
-    files::read_input(path, limits, &|prefix| {
-        if ply {
-            ply_header::check_stream_prefix(path, prefix, limits)
-        } else {
-            Ok(true)
-        }
+    let format = format_of(path);
+    files::read_input(path, limits, &|prefix| match format {
+        Some(Format::Ply) => ply_header::check_stream_prefix(path, prefix, limits),
+        Some(Format::Stl) => stl::check_stream_prefix(path, prefix, limits),
+        _ => Ok(true),
     })
 }
 

@@ -8,7 +8,7 @@ use std::time::{Duration, Instant};
 use anyhow::{Context, bail};
 use chamfer_preprocess::write::{ensure_not_an_input, ensure_replaceable, write_atomically};
 use chamfer_preprocess::{
-    BakeOptions, Baked, Error, Limits, Radius, WeldTolerance, bake_file, build,
+    BakeOptions, Baked, Error, Limits, Radius, Stitch, WeldTolerance, bake_file, build,
 };
 use clap::Args;
 use rayon::prelude::*;
@@ -37,7 +37,7 @@ created with the usual mode (0666 minus the umask).";
 
 {SAFETY_HELP}"))]
 pub struct BakeArgs {
-    /// Mesh files (.obj, .gltf, .glb, .ply or .ply.gz) or folders of them.
+    /// Mesh files (.obj, .gltf, .glb, .ply, .stl, .3mf; .ply.gz, .stl.gz) or folders of them.
     #[arg(required = true)]
     inputs: Vec<PathBuf>,
     /// Output file, or a directory (required for several inputs; created if missing).
@@ -48,7 +48,7 @@ pub struct BakeArgs {
     /// Print the time of each bake step and the peak memory.
     #[arg(long)]
     timings: bool,
-    /// Keep a glTF/GLB scene's structure: one asset per mesh (`STEM.meshN.chamfer`) and
+    /// Keep a glTF/GLB (or 3MF) scene's structure: one asset per mesh (`STEM.meshN.chamfer`) and
     /// `STEM.scene.json` listing its instances and their transforms, written into OUTPUT (a
     /// folder), instead of one flattened asset. `chamfer render` draws the scene file.
     #[arg(long)]
@@ -99,6 +99,17 @@ pub struct OptionArgs {
     /// between the objects, primitives and instances of the file), and store them in the asset.
     #[arg(long)]
     intersections: bool,
+    /// Stitch the cracks between separately tessellated faces (CAD/BIM exports): join boundary
+    /// vertices closer than this fraction of the bounding box's diagonal and split boundary edges
+    /// at boundary vertices this close to them (T-junctions). Open boundaries wider stay open.
+    #[arg(long, value_name = "F", default_value_t = Stitch::DEFAULT_FRACTION, conflicts_with_all = ["stitch_epsilon", "no_stitch"])]
+    stitch_rel: f32,
+    /// Like --stitch-rel, as a distance in mesh units.
+    #[arg(long, value_name = "DIST", conflicts_with = "no_stitch")]
+    stitch_epsilon: Option<f32>,
+    /// Do not stitch: every boundary edge the weld leaves stays a boundary.
+    #[arg(long)]
+    no_stitch: bool,
 }
 
 impl OptionArgs {
@@ -124,7 +135,12 @@ impl OptionArgs {
                     .with_max_instances(self.max_instances)
                     .with_max_input_bytes(self.max_input_bytes),
             )
-            .with_intersections(self.intersections);
+            .with_intersections(self.intersections)
+            .with_stitch(match (self.no_stitch, self.stitch_epsilon) {
+                (true, _) => Stitch::Off,
+                (false, Some(distance)) => Stitch::Absolute(distance),
+                (false, None) => Stitch::Relative(self.stitch_rel),
+            });
         options.validate()?;
         Ok(options)
     }
@@ -302,6 +318,16 @@ fn report(input: &Path, output: &Path, baked: &Baked, write: Duration, timings: 
         stats.edges.coplanar_dropped,
         baked.asset.encoded_len(),
     );
+    let stitched = &baked.stitched;
+    if stitched.boundary_before > stitched.boundary_after {
+        text += &format!(
+            "\n  stitched: {} boundary edges closed ({} vertices joined, {} edges split at T-junctions), {} remain",
+            stitched.boundary_before - stitched.boundary_after,
+            stitched.joined_vertices,
+            stitched.split_edges,
+            stitched.boundary_after,
+        );
+    }
     if let Some(found) = &baked.intersections {
         text += &format!(
             "\n  intersections: {} segments in {} polylines ({} closed), length {:.6}; {} candidate pairs, {} coplanar, {} triangles skipped",
@@ -319,10 +345,11 @@ fn report(input: &Path, output: &Path, baked: &Baked, write: Duration, timings: 
         let ms = |d: Duration| d.as_secs_f64() * 1e3;
         let triangles = stats.input_triangles as f64;
         text += &format!(
-            "\n  parse {:.1} ms | weld {:.1} | adjacency {:.1} | classify {:.1} | caps {:.1} | intersections {:.1} | normals {:.1} | assemble {:.1} | write {:.1} ms\n  processing (all but parse): {:.1} ms = {:.2} M triangles/s; mesh {:.1} MB, peak RSS {}",
+            "\n  parse {:.1} ms | weld {:.1} | adjacency {:.1} | stitch {:.1} | classify {:.1} | caps {:.1} | intersections {:.1} | normals {:.1} | assemble {:.1} | write {:.1} ms\n  processing (all but parse): {:.1} ms = {:.2} M triangles/s; mesh {:.1} MB, peak RSS {}",
             ms(t.parse),
             ms(t.weld),
             ms(t.adjacency),
+            ms(t.stitch),
             ms(t.classify),
             ms(t.caps),
             ms(t.intersections),

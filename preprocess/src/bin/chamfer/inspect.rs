@@ -16,7 +16,7 @@ use clap::Args;
 pub struct InspectArgs {
     /// The asset.
     asset: PathBuf,
-    /// Print JSON (stable keys: vertices, welded_vertices, triangles, degenerate_triangles, edges, intersections, bytes).
+    /// Print JSON (stable keys: vertices, welded_vertices, triangles, degenerate_triangles, edges, stitch, intersections, bytes).
     #[arg(long)]
     json: bool,
 }
@@ -91,6 +91,15 @@ fn table(out: &mut String, name: &str, asset: &Asset, r: &serde_json::Value) -> 
         "marks_unmatched",
     ] {
         writeln!(out, "    {class:<14} {}", e[class])?;
+    }
+    let st = &r["stitch"];
+    match st["tolerance"].as_str() {
+        None | Some("off") => writeln!(out, "  stitch         off")?,
+        Some(tolerance) => writeln!(
+            out,
+            "  stitch         within {tolerance}: {} boundary edges stitched, {} remain",
+            st["stitched"], st["remaining"]
+        )?,
     }
     let c = &r["chamfer"];
     writeln!(
