@@ -1,6 +1,6 @@
 //! Small fixtures with answers known by construction (fixtures/make_fixtures.py), and broken files.
 
-use chamfer_preprocess::{BakeOptions, Error, Radius, bake_file};
+use chamfer_preprocess::{BakeOptions, Error, Radius, Stitch, bake_file};
 use chamfer_runtime::asset::{Asset, EdgeFlags, EdgeStats};
 use chamfer_tests::fixture;
 
@@ -404,14 +404,29 @@ fn the_default_weld_closes_a_cad_export_whose_copies_are_ulps_apart() {
     let e = default.edges;
     assert_eq!((e.total, e.boundary, e.crease, e.ridge), (18, 0, 12, 12));
     assert_eq!(e.smooth + e.coplanar_dropped, 6);
-    // --weld-epsilon 0 keeps the exact weld: every face is its own open square.
-    let exact = bake_file(&path, &BakeOptions::DEFAULT.with_weld_epsilon(0.0))
+    // --weld-epsilon 0 with --no-stitch keeps the exact weld: every face is its own open square.
+    let exact = BakeOptions::DEFAULT.with_weld_epsilon(0.0);
+    let open = bake_file(&path, &exact.with_stitch(Stitch::Off))
         .unwrap_or_else(|e| panic!("{e}"))
         .asset
         .header
         .stats;
-    assert!(exact.welded_vertices > 8, "{}", exact.welded_vertices);
-    assert_eq!((exact.edges.boundary, exact.edges.crease), (24, 0));
+    assert!(open.welded_vertices > 8, "{}", open.welded_vertices);
+    assert_eq!((open.edges.boundary, open.edges.crease), (24, 0));
+    // Stitching within 1e-3 (the copies are up to 4 ULPs, 4.9e-4, apart; the default stitch, 1e-4
+    // of the 1.7 diagonal, is less) closes what the exact weld left: the corner copies joined into
+    // 8, the 24 squares' sides paired into the cube's 12 ridges.
+    let stitched = bake_file(&path, &exact.with_stitch(Stitch::Absolute(1e-3)))
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(stitched.stitched.boundary_before, 24);
+    assert_eq!(
+        stitched.stitched.boundary_after, 0,
+        "{:?}",
+        stitched.stitched
+    );
+    assert_eq!(stitched.stitched.joined_vertices, open.welded_vertices - 8);
+    let e = stitched.asset.header.stats.edges;
+    assert_eq!((e.total, e.boundary, e.crease, e.ridge), (18, 0, 12, 12));
 }
 
 #[test]

@@ -272,16 +272,16 @@ fn split_triangles(
         .par_iter()
         .enumerate()
         .filter_map(|(t, tri)| {
-            (0..3).find_map(|r| {
-                wanted
-                    .get(&(tri[r], tri[(r + 1) % 3]))
-                    .map(|&k| (t, r, k))
-            })
+            (0..3).find_map(|r| wanted.get(&(tri[r], tri[(r + 1) % 3])).map(|&k| (t, r, k)))
         })
         .collect();
     for &(t, rotation, k) in &owners {
         let tri = triangles[t];
-        let (a, b, c) = (tri[rotation], tri[(rotation + 1) % 3], tri[(rotation + 2) % 3]);
+        let (a, b, c) = (
+            tri[rotation],
+            tri[(rotation + 1) % 3],
+            tri[(rotation + 2) % 3],
+        );
         let inside = &splits[k].1;
         let material = materials.get(t).copied();
         let mut from = a;
@@ -320,13 +320,7 @@ mod tests {
             Vec3::new(1.0 + gap, 1.0, 0.0),
             Vec3::new(1.0 + gap, 0.5, 0.0),
         ];
-        let triangles = vec![
-            [0, 1, 2],
-            [0, 2, 3],
-            [4, 5, 8],
-            [5, 6, 8],
-            [6, 7, 8],
-        ];
+        let triangles = vec![[0, 1, 2], [0, 2, 3], [4, 5, 8], [5, 6, 8], [6, 7, 8]];
         (positions, triangles)
     }
 

@@ -953,10 +953,20 @@ fn the_default_weld_is_relative_and_weld_epsilon_zero_keeps_it_exact() {
     };
     assert_eq!(welded(&[]), (8.into(), 0.into()));
     assert_eq!(welded(&["--weld-rel", "1e-6"]), (8.into(), 0.into()));
-    let (exact, boundary) = welded(&["--weld-epsilon", "0"]);
+    let (exact, boundary) = welded(&["--weld-epsilon", "0", "--no-stitch"]);
     assert!(
         exact.as_u64() > Some(8) && boundary == 24,
         "{exact} {boundary}"
+    );
+    // A stitch wider than the copies' 4 ULPs closes what the exact weld leaves; inspect says so.
+    let stitched = welded(&["--weld-epsilon", "0", "--stitch-epsilon", "1e-3"]);
+    assert_eq!(stitched.1, 0);
+    let asset = dir.path().join("cube.chamfer");
+    let run = chamfer(&["inspect", path_str(&asset)]);
+    let summary = text(&run.stdout);
+    assert!(
+        summary.contains("stitch") && summary.contains("24 boundary edges"),
+        "{summary}"
     );
     let run = chamfer(&[
         "bake",

@@ -70,7 +70,11 @@ pub(super) fn parse(
 /// that does not begin with `solid` can only be binary, so its declared count is checked against
 /// `limits` and inflating ends with an error as soon as it passes the length that count gives.
 /// Returns `Ok(true)` when nothing more needs checking.
-pub(super) fn check_stream_prefix(path: &Path, prefix: &[u8], limits: &Limits) -> Result<bool, Error> {
+pub(super) fn check_stream_prefix(
+    path: &Path,
+    prefix: &[u8],
+    limits: &Limits,
+) -> Result<bool, Error> {
     let Some(count) = prefix.get(80..HEADER_BYTES) else {
         return Ok(false);
     };
@@ -173,7 +177,11 @@ impl<'a> Words<'a> {
             self.at += 1;
         }
         let start = self.at;
-        while self.text.get(self.at).is_some_and(|b| !b.is_ascii_whitespace()) {
+        while self
+            .text
+            .get(self.at)
+            .is_some_and(|b| !b.is_ascii_whitespace())
+        {
             self.at += 1;
         }
         (self.at > start).then(|| (&self.text[start..self.at], self.line))
@@ -219,10 +227,7 @@ fn read_ascii(
                 .ok()
                 .and_then(|s| s.parse::<f32>().ok())
                 .ok_or_else(|| {
-                    invalid(format!(
-                        "line {line}: {what} `{}` is not a number",
-                        show(w)
-                    ))
+                    invalid(format!("line {line}: {what} `{}` is not a number", show(w)))
                 }),
             None => Err(invalid(format!(
                 "line {}: the file ends inside a {what}",
@@ -305,7 +310,13 @@ mod tests {
     }
 
     fn parse_ok(bytes: &[u8]) -> Mesh {
-        parse(Path::new("part.stl"), bytes, &Limits::DEFAULT, &mut Vec::new()).expect("parses")
+        parse(
+            Path::new("part.stl"),
+            bytes,
+            &Limits::DEFAULT,
+            &mut Vec::new(),
+        )
+        .expect("parses")
     }
 
     fn parse_err(bytes: &[u8], limits: &Limits) -> String {
@@ -339,7 +350,10 @@ mod tests {
         let mut bytes = binary(&[0; 80], &[TRIANGLE]);
         bytes[80..84].copy_from_slice(&u32::MAX.to_le_bytes());
         let message = parse_err(&bytes, &Limits::DEFAULT);
-        assert!(message.contains("declares 4294967295 triangles"), "{message}");
+        assert!(
+            message.contains("declares 4294967295 triangles"),
+            "{message}"
+        );
         assert!(message.contains("but the file has 134"), "{message}");
     }
 
@@ -353,13 +367,31 @@ mod tests {
     #[test]
     fn ascii_errors_name_the_line_and_the_problem() {
         let cases = [
-            ("solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 nan\n", "line 4: vertex 0 has z = NaN"),
-            ("solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0\nendloop", "line 5: vertex coordinate `endloop` is not a number"),
-            ("solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n", "the file ends where `vertex` was expected"),
-            ("solid x\nfacet normal 0 0 1\n", "the file ends where `outer` was expected"),
+            (
+                "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 nan\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid\n",
+                "line 4: vertex 0 has z = NaN",
+            ),
+            (
+                "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0\nendloop",
+                "line 5: vertex coordinate `endloop` is not a number",
+            ),
+            (
+                "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n",
+                "the file ends where `vertex` was expected",
+            ),
+            (
+                "solid x\nfacet normal 0 0 1\n",
+                "the file ends where `outer` was expected",
+            ),
             ("solid x\n", "no `endsolid`"),
-            ("solid x\nendsolid\ngarbage", "line 3: expected `solid`, found `garbage`"),
-            ("solid x\nfacet normal 0 0 1 outer loop vertex 0 0 0 vertex 1 0 0 vertex 0 1 0 vertex 1 1 0", "expected `endloop`, found `vertex`"),
+            (
+                "solid x\nendsolid\ngarbage",
+                "line 3: expected `solid`, found `garbage`",
+            ),
+            (
+                "solid x\nfacet normal 0 0 1 outer loop vertex 0 0 0 vertex 1 0 0 vertex 0 1 0 vertex 1 1 0",
+                "expected `endloop`, found `vertex`",
+            ),
         ];
         for (text, expected) in cases {
             let message = parse_err(text.as_bytes(), &Limits::DEFAULT);
@@ -373,7 +405,10 @@ mod tests {
         let mut bad = TRIANGLE;
         bad[4] = f32::INFINITY;
         let message = parse_err(&binary(&[0; 80], &[TRIANGLE, bad]), &Limits::DEFAULT);
-        assert!(message.contains("triangle 1: vertex 1 has y = inf"), "{message}");
+        assert!(
+            message.contains("triangle 1: vertex 1 has y = inf"),
+            "{message}"
+        );
     }
 
     #[test]
@@ -381,7 +416,10 @@ mod tests {
         let mut bytes = binary(&[0; 80], &[TRIANGLE]);
         bytes.push(0);
         let message = parse_err(&bytes, &Limits::DEFAULT);
-        assert!(message.contains("declares 1 triangles, which take 134 bytes, but the file has 135"), "{message}");
+        assert!(
+            message.contains("declares 1 triangles, which take 134 bytes, but the file has 135"),
+            "{message}"
+        );
         assert!(parse_err(b"abc", &Limits::DEFAULT).contains("too short"));
     }
 
