@@ -1,0 +1,222 @@
+//! CAD meshes in (issue 30): STL, binary and ASCII, welded from triangle soup; the cracks between
+//! separately tessellated faces stitched; the same part drawn the same whichever way it came.
+
+use std::collections::BTreeSet;
+use std::path::Path;
+
+use chamfer_preprocess::{BakeOptions, Limits, Stitch, bake_file, load};
+use chamfer_runtime::asset::Asset;
+use chamfer_runtime::render::{CapMethod, EdgeColors, EdgeStyle, Image};
+use chamfer_tests::cube::*;
+use chamfer_tests::{bake_fixture, fixture, render};
+
+fn bake(path: &Path, options: &BakeOptions) -> chamfer_preprocess::Baked {
+    bake_file(path, options).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The kept edges as pairs of endpoint positions (bit patterns, each pair sorted), so parts whose
+/// vertices are numbered differently compare.
+fn kept_segments(asset: &Asset) -> BTreeSet<[[u32; 3]; 2]> {
+    let at = |v: u32| asset.topology_positions[v as usize].map(f32::to_bits);
+    (0..asset.edge_vertices.len() / 4)
+        .map(|e| {
+            let mut pair = [
+                at(asset.edge_vertices.get(4 * e)),
+                at(asset.edge_vertices.get(4 * e + 1)),
+            ];
+            pair.sort();
+            pair
+        })
+        .collect()
+}
+
+/// A mesh as a binary STL: every triangle with its own three vertices, as CAD tools write it.
+fn soup_stl(mesh: &chamfer_preprocess::mesh::Mesh) -> Vec<u8> {
+    let mut bytes = b"solid exported by a CAD tool".to_vec();
+    bytes.resize(80, b' ');
+    bytes.extend((mesh.triangles.len() as u32).to_le_bytes());
+    for t in &mesh.triangles {
+        bytes.extend([0u8; 12]);
+        for &v in t {
+            bytes.extend(
+                mesh.positions[v as usize]
+                    .to_array()
+                    .map(f32::to_le_bytes)
+                    .concat(),
+            );
+        }
+        bytes.extend([0u8; 2]);
+    }
+    bytes
+}
+
+#[test]
+fn binary_and_ascii_stl_of_one_part_bake_to_the_same_asset() {
+    let binary = fixture("shapes/step-binary.stl");
+    let bytes = std::fs::read(&binary).expect("fixture");
+    assert!(
+        bytes.starts_with(b"solid"),
+        "the classic trap: a binary file that begins with `solid`"
+    );
+    let mut from_binary = bake(&binary, &BakeOptions::DEFAULT).asset;
+    let from_ascii = bake(&fixture("shapes/step-ascii.stl"), &BakeOptions::DEFAULT).asset;
+    from_binary
+        .header
+        .source
+        .clone_from(&from_ascii.header.source);
+    assert_eq!(from_binary.encode_to_vec(), from_ascii.encode_to_vec());
+    // And the step as an OBJ with shared vertices keeps the same edges.
+    let obj = bake_fixture("shapes/step.obj");
+    assert_eq!(kept_segments(&from_ascii), kept_segments(&obj));
+    assert_eq!(from_ascii.header.stats.edges, obj.header.stats.edges);
+}
+
+#[test]
+fn an_ascii_stl_with_two_solids_holds_both() {
+    let loaded = load::load(&fixture("shapes/two-cubes-ascii.stl"), &Limits::DEFAULT)
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(loaded.mesh.triangles.len(), 24);
+    assert_eq!(
+        loaded.mesh.positions.len(),
+        72,
+        "soup: three vertices a triangle"
+    );
+    let stats = bake(
+        &fixture("shapes/two-cubes-ascii.stl"),
+        &BakeOptions::DEFAULT,
+    )
+    .asset
+    .header
+    .stats;
+    assert_eq!((stats.welded_vertices, stats.edges.boundary), (16, 0));
+    assert_eq!(stats.edges.crease, 24, "two cubes' 12 ridges");
+}
+
+#[test]
+fn a_cad_stl_export_welds_to_the_same_edges_as_the_obj_part() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    for part in [
+        "meshes/fandisk.obj",
+        "shapes/step.obj",
+        "shapes/cylinder-16.obj",
+    ] {
+        let obj = fixture(part);
+        let mesh = load::load(&obj, &Limits::DEFAULT)
+            .unwrap_or_else(|e| panic!("{e}"))
+            .mesh;
+        let stl = dir.path().join("part.stl");
+        std::fs::write(&stl, soup_stl(&mesh)).expect("write");
+        let from_stl = bake(&stl, &BakeOptions::DEFAULT);
+        let from_obj = bake(&obj, &BakeOptions::DEFAULT).asset;
+        let stats = from_stl.asset.header.stats;
+        assert_eq!(stats.input_vertices, 3 * stats.input_triangles, "{part}");
+        assert_eq!(stats.edges.boundary, 0, "{part}");
+        assert_eq!(
+            from_stl.stitched.boundary_before, 0,
+            "{part}: the weld alone closes it"
+        );
+        assert_eq!(stats.edges, from_obj.header.stats.edges, "{part}");
+        assert_eq!(
+            kept_segments(&from_stl.asset),
+            kept_segments(&from_obj),
+            "{part}"
+        );
+        // Gzipped, the same.
+        let gz = dir.path().join("part.stl.gz");
+        let mut encoder = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::fast());
+        std::io::Write::write_all(&mut encoder, &soup_stl(&mesh)).expect("gzip");
+        std::fs::write(&gz, encoder.finish().expect("gzip")).expect("write");
+        assert_eq!(bake(&gz, &BakeOptions::DEFAULT).asset.header.stats, stats);
+    }
+}
+
+/// Red edges except boundaries, which are green: a crack shows as green.
+fn boundaries_in_green() -> EdgeStyle {
+    EdgeStyle {
+        colors: EdgeColors {
+            boundary: [0.0, 1.0, 0.0, 1.0],
+            ..EdgeColors::all(RED)
+        },
+        ..edges_in(RED, 3.0, CapMethod::NextIndex)
+    }
+}
+
+fn green_pixels(image: &Image) -> usize {
+    image
+        .rgba
+        .chunks_exact(4)
+        .filter(|p| p[1] > 200 && p[0] < 60 && p[2] < 60)
+        .count()
+}
+
+fn picture(asset: &Asset) -> Image {
+    let camera = cube_camera(256, false);
+    render(
+        asset,
+        &camera,
+        Some(&grey_mesh()),
+        Some(&boundaries_in_green()),
+        BLUE_BACKGROUND,
+    )
+}
+
+#[test]
+fn a_cube_tessellated_face_by_face_is_stitched_and_drawn_as_the_watertight_cube() {
+    let path = fixture("shapes/box-cracked.obj");
+    let open = bake(&path, &BakeOptions::DEFAULT.with_stitch(Stitch::Off)).asset;
+    assert!(
+        open.header.stats.edges.boundary > 24,
+        "the T-junctions leave the faces apart: {:?}",
+        open.header.stats.edges
+    );
+    let stitched = bake(&path, &BakeOptions::DEFAULT);
+    assert_eq!(
+        stitched.stitched.joined_vertices, 0,
+        "the weld joins the corners"
+    );
+    assert!(stitched.stitched.split_edges > 0);
+    let edges = stitched.asset.header.stats.edges;
+    assert_eq!((edges.boundary, edges.non_manifold), (0, 0), "{edges:?}");
+    // The 12 ridges, in pieces where the faces' grids met, and nothing else.
+    assert_eq!(edges.ridge, edges.kept, "{edges:?}");
+    let length: f32 = kept_segments(&stitched.asset)
+        .iter()
+        .map(|[a, b]| {
+            let p = |q: &[u32; 3]| glam::Vec3::from_array(q.map(f32::from_bits));
+            p(a).distance(p(b))
+        })
+        .sum();
+    assert!((length - 12.0).abs() < 1e-4, "ridge length {length}");
+
+    let watertight = picture(&bake_fixture("shapes/cube.obj"));
+    let image = picture(&stitched.asset);
+    check_cube_edges(&image, &cube_camera(256, false)).unwrap_or_else(|e| panic!("{e}"));
+    let differing = image
+        .rgba
+        .chunks_exact(4)
+        .zip(watertight.rgba.chunks_exact(4))
+        .filter(|(a, b)| a.iter().zip(b.iter()).any(|(x, y)| x.abs_diff(*y) > 8))
+        .count();
+    assert!(
+        differing < image.rgba.len() / 4 / 500,
+        "{differing} pixels differ from the watertight cube's picture"
+    );
+    assert_eq!(green_pixels(&image), 0);
+    // Unstitched, the cracks are drawn as boundaries.
+    assert!(green_pixels(&picture(&open)) > 500);
+}
+
+#[test]
+fn a_real_open_boundary_stays_open() {
+    for (part, rim) in [("shapes/open-box.obj", 4), ("shapes/plane-4x4.obj", 16)] {
+        let baked = bake(&fixture(part), &BakeOptions::DEFAULT);
+        assert_eq!(baked.stitched.boundary_before, rim, "{part}");
+        assert_eq!(baked.stitched.boundary_after, rim, "{part}");
+        assert_eq!(baked.asset.header.stats.edges.boundary, rim, "{part}");
+    }
+    let picture = picture(&bake_fixture("shapes/open-box.obj"));
+    assert!(
+        green_pixels(&picture) > 100,
+        "the open box's rim is drawn as a boundary"
+    );
+}
