@@ -266,6 +266,56 @@ const PLY_HEADER_LINES: &[&str] = &[
     "format binary_big_endian 1.0",
 ];
 
+const STL_LINES: &[&str] = &[
+    "solid part",
+    "endsolid part",
+    "facet normal 0 0 1",
+    "facet normal nan 0 0",
+    "outer loop",
+    "vertex 0 0 0",
+    "vertex 1e39 0 0",
+    "vertex 1 2",
+    "endloop",
+    "endfacet",
+    "solid",
+];
+
+/// Mutates an STL: an ASCII one by lines and numbers, a binary one in its count (often to what the
+/// file's size allows, give or take one) or its records.
+fn mutate_stl(bytes: &mut Vec<u8>, rng: &mut Rng) {
+    let binary = bytes.len() >= 84
+        && (bytes.len() - 84) % 50 == 0
+        && u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as usize
+            == (bytes.len() - 84) / 50;
+    if !binary {
+        return if rng.below(4) == 0 {
+            mutate_bytes(bytes, rng)
+        } else {
+            mutate_text(bytes, rng, STL_LINES)
+        };
+    }
+    match rng.below(4) {
+        0 => {
+            let fits = ((bytes.len() - 84) / 50) as u32;
+            let count = match rng.below(3) {
+                0 => *rng.pick(WORDS),
+                1 => fits.wrapping_add(1),
+                _ => fits.wrapping_sub(1),
+            };
+            bytes[80..84].copy_from_slice(&count.to_le_bytes());
+        }
+        1 => {
+            // A whole record added or dropped, the count kept: the size rule must catch it.
+            if rng.below(2) == 0 {
+                bytes.extend_from_within(84..134.min(bytes.len()));
+            } else {
+                bytes.truncate(bytes.len().saturating_sub(50).max(84));
+            }
+        }
+        _ => mutate_bytes(bytes, rng),
+    }
+}
+
 /// Mutates a PLY: header lines and counts, or the body's bytes.
 fn mutate_ply(bytes: &mut Vec<u8>, rng: &mut Rng) {
     let marker = b"end_header\n";
@@ -717,6 +767,16 @@ fn fuzz_glb() {
 }
 
 #[test]
+fn fuzz_stl() {
+    let seeds = seeds(&[
+        "shapes/step-binary.stl",
+        "shapes/step-ascii.stl",
+        "shapes/two-cubes-ascii.stl",
+    ]);
+    run("stl", 9, seeds, mutate_stl, load_and_bake);
+}
+
+#[test]
 fn fuzz_asset_decode() {
     let seeds: Vec<Seed> = [
         "shapes/cube.obj",
@@ -746,6 +806,8 @@ fn mutate_any(bytes: &mut Vec<u8>, rng: &mut Rng) {
         mutate_glb(bytes, rng)
     } else if bytes.starts_with(b"{") {
         mutate_gltf(bytes, rng)
+    } else if bytes.starts_with(b"solid") {
+        mutate_stl(bytes, rng)
     } else if rng.below(4) == 0 {
         mutate_bytes(bytes, rng)
     } else {
@@ -768,6 +830,8 @@ fn mesh_seeds() -> Vec<Seed> {
         "shapes/cube-marked-extras.glb",
         "shapes/two-materials.glb",
         "shapes/pyramid-fans-mirrored.glb",
+        "shapes/step-binary.stl",
+        "shapes/two-cubes-ascii.stl",
     ])
 }
 
@@ -965,6 +1029,26 @@ fn declared_counts_stay_within_a_memory_bound() {
         gz.finish().expect("finish");
         path
     };
+    let stl_gz_bomb = {
+        use std::io::Write;
+        let path = dir.path().join("facets.stl.gz");
+        let mut gz = flate2::write::GzEncoder::new(
+            std::fs::File::create(&path).expect("create"),
+            flate2::Compression::fast(),
+        );
+        let mut header = vec![b' '; 80];
+        header.extend(170_000_000u32.to_le_bytes());
+        gz.write_all(&header).expect("write");
+        let block = vec![0u8; 1 << 20];
+        for _ in 0..256 {
+            gz.write_all(&block).expect("write");
+        }
+        gz.finish().expect("finish");
+        path
+    };
+    let mut stl_count = vec![b' '; 80];
+    stl_count.extend(u32::MAX.to_le_bytes());
+    stl_count.extend([0u8; 50]);
     let implicit = format!(
         r#"{{"asset":{{"version":"2.0"}},"accessors":[{{"componentType":5126,"count":16777216,"type":"VEC3"}}],
         "meshes":[{{"primitives":[{}]}}]}}"#,
@@ -982,6 +1066,8 @@ fn declared_counts_stay_within_a_memory_bound() {
             &triangle("element junk 18446744073709551615\n"),
         ),
         gz_bomb,
+        stl_gz_bomb,
+        put("count.stl", &stl_count),
         put("implicit.gltf", implicit.as_bytes()),
         put("instancing.gltf", instancing.as_bytes()),
     ];

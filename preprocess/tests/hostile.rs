@@ -1008,3 +1008,116 @@ fn errors_name_the_problem_and_where_it_is() {
         }
     }
 }
+
+/// A binary STL of `records` triangles whose header declares `count`.
+fn stl(count: u32, records: usize) -> Vec<u8> {
+    let mut bytes = b"solid looks like ASCII but is binary".to_vec();
+    bytes.resize(80, b' ');
+    bytes.extend(count.to_le_bytes());
+    for _ in 0..records {
+        bytes.extend([0u8; 12]);
+        for v in [[0.0f32, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]] {
+            bytes.extend(v.iter().flat_map(|c| c.to_le_bytes()));
+        }
+        bytes.extend([0u8; 2]);
+    }
+    bytes
+}
+
+#[test]
+fn stl_count_larger_than_the_file_is_refused_before_allocating() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let text = refused(&write(dir.path(), "count.stl", stl(u32::MAX, 1)));
+    assert!(
+        text.contains("declares 4294967295 triangles") && text.contains("but the file has 134"),
+        "{text}"
+    );
+}
+
+#[test]
+fn stl_whose_header_begins_with_solid_but_breaks_the_size_rule_is_refused_as_binary() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mut bytes = stl(1, 1);
+    bytes.push(0); // one byte more than 84 + 50 x 1
+    let text = refused(&write(dir.path(), "trap.stl", bytes));
+    assert!(
+        text.contains("not ASCII")
+            && text.contains("declares 1 triangles, which take 134 bytes, but the file has 135"),
+        "{text}"
+    );
+    // Text after `solid` that is not STL is refused as ASCII, at its line.
+    let text = refused(&write(
+        dir.path(),
+        "words.stl",
+        "solid s
+facet normal 0 0 0
+outer lop
+",
+    ));
+    assert!(text.contains("line 3") && text.contains("lop"), "{text}");
+}
+
+#[test]
+fn stl_non_finite_coordinates_name_the_triangle_or_the_line() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mut bytes = stl(2, 2);
+    bytes[84 + 50 + 12 + 4..84 + 50 + 12 + 8].copy_from_slice(&f32::NAN.to_le_bytes());
+    let text = refused(&write(dir.path(), "nan.stl", bytes));
+    assert!(
+        text.contains("triangle 1") && text.contains("NaN"),
+        "{text}"
+    );
+    let ascii = "solid s\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 1 inf 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid s\n";
+    let text = refused(&write(dir.path(), "inf.stl", ascii));
+    assert!(text.contains("line 5") && text.contains("inf"), "{text}");
+}
+
+#[test]
+fn stl_ascii_that_never_closes_its_solid_is_refused_naming_what_is_missing() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let text = refused(&write(
+        dir.path(),
+        "open.stl",
+        "solid s\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n",
+    ));
+    assert!(text.contains("endsolid"), "{text}");
+    let text = refused(&write(
+        dir.path(),
+        "quad.stl",
+        "solid s\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nvertex 1 1 0\nendloop\n",
+    ));
+    assert!(
+        text.contains("line 7") && text.contains("endloop"),
+        "{text}"
+    );
+}
+
+#[test]
+fn stl_over_the_triangle_limit_is_refused_before_reading_its_records() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = write(dir.path(), "many.stl", stl(1000, 1000));
+    let limits = chamfer_preprocess::Limits::DEFAULT.with_max_triangles(999);
+    let text = bake_file(&path, &BakeOptions::DEFAULT.with_limits(limits))
+        .expect_err("over the limit")
+        .to_string();
+    assert!(
+        text.contains("many.stl") && text.contains("--max-triangles"),
+        "{text}"
+    );
+}
+
+#[test]
+fn stl_gz_that_inflates_past_its_declared_records_is_refused_while_inflating() {
+    use std::io::Write;
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("bomb.stl.gz");
+    let mut gz = flate2::write::GzEncoder::new(
+        std::fs::File::create(&path).expect("create"),
+        flate2::Compression::best(),
+    );
+    gz.write_all(&stl(1, 1)).expect("write");
+    gz.write_all(&vec![0u8; 64 << 20]).expect("write"); // 64 MiB of zeros after one record
+    gz.finish().expect("finish");
+    let text = refused(&path);
+    assert!(text.contains("STL"), "{text}");
+}

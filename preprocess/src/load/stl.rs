@@ -45,24 +45,33 @@ pub(super) fn parse(
             .and_then(|mesh| refuse_non_finite(mesh, &invalid, |v| format!("triangle {}", v / 3)));
     }
     let text = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(bytes);
+    let declared = || {
+        bytes.get(80..HEADER_BYTES).map(|count| {
+            let count = u32::from_le_bytes([count[0], count[1], count[2], count[3]]);
+            format!(
+                "as binary its header declares {count} triangles, which take {} bytes, but the file has {}",
+                (HEADER_BYTES as u64).saturating_add(u64::from(count) * RECORD_BYTES as u64),
+                bytes.len()
+            )
+        })
+    };
     if first_word(text) == Some(&b"solid"[..]) {
+        // A NUL byte is no ASCII STL's: a binary file whose header begins with `solid` and whose
+        // size breaks the rule (truncated, or a wrong count) is named as that, not as bad ASCII.
+        if let Some(binary) = declared().filter(|_| bytes.contains(&0)) {
+            return Err(invalid(format!(
+                "it begins with `solid` but holds NUL bytes, so it is not ASCII; {binary}"
+            )));
+        }
         let (positions, lines) = read_ascii(text, limits, path, &invalid)?;
         return refuse_non_finite(soup(positions), &invalid, |v| format!("line {}", lines[v]));
     }
-    Err(invalid(match bytes.get(80..HEADER_BYTES) {
+    Err(invalid(match declared() {
         None => format!(
             "{} bytes: too short for a binary STL (an 84-byte header) and not an ASCII one (it does not begin with `solid`)",
             bytes.len()
         ),
-        Some(count) => {
-            let count = u32::from_le_bytes([count[0], count[1], count[2], count[3]]);
-            format!(
-                "not ASCII (it does not begin with `solid`), and as binary its header declares {count} triangles, \
-                 which take {} bytes, but the file has {}",
-                (HEADER_BYTES as u64).saturating_add(u64::from(count) * RECORD_BYTES as u64),
-                bytes.len()
-            )
-        }
+        Some(binary) => format!("not ASCII (it does not begin with `solid`), and {binary}"),
     }))
 }
 
