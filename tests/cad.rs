@@ -220,3 +220,117 @@ fn a_real_open_boundary_stays_open() {
         "the open box's rim is drawn as a boundary"
     );
 }
+
+/// fixtures/make_fixtures.py's STEP_COMPONENTS and STEP_BUILD: 3MF's 4 x 3 row-vector matrices.
+const STEP_COMPONENTS: [[f32; 12]; 3] = [
+    [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0, -1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 5.0, 0.0, 0.0],
+    [-1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 4.0, 0.0],
+];
+const STEP_BUILD: [f32; 12] = [
+    2.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 2.0, 10.0, 20.0, 30.0,
+];
+
+/// `p · M` for a 3MF matrix, written out (no glam), so the test does not share the loader's math.
+fn place(m: &[f32; 12], p: [f32; 3]) -> [f32; 3] {
+    std::array::from_fn(|j| p[0] * m[j] + p[1] * m[3 + j] + p[2] * m[6 + j] + m[9 + j])
+}
+
+fn mirrors(m: &[f32; 12]) -> bool {
+    let det = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6])
+        + m[2] * (m[3] * m[7] - m[4] * m[6]);
+    det < 0.0
+}
+
+/// A mesh's triangles as positions (bit patterns), each rotated to start at its least corner so the
+/// winding is kept, sorted.
+fn triangles(mesh: &chamfer_preprocess::mesh::Mesh) -> Vec<[[u32; 3]; 3]> {
+    let mut all: Vec<[[u32; 3]; 3]> = mesh
+        .triangles
+        .iter()
+        .map(|t| {
+            let corners = t.map(|v| mesh.positions[v as usize].to_array().map(f32::to_bits));
+            let first = (0..3).min_by_key(|&k| corners[k]).unwrap_or(0);
+            std::array::from_fn(|k| corners[(first + k) % 3])
+        })
+        .collect();
+    all.sort();
+    all
+}
+
+#[test]
+fn a_3mf_with_components_and_build_transforms_equals_the_geometry_placed_by_hand() {
+    let step = load::load(&fixture("shapes/step.obj"), &Limits::DEFAULT)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .mesh;
+    let mut by_hand = chamfer_preprocess::mesh::Mesh::default();
+    for component in &STEP_COMPONENTS {
+        let base = by_hand.positions.len() as u32;
+        by_hand.positions.extend(
+            step.positions.iter().map(|p| {
+                glam::Vec3::from_array(place(&STEP_BUILD, place(component, p.to_array())))
+            }),
+        );
+        let flip = mirrors(component) != mirrors(&STEP_BUILD);
+        by_hand.triangles.extend(step.triangles.iter().map(|t| {
+            let [a, b, c] = t.map(|v| v + base);
+            if flip { [a, c, b] } else { [a, b, c] }
+        }));
+    }
+    let path = fixture("shapes/step-components.3mf");
+    let loaded = load::load(&path, &Limits::DEFAULT).unwrap_or_else(|e| panic!("{e}"));
+    assert!(loaded.warnings.is_empty(), "{:?}", loaded.warnings);
+    // The OBJ reader numbers the step's vertices its own way: compare triangles by position.
+    assert_eq!(triangles(&loaded.mesh), triangles(&by_hand));
+    // Baked, the same: three steps, each closed and with outward faces (no flipped edge).
+    let from_3mf = bake(&path, &BakeOptions::DEFAULT).asset;
+    let placed = chamfer_preprocess::bake(by_hand, "by hand", &BakeOptions::DEFAULT)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .asset;
+    assert_eq!(kept_segments(&from_3mf), kept_segments(&placed));
+    let edges = from_3mf.header.stats.edges;
+    assert_eq!((edges.boundary, edges.flipped), (0, 0), "{edges:?}");
+    assert_eq!(
+        edges.crease,
+        3 * bake_fixture("shapes/step.obj").header.stats.edges.crease
+    );
+}
+
+#[test]
+fn a_3mf_in_inches_is_read_in_millimetres() {
+    let inch = load::load(&fixture("shapes/cube-inch.3mf"), &Limits::DEFAULT)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .mesh;
+    let millimetre = load::load(&fixture("shapes/cube.3mf"), &Limits::DEFAULT)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .mesh;
+    let scaled: Vec<glam::Vec3> = millimetre.positions.iter().map(|p| *p * 25.4).collect();
+    assert_eq!(inch.positions, scaled);
+    assert_eq!(inch.triangles, millimetre.triangles);
+}
+
+#[test]
+fn bake_scene_keeps_a_3mf_object_apart_from_its_instances() {
+    let baked = chamfer_preprocess::scene::bake_scene(
+        &fixture("shapes/step-components.3mf"),
+        "step",
+        &BakeOptions::DEFAULT,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(baked.assets.len(), 1, "one mesh object, placed three times");
+    assert_eq!(
+        baked.assets[0].0, "step.mesh1.chamfer",
+        "named by its object id"
+    );
+    assert_eq!(baked.scene.instances.len(), 3);
+    for (instance, component) in baked.scene.instances.iter().zip(&STEP_COMPONENTS) {
+        let transform = glam::Mat4::from_cols_array(&instance.transform);
+        for p in [[0.0, 0.0, 0.0], [2.0, 1.0, 1.0], [1.0, 2.0, 0.0]] {
+            let expected = place(&STEP_BUILD, place(component, p));
+            let got = transform
+                .transform_point3(glam::Vec3::from_array(p))
+                .to_array();
+            assert_eq!(got, expected);
+        }
+    }
+}

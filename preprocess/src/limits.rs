@@ -16,10 +16,11 @@ use crate::Error;
 pub struct Limits {
     /// Triangles after fanning polygons and expanding glTF instances. Default 2²⁶ (67,108,864).
     pub max_triangles: u64,
-    /// Vertices as loaded (before welding), all glTF instances counted. Default 2²⁶.
+    /// Vertices as loaded (before welding), all glTF and 3MF instances counted. Default 2²⁶.
     pub max_vertices: u64,
-    /// glTF primitive instances: each primitive once per node that draws its mesh, counted
-    /// through the whole node graph before anything is expanded. Default 2²⁰ (1,048,576).
+    /// Mesh instances: each glTF primitive once per node that draws its mesh, each 3MF mesh object
+    /// once per build item and component that places it, counted through the whole node graph or
+    /// build before anything is expanded. Default 2²⁰ (1,048,576).
     pub max_instances: u64,
     /// Bytes of one input file after inflating `.gz`, and of each file it refers to (`.mtl`,
     /// glTF buffers). Default 2³¹ (2 GiB).
@@ -121,7 +122,7 @@ impl Limited {
         match self {
             Self::Triangles => "triangles",
             Self::Vertices => "vertices",
-            Self::Instances => "glTF primitive instances",
+            Self::Instances => "mesh instances",
             Self::InputBytes => "bytes",
         }
     }

@@ -1,4 +1,4 @@
-//! Baking a glTF scene with its structure kept: one asset per mesh the scene draws and a scene file
+//! Baking a glTF scene (or a 3MF build) with its structure kept: one asset per mesh the scene draws and a scene file
 //! ([`chamfer_runtime::scene::SceneFile`]) of its instances, so a runtime can draw, move and hide
 //! each instance (an exploded view, a door that opens), and reading such a scene back. The
 //! flattened single asset stays what [`bake_file`](crate::bake_file) makes.
@@ -25,24 +25,29 @@ pub struct BakedScene {
     pub warnings: Vec<String>,
 }
 
-/// Bakes every mesh a glTF/GLB file's scene draws, each in its own space, and lists the instances.
-/// `stem` names the assets (`{stem}.mesh{N}.chamfer`).
+/// Bakes every mesh a glTF/GLB file's scene draws (or every mesh object a 3MF build places), each
+/// in its own space, and lists the instances. `stem` names the assets (`{stem}.mesh{N}.chamfer`, N
+/// the glTF mesh index or the 3MF object id).
 ///
 /// A mesh without triangles (only points or lines) is left out with a warning naming it, with its
-/// instances. Fails, naming the file, for other formats (`--scene` keeps a glTF node graph; an OBJ
-/// or PLY has none), for whatever [`bake_file`](crate::bake_file) fails on (a mesh that cannot be
+/// instances. Fails, naming the file, for other formats (`--scene` keeps a glTF node graph or a 3MF
+/// build; an OBJ, PLY or STL has none), for whatever [`bake_file`](crate::bake_file) fails on (a mesh that cannot be
 /// baked is named: `file: mesh N: ...`), and for a scene with no mesh that has triangles.
 pub fn bake_scene(path: &Path, stem: &str, options: &BakeOptions) -> Result<BakedScene, Error> {
     options.validate()?;
-    if load::format_of(path) != Some(Format::Gltf) {
-        return Err(Error::Unsupported {
-            path: path.to_owned(),
-            what: "a scene from anything but glTF or GLB (only they have a node graph)".into(),
-        });
+    let unsupported = || Error::Unsupported {
+        path: path.to_owned(),
+        what:
+            "a scene from anything but glTF, GLB or 3MF (only they keep meshes and instances apart)"
+                .into(),
+    };
+    if !matches!(load::format_of(path), Some(Format::Gltf | Format::ThreeMf)) {
+        return Err(unsupported());
     }
     let bytes = load::read(path, &options.limits)?;
     let mut warnings = Vec::new();
-    let parsed = load::gltf::parse_scene(path, &bytes, &options.limits, &mut warnings)?;
+    let parsed = load::parse_scene(path, &bytes, &options.limits, &mut warnings)
+        .ok_or_else(unsupported)??;
     if parsed.meshes.is_empty() {
         return Err(Error::Unsupported {
             path: path.to_owned(),

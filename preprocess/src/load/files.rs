@@ -192,7 +192,11 @@ pub(crate) fn open_regular(path: &Path) -> Result<(File, u64), Error> {
 }
 
 /// Reads everything, or `None` if there is more than `limit` bytes. `expected` sizes the buffer.
-fn read_capped(source: impl Read, expected: u64, limit: u64) -> io::Result<Option<Vec<u8>>> {
+pub(crate) fn read_capped(
+    source: impl Read,
+    expected: u64,
+    limit: u64,
+) -> io::Result<Option<Vec<u8>>> {
     let mut bytes = Vec::with_capacity(usize::try_from(expected.min(limit)).unwrap_or(0));
     source
         .take(limit.saturating_add(1))

@@ -1,5 +1,5 @@
-//! Loaders: OBJ (tobj), glTF 2.0 / GLB (gltf), PLY (ply-rs-bw) and STL (our own bulk reader) into
-//! one [`Mesh`].
+//! Loaders: OBJ (tobj), glTF 2.0 / GLB (gltf), PLY (ply-rs-bw), STL (our own bulk reader) and 3MF
+//! (zip + quick-xml) into one [`Mesh`].
 //!
 //! Every loader reads the whole file, checks what it reads, and reports problems as
 //! [`Error`]s naming the file. Loaders never modify their input, read only regular files, read
@@ -14,8 +14,11 @@ mod ply_ascii;
 mod ply_bulk;
 pub(crate) mod ply_header;
 mod stl;
+mod threemf;
 
 use std::path::Path;
+
+use glam::Mat4;
 
 use crate::mesh::Mesh;
 use crate::{Error, Limits};
@@ -31,6 +34,8 @@ pub enum Format {
     Ply,
     /// STL, binary or ASCII (`.stl`, or gzip-compressed `.stl.gz`): a triangle soup.
     Stl,
+    /// 3MF (`.3mf`): a zip package of objects, components and build items.
+    ThreeMf,
 }
 
 impl Format {
@@ -41,6 +46,7 @@ impl Format {
             Self::Gltf => "glTF",
             Self::Ply => "PLY",
             Self::Stl => "STL",
+            Self::ThreeMf => "3MF",
         }
     }
 }
@@ -54,6 +60,7 @@ pub fn format_of(path: &Path) -> Option<Format> {
         "gltf" | "glb" => Some(Format::Gltf),
         "ply" => Some(Format::Ply),
         "stl" => Some(Format::Stl),
+        "3mf" => Some(Format::ThreeMf),
         _ => None,
     }
 }
@@ -87,12 +94,38 @@ pub fn load_bytes(path: &Path, bytes: &[u8], limits: &Limits) -> Result<Loaded, 
         Format::Gltf => gltf::parse(path, bytes, limits, &mut warnings)?,
         Format::Ply => ply::parse(path, bytes, limits, &mut warnings)?,
         Format::Stl => stl::parse(path, bytes, limits, &mut warnings)?,
+        Format::ThreeMf => threemf::parse(path, bytes, limits, &mut warnings)?,
     };
     mesh.validate().map_err(|source| Error::Mesh {
         path: path.to_owned(),
         source,
     })?;
     Ok(Loaded { mesh, warnings })
+}
+
+/// The meshes of a file that keeps them apart (a glTF node graph, a 3MF build), each in its own
+/// space, and their instances: what `bake --scene` bakes.
+#[derive(Debug)]
+pub(crate) struct SceneMeshes {
+    /// (the mesh's number in the file (a glTF mesh index, a 3MF object id), the mesh in its own
+    /// space, what it holds when it has no triangles: "points", "lines" or "points and lines").
+    pub(crate) meshes: Vec<(usize, Mesh, Option<&'static str>)>,
+    /// (index into `meshes`, world transform).
+    pub(crate) instances: Vec<(usize, Mat4)>,
+}
+
+/// Parses the meshes and instances of a glTF/GLB or 3MF file in memory; `None` for other formats.
+pub(crate) fn parse_scene(
+    path: &Path,
+    bytes: &[u8],
+    limits: &Limits,
+    warnings: &mut Vec<String>,
+) -> Option<Result<SceneMeshes, Error>> {
+    match format_of(path)? {
+        Format::Gltf => Some(gltf::parse_scene(path, bytes, limits, warnings)),
+        Format::ThreeMf => Some(threemf::parse_scene(path, bytes, limits, warnings)),
+        _ => None,
+    }
 }
 
 /// Reads an input file (a mesh, or an asset): only a regular file, never a FIFO or device, at most

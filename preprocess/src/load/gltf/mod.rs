@@ -26,6 +26,7 @@ use glam::{Mat3, Mat4, Quat, Vec2, Vec3};
 use gltf::json::{self, validation::Checked};
 
 use self::accessor::Accessors;
+use super::SceneMeshes;
 use crate::limits::Limited;
 use crate::mesh::Mesh;
 use crate::{Error, Limits};
@@ -199,16 +200,6 @@ pub(crate) fn parse_scene(
             Ok(SceneMeshes { meshes, instances })
         },
     )
-}
-
-/// What [`parse_scene`] returns.
-#[derive(Debug)]
-pub(crate) struct SceneMeshes {
-    /// (the document's mesh index, the mesh in its own space, what it holds when it has no
-    /// triangle primitive: "points", "lines" or "points and lines").
-    pub(crate) meshes: Vec<(usize, Mesh, Option<&'static str>)>,
-    /// (index into `meshes`, world transform).
-    pub(crate) instances: Vec<(usize, Mat4)>,
 }
 
 /// Checks the document, counts what it asks for against `limits`, loads its buffers, and hands the
