@@ -4,10 +4,11 @@
 set -euo pipefail
 cd "$(dirname "$0")"
 fixtures=../fixtures
-mkdir -p corpus/{obj,ply,stl,gltf,glb,asset}
+mkdir -p corpus/{obj,ply,stl,threemf,gltf,glb,asset}
 cp "$fixtures"/shapes/*.obj "$fixtures"/broken/*.obj "$fixtures"/hostile/*.obj corpus/obj/
 cp "$fixtures"/shapes/*.ply "$fixtures"/broken/*.ply "$fixtures"/hostile/*.ply corpus/ply/
 cp "$fixtures"/shapes/*.stl corpus/stl/
+cp "$fixtures"/shapes/*.3mf corpus/threemf/
 cp "$fixtures"/shapes/*.gltf "$fixtures"/broken/*.gltf "$fixtures"/hostile/*.gltf corpus/gltf/
 cp "$fixtures"/shapes/*.glb "$fixtures"/broken/*.glb corpus/glb/
 for mesh in shapes/cube.obj shapes/cube-marked-le.ply shapes/two-materials.glb; do

@@ -316,6 +316,60 @@ fn mutate_stl(bytes: &mut Vec<u8>, rng: &mut Rng) {
     }
 }
 
+const THREEMF_LINES: &[&str] = &[
+    r#"<object id="1"><mesh><vertices><vertex x="0" y="0" z="0"/></vertices></mesh></object>"#,
+    r#"<object id="9"><components><component objectid="9"/></components></object>"#,
+    r#"<object id="8" type="other"><components><component objectid="1" transform="-1 0 0 0 1 0 0 0 1 0 0 0"/></components></object>"#,
+    r#"<component objectid="1" transform="0 1 0 -1 0 0 0 0 1 5 0 0"/>"#,
+    r#"<item objectid="2" transform="2 0 0 0 2 0 0 0 2 1e30 0 0"/>"#,
+    r#"<item objectid="1"/>"#,
+    r#"<triangle v1="0" v2="1" v3="4294967295"/>"#,
+    r#"<vertex x="1e39" y="nan" z="0"/>"#,
+    "<!DOCTYPE model>",
+    "</mesh>",
+    "</object>",
+    "<build>",
+];
+
+/// The parts of a zip package, or `None` if it does not open.
+fn unzip(bytes: &[u8]) -> Option<Vec<(String, Vec<u8>)>> {
+    use std::io::Read;
+    let mut archive = zip::ZipArchive::new(std::io::Cursor::new(bytes)).ok()?;
+    (0..archive.len())
+        .map(|i| {
+            let mut entry = archive.by_index(i).ok()?;
+            let mut data = Vec::new();
+            entry.read_to_end(&mut data).ok()?;
+            Some((entry.name().to_owned(), data))
+        })
+        .collect()
+}
+
+/// Mutates a 3MF: its model part as text (re-zipped, stored, so the package stays valid), or the
+/// package's bytes.
+fn mutate_threemf(bytes: &mut Vec<u8>, rng: &mut Rng) {
+    use std::io::Write;
+    let Some(mut parts) = unzip(bytes).filter(|p| !p.is_empty() && rng.below(5) != 0) else {
+        return mutate_bytes(bytes, rng);
+    };
+    let k = parts
+        .iter()
+        .position(|(name, _)| name.ends_with(".model") && rng.below(8) != 0)
+        .unwrap_or_else(|| rng.below(parts.len()));
+    mutate_text(&mut parts[k].1, rng, THREEMF_LINES);
+    let mut zip = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
+    let options =
+        zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Stored);
+    for (name, data) in &parts {
+        if zip.start_file(name.as_str(), options).is_err() || zip.write_all(data).is_err() {
+            return;
+        }
+    }
+    if let Ok(out) = zip.finish() {
+        *bytes = out.into_inner();
+    }
+}
+
 /// Mutates a PLY: header lines and counts, or the body's bytes.
 fn mutate_ply(bytes: &mut Vec<u8>, rng: &mut Rng) {
     let marker = b"end_header\n";
@@ -777,6 +831,16 @@ fn fuzz_stl() {
 }
 
 #[test]
+fn fuzz_threemf() {
+    let seeds = seeds(&[
+        "shapes/cube.3mf",
+        "shapes/cube-inch.3mf",
+        "shapes/step-components.3mf",
+    ]);
+    run("3mf", 10, seeds, mutate_threemf, load_and_bake);
+}
+
+#[test]
 fn fuzz_asset_decode() {
     let seeds: Vec<Seed> = [
         "shapes/cube.obj",
@@ -808,6 +872,8 @@ fn mutate_any(bytes: &mut Vec<u8>, rng: &mut Rng) {
         mutate_gltf(bytes, rng)
     } else if bytes.starts_with(b"solid") {
         mutate_stl(bytes, rng)
+    } else if bytes.starts_with(b"PK") {
+        mutate_threemf(bytes, rng)
     } else if rng.below(4) == 0 {
         mutate_bytes(bytes, rng)
     } else {
@@ -832,6 +898,7 @@ fn mesh_seeds() -> Vec<Seed> {
         "shapes/pyramid-fans-mirrored.glb",
         "shapes/step-binary.stl",
         "shapes/two-cubes-ascii.stl",
+        "shapes/step-components.3mf",
     ])
 }
 

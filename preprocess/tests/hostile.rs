@@ -809,7 +809,7 @@ fn gltf_gpu_instancing_draws_every_instance_counted_before_expanding() {
     );
     let text = refused(&path);
     assert!(
-        text.contains("1000000001 glTF primitive instances") && text.contains("--max-instances"),
+        text.contains("1000000001 mesh instances") && text.contains("--max-instances"),
         "{text}"
     );
 }
@@ -1120,4 +1120,256 @@ fn stl_gz_that_inflates_past_its_declared_records_is_refused_while_inflating() {
     gz.finish().expect("finish");
     let text = refused(&path);
     assert!(text.contains("STL"), "{text}");
+}
+
+const RELS: &str = r#"<?xml version="1.0"?><Relationships xmlns="http://schemas.openxmlformats.org/package/2006/relationships"><Relationship Target="/3D/3dmodel.model" Id="r" Type="http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel"/></Relationships>"#;
+
+/// A 3MF package of these parts, deflated.
+fn package(parts: &[(&str, &[u8])]) -> Vec<u8> {
+    use std::io::Write;
+    let mut zip = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
+    let options = zip::write::SimpleFileOptions::default()
+        .compression_method(zip::CompressionMethod::Deflated)
+        .large_file(true);
+    for (name, bytes) in parts {
+        zip.start_file(*name, options).expect("zip");
+        zip.write_all(bytes).expect("zip");
+    }
+    zip.finish().expect("zip").into_inner()
+}
+
+/// A 3MF package whose model part is `model`.
+fn threemf(model: &str) -> Vec<u8> {
+    package(&[
+        ("_rels/.rels", RELS.as_bytes()),
+        ("3D/3dmodel.model", model.as_bytes()),
+    ])
+}
+
+/// A model part: one triangle as object 1, `resources` after it, and these build items.
+fn model(resources: &str, build: &str) -> String {
+    format!(
+        r#"<?xml version="1.0"?><model unit="millimeter" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02"><resources><object id="1"><mesh><vertices><vertex x="0" y="0" z="0"/><vertex x="1" y="0" z="0"/><vertex x="0" y="1" z="0"/></vertices><triangles><triangle v1="0" v2="1" v3="2"/></triangles></mesh></object>{resources}</resources><build>{build}</build></model>"#
+    )
+}
+
+#[test]
+fn threemf_triangle_is_read_as_the_control_of_the_hostile_cases() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = write(
+        dir.path(),
+        "ok.3mf",
+        threemf(&model("", r#"<item objectid="1"/>"#)),
+    );
+    assert_eq!(
+        bake(&path)
+            .expect("bakes")
+            .asset
+            .header
+            .stats
+            .input_triangles,
+        1
+    );
+}
+
+#[test]
+fn threemf_zip_bomb_is_refused_at_the_input_limit_while_inflating() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mut xml = model("", r#"<item objectid="1"/>"#).into_bytes();
+    xml.extend(std::iter::repeat_n(b' ', 64 << 20)); // 64 MiB of spaces, 64 KB deflated
+    let bytes = package(&[("_rels/.rels", RELS.as_bytes()), ("3D/3dmodel.model", &xml)]);
+    assert!(bytes.len() < 1 << 20, "{} bytes", bytes.len());
+    let path = write(dir.path(), "bomb.3mf", bytes);
+    let limits = chamfer_preprocess::Limits::DEFAULT.with_max_input_bytes(16 << 20);
+    let text = within(30, move || {
+        bake_file(&path, &BakeOptions::DEFAULT.with_limits(limits))
+            .expect_err("bomb")
+            .to_string()
+    });
+    assert!(
+        text.contains("bomb.3mf") && text.contains("--max-input-bytes"),
+        "{text}"
+    );
+}
+
+#[test]
+fn threemf_doctype_is_refused_so_no_entity_is_expanded() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let laughs = r#"<?xml version="1.0"?><!DOCTYPE model [<!ENTITY a "aaaaaaaaaa"><!ENTITY b "&a;&a;&a;&a;&a;&a;&a;&a;&a;&a;"><!ENTITY c "&b;&b;&b;&b;&b;&b;&b;&b;&b;&b;">]><model><metadata name="x">&c;</metadata></model>"#;
+    let text = refused(&write(dir.path(), "laughs.3mf", threemf(laughs)));
+    assert!(text.contains("DOCTYPE"), "{text}");
+}
+
+#[test]
+fn threemf_elements_nested_a_million_deep_are_refused_at_the_depth_limit() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let deep = format!("<model>{}", "<a>".repeat(1_000_000));
+    let text = refused(&write(dir.path(), "deep.3mf", threemf(&deep)));
+    assert!(text.contains("nested deeper than 32"), "{text}");
+}
+
+#[test]
+fn threemf_component_cycles_and_deep_chains_are_refused_before_expanding() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let cycle = model(
+        r#"<object id="2"><components><component objectid="3"/></components></object><object id="3"><components><component objectid="2"/></components></object>"#,
+        r#"<item objectid="2"/>"#,
+    );
+    let text = refused(&write(dir.path(), "cycle.3mf", threemf(&cycle)));
+    assert!(text.contains("cycle through object"), "{text}");
+    let chain: String = (2..200)
+        .map(|id| {
+            format!(
+                r#"<object id="{id}"><components><component objectid="{}"/></components></object>"#,
+                id - 1
+            )
+        })
+        .collect();
+    let text = refused(&write(
+        dir.path(),
+        "chain.3mf",
+        threemf(&model(&chain, r#"<item objectid="199"/>"#)),
+    ));
+    assert!(text.contains("nest deeper than 64"), "{text}");
+    let missing = model(
+        r#"<object id="2"><components><component objectid="9"/></components></object>"#,
+        r#"<item objectid="2"/>"#,
+    );
+    let text = refused(&write(dir.path(), "missing.3mf", threemf(&missing)));
+    assert!(
+        text.contains("object 9 is placed but not defined"),
+        "{text}"
+    );
+}
+
+#[test]
+fn threemf_components_that_multiply_past_the_instance_limit_are_counted_not_expanded() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    // Ten levels of ten components: 10^10 instances of one triangle, in 5 KB.
+    let tens = |child: u32| {
+        (0..10)
+            .map(|_| format!(r#"<component objectid="{child}"/>"#))
+            .collect::<String>()
+    };
+    let levels: String = (2..12)
+        .map(|id| {
+            format!(
+                r#"<object id="{id}"><components>{}</components></object>"#,
+                tens(id - 1)
+            )
+        })
+        .collect();
+    let path = write(
+        dir.path(),
+        "tens.3mf",
+        threemf(&model(&levels, r#"<item objectid="11"/>"#)),
+    );
+    let text = refused(&path);
+    assert!(
+        text.contains("10000000000 mesh instances") && text.contains("--max-instances"),
+        "{text}"
+    );
+}
+
+#[test]
+fn threemf_bad_geometry_names_the_object_and_the_problem() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let cases = [
+        (
+            r#"<object id="2"><mesh><vertices><vertex x="0" y="0" z="0"/></vertices><triangles><triangle v1="0" v2="0" v3="7"/></triangles></mesh></object>"#,
+            r#"<item objectid="2"/>"#,
+            "object 2: triangle 0 names vertex 7, but the mesh has 1",
+        ),
+        (
+            r#"<object id="2"><mesh><vertices><vertex x="nan" y="0" z="0"/></vertices></mesh></object>"#,
+            r#"<item objectid="1"/>"#,
+            "is not finite",
+        ),
+        (
+            r#"<object id="2"><mesh><vertices><vertex x="1" y="zero" z="0"/></vertices></mesh></object>"#,
+            r#"<item objectid="1"/>"#,
+            "`y` is `zero`, not a valid number",
+        ),
+        (
+            "",
+            r#"<item objectid="1" transform="1 0 0 0 1 0 0 0 1 0 0"/>"#,
+            "transform has 11 numbers, not 12",
+        ),
+        (
+            "",
+            r#"<item objectid="1" transform="1 0 0 0 1 0 0 0 1 0 0 1e39"/>"#,
+            "not finite",
+        ),
+        (
+            r#"<object id="2"><components><component objectid="1" p:path="/3D/other.model"/></components></object>"#,
+            r#"<item objectid="2"/>"#,
+            "production extension",
+        ),
+        ("", "", "the build places no object"),
+        (
+            r#"<object id="1"><mesh/></object>"#,
+            r#"<item objectid="1"/>"#,
+            "two objects have id 1",
+        ),
+    ];
+    for (k, (resources, build, expected)) in cases.iter().enumerate() {
+        let path = write(
+            dir.path(),
+            &format!("bad{k}.3mf"),
+            threemf(&model(resources, build)),
+        );
+        let text = refused(&path);
+        assert!(
+            text.contains(expected) && text.contains("3MF"),
+            "case {k}: {text}"
+        );
+    }
+    let inches = model("", r#"<item objectid="1"/>"#).replace("millimeter", "furlong");
+    let text = refused(&write(dir.path(), "unit.3mf", threemf(&inches)));
+    assert!(text.contains("unit `furlong`"), "{text}");
+}
+
+#[test]
+fn threemf_packages_without_a_model_say_what_is_missing() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let text = refused(&write(dir.path(), "notzip.3mf", "PK but not a zip"));
+    assert!(text.contains("not a zip package"), "{text}");
+    let text = refused(&write(
+        dir.path(),
+        "empty.3mf",
+        package(&[("_rels/.rels", RELS.as_bytes())]),
+    ));
+    assert!(
+        text.contains("the model part 3D/3dmodel.model is not in the package"),
+        "{text}"
+    );
+    let wrong = RELS.replace(
+        "3dmanufacturing/2013/01/3dmodel",
+        "3dmanufacturing/2013/01/thumbnail",
+    );
+    let text = refused(&write(
+        dir.path(),
+        "norel.3mf",
+        package(&[("_rels/.rels", wrong.as_bytes())]),
+    ));
+    assert!(
+        text.contains("no relationship of the 3D model type"),
+        "{text}"
+    );
+    // No _rels/.rels at all: the conventional part is read, with a warning.
+    let path = write(
+        dir.path(),
+        "norels.3mf",
+        package(&[(
+            "3D/3dmodel.model",
+            model("", r#"<item objectid="1"/>"#).as_bytes(),
+        )]),
+    );
+    let loaded =
+        chamfer_preprocess::load::load(&path, &chamfer_preprocess::Limits::DEFAULT).expect("read");
+    assert!(
+        loaded.warnings.iter().any(|w| w.contains("no _rels/.rels")),
+        "{:?}",
+        loaded.warnings
+    );
 }
