@@ -596,13 +596,16 @@ fn edge_extensions_follow_their_specifications_and_read_back_as_the_hard_edges()
 }
 
 #[test]
-fn obj_annotates_into_ply_glb_and_gltf_with_marks_and_radii() {
+fn obj_stl_and_3mf_annotate_into_ply_glb_and_gltf_with_marks_and_radii() {
     let dir = tempfile::tempdir().expect("tempdir");
     let rule = BakeOptions::DEFAULT.with_radius(Radius::Relative(0.005));
     for input in [
         "meshes/fandisk.obj",
         "shapes/step.obj",
         "shapes/two-objects.obj",
+        "shapes/step-binary.stl",
+        "shapes/two-cubes-ascii.stl",
+        "shapes/step-components.3mf",
     ] {
         let input = fixture(input);
         let original = bake(&input, &rule);

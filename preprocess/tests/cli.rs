@@ -987,3 +987,73 @@ fn the_default_weld_is_relative_and_weld_epsilon_zero_keeps_it_exact() {
     let run = chamfer(&["bake", "--help"]);
     assert!(text(&run.stdout).contains("--weld-rel"));
 }
+
+#[test]
+fn stl_and_3mf_bake_from_the_command_line_and_inspect_reports_the_stitch() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let asset = dir.path().join("step.chamfer");
+    let run = chamfer(&[
+        "bake",
+        path_str(&fixture("shapes/step-binary.stl")),
+        "-o",
+        path_str(&asset),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert!(
+        text(&run.stdout).contains("0 boundary"),
+        "{}",
+        text(&run.stdout)
+    );
+    // The cracked cube: stitched, and both reports say how many boundary edges were closed.
+    let cracked = dir.path().join("cracked.chamfer");
+    let run = chamfer(&[
+        "bake",
+        path_str(&fixture("shapes/box-cracked.obj")),
+        "-o",
+        path_str(&cracked),
+    ]);
+    let report = text(&run.stdout);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert!(
+        report.contains("stitched: 46 boundary edges closed") && report.contains("0 remain"),
+        "{report}"
+    );
+    let run = chamfer(&["inspect", path_str(&cracked), "--json"]);
+    let json: serde_json::Value = serde_json::from_slice(&run.stdout).expect("JSON");
+    assert_eq!(json["stitch"]["stitched"], 46, "{}", json["stitch"]);
+    assert_eq!(json["stitch"]["remaining"], 0);
+    let run = chamfer(&["inspect", path_str(&cracked)]);
+    assert!(
+        text(&run.stdout).contains("46 boundary edges stitched, 0 remain"),
+        "{}",
+        text(&run.stdout)
+    );
+    // A 3MF's build as a scene: one asset per object, an instance per placement.
+    let out = dir.path().join("scene");
+    let run = chamfer(&[
+        "bake",
+        path_str(&fixture("shapes/step-components.3mf")),
+        "--scene",
+        "-o",
+        path_str(&out),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let scene = std::fs::read_to_string(out.join("step-components.scene.json")).expect("scene");
+    let parsed: serde_json::Value = serde_json::from_str(&scene).expect("JSON");
+    assert_eq!(parsed["instances"].as_array().map(Vec::len), Some(3));
+    assert!(out.join("step-components.mesh1.chamfer").is_file());
+    // --scene of an STL says why not.
+    let run = chamfer(&[
+        "bake",
+        path_str(&fixture("shapes/step-binary.stl")),
+        "--scene",
+        "-o",
+        path_str(&out),
+    ]);
+    assert_eq!(run.status.code(), Some(1));
+    assert!(
+        text(&run.stderr).contains("glTF, GLB or 3MF"),
+        "{}",
+        text(&run.stderr)
+    );
+}

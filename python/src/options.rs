@@ -4,7 +4,7 @@
 //! and the same keywords give the same asset as the same flags (tests/test_bake.py checks it).
 //! `None` leaves an option at its default; the library's `validate` checks the ranges.
 
-use chamfer_preprocess::{BakeOptions, Radius, WeldTolerance};
+use chamfer_preprocess::{BakeOptions, Radius, Stitch, WeldTolerance};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt};
 
@@ -75,6 +75,21 @@ pub const OPTIONS: &[(&str, Setter, &str)] = &[
         "Also find intersection edges, where triangles cut through each other (default False).",
     ),
     (
+        "stitch_rel",
+        Setter::Number(|o, f| o.with_stitch(Stitch::Relative(f))),
+        "Stitch the cracks between separately tessellated faces (CAD/BIM exports) within this fraction of the bounding box's diagonal (default 1e-4).",
+    ),
+    (
+        "stitch_epsilon",
+        Setter::Number(|o, d| o.with_stitch(Stitch::Absolute(d))),
+        "Like stitch_rel, as a distance in mesh units.",
+    ),
+    (
+        "no_stitch",
+        Setter::Flag(|o, off| if off { o.with_stitch(Stitch::Off) } else { o }),
+        "Do not stitch: every boundary edge the weld leaves stays a boundary (default False).",
+    ),
+    (
         "max_triangles",
         Setter::Count(|o, n| o.with_limits(o.limits.with_max_triangles(n))),
         "Refuse a mesh with more triangles than this (after fanning polygons and glTF instancing).",
@@ -87,7 +102,7 @@ pub const OPTIONS: &[(&str, Setter, &str)] = &[
     (
         "max_instances",
         Setter::Count(|o, n| o.with_limits(o.limits.with_max_instances(n))),
-        "Refuse a glTF whose node graph expands into more primitive instances than this.",
+        "Refuse a glTF node graph (or 3MF build) that expands into more mesh instances than this.",
     ),
     (
         "max_input_bytes",
@@ -97,7 +112,13 @@ pub const OPTIONS: &[(&str, Setter, &str)] = &[
 ];
 
 /// Pairs of options that cannot both be given (as the CLI's flags conflict).
-const CONFLICTS: [(&str, &str); 2] = [("weld_epsilon", "weld_rel"), ("radius", "radius_rel")];
+const CONFLICTS: [(&str, &str); 5] = [
+    ("weld_epsilon", "weld_rel"),
+    ("radius", "radius_rel"),
+    ("stitch_epsilon", "stitch_rel"),
+    ("no_stitch", "stitch_rel"),
+    ("no_stitch", "stitch_epsilon"),
+];
 
 /// The options the keyword arguments `kwargs` name, checked; an unknown keyword, a value of the
 /// wrong type, two conflicting options or a value out of range raises `OptionsError`.

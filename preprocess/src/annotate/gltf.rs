@@ -210,8 +210,8 @@ fn local_triangles(triangles: &[[u32; 3]], span: &PrimitiveSpan) -> Vec<[u32; 3]
         .collect()
 }
 
-/// Sets the primitive's `extras.chamfer` (removes it when there is no edge, unless `keep_empty`);
-/// returns the edges written.
+/// Sets the primitive's `extras.chamfer`, each welded edge once at its first occurrence (removes it
+/// when there is no edge, unless `keep_empty`); returns the edges written.
 fn write_extras(
     primitive: &mut Map<String, Value>,
     triangles: &[[u32; 3]],
@@ -224,10 +224,13 @@ fn write_extras(
     for tri in triangles {
         for k in 0..3 {
             let (a, b) = (tri[k], tri[(k + 1) % 3]);
-            let Some((_, radius)) = marked.get(welded(a), welded(b)) else {
+            let (wa, wb) = (welded(a), welded(b));
+            let Some((_, radius)) = marked.get(wa, wb) else {
                 continue;
             };
-            if seen.insert((a.min(b), a.max(b))) {
+            // Once per welded edge: a soup (STL) or split-normal mesh has several vertex pairs
+            // for it, and the reader welds them back into one.
+            if seen.insert((wa.min(wb), wa.max(wb))) {
                 edges.push(if radius > 0.0 {
                     json!([a, b, shortest(radius)])
                 } else {

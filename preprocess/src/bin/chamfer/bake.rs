@@ -17,8 +17,9 @@ use crate::memory::peak_rss_bytes;
 
 /// What every command that reads a mesh says about limits and companion files.
 pub const SAFETY_HELP: &str = "Limits: a file asking for more than --max-triangles, --max-vertices, \
---max-instances (glTF node and primitive instances) or --max-input-bytes (per file, after inflating .gz) \
-is refused before the work is done (a .ply.gz as soon as its header is inflated). Files a mesh refers to \
+--max-instances (glTF primitives through the node graph, 3MF objects through components and build items) \
+or --max-input-bytes (per file, after inflating .gz; per 3MF part, as it inflates) is refused before the work \
+is done (a .ply.gz or binary .stl.gz as soon as its header is inflated). Files a mesh refers to \
 (OBJ mtllib, glTF buffer uri) are read only when they are regular files inside the mesh's folder (after \
 following links); an mtllib that is not read is a warning (its faces get the default material), a buffer \
 an error. Outputs replace only \
@@ -32,6 +33,9 @@ created with the usual mode (0666 minus the umask).";
   chamfer bake assets/*.glb -o baked/            (many inputs: OUT is a directory)
   chamfer bake assets/ -o baked/                 (a folder: every mesh under it, as build::bake_dir)
   chamfer bake scan.ply.gz -o scan.chamfer --weld-epsilon 1e-5 --crease-deg 40
+  chamfer bake bracket.stl -o bracket.chamfer    (STL soup: welded, then cracks stitched)
+  chamfer bake engine.glb -o engine.chamfer --stitch-rel 1e-3   (wider cracks between CAD faces)
+  chamfer bake plate.3mf --scene -o baked/       (one asset per 3MF object, its build items as instances)
   chamfer bake part.obj -o part.chamfer --timings
   chamfer bake assembly.glb -o assembly.chamfer --intersections
 
@@ -89,7 +93,8 @@ pub struct OptionArgs {
     /// Refuse a mesh with more vertices than this (as loaded, before welding).
     #[arg(long, default_value_t = Limits::DEFAULT.max_vertices, value_name = "N")]
     max_vertices: u64,
-    /// Refuse a glTF whose node graph expands into more node and primitive instances than this.
+    /// Refuse a glTF whose node graph (or a 3MF whose components and build) expands into more
+    /// mesh instances than this.
     #[arg(long, default_value_t = Limits::DEFAULT.max_instances, value_name = "N")]
     max_instances: u64,
     /// Refuse a file (or a file it refers to) larger than this many bytes, after inflating .gz.
@@ -250,7 +255,9 @@ fn plan(inputs: &[PathBuf], output: &Path) -> anyhow::Result<Vec<(PathBuf, PathB
             }
         }
         if jobs.is_empty() {
-            bail!("no mesh files (.obj, .gltf, .glb, .ply, .ply.gz) among the inputs");
+            bail!(
+                "no mesh files (.obj, .gltf, .glb, .ply, .stl, .3mf; .ply.gz, .stl.gz) among the inputs"
+            );
         }
     } else {
         jobs.push((inputs[0].clone(), output.to_owned()));
