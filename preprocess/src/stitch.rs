@@ -69,7 +69,7 @@ pub fn stitch(
         boundary_after: boundary_before,
         ..Stitched::default()
     };
-    if boundary_before == 0 || !(tolerance > 0.0) {
+    if boundary_before == 0 || !tolerance.is_finite() || tolerance <= 0.0 {
         return (edges, report);
     }
     let joined = join(positions, triangles, &edges, tolerance);

@@ -284,7 +284,7 @@ const STL_LINES: &[&str] = &[
 /// file's size allows, give or take one) or its records.
 fn mutate_stl(bytes: &mut Vec<u8>, rng: &mut Rng) {
     let binary = bytes.len() >= 84
-        && (bytes.len() - 84) % 50 == 0
+        && (bytes.len() - 84).is_multiple_of(50)
         && u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as usize
             == (bytes.len() - 84) / 50;
     if !binary {
