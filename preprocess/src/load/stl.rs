@@ -119,18 +119,22 @@ fn binary_count(bytes: &[u8]) -> Option<u64> {
 
 /// The three vertices of every record, in parallel (records are independent).
 fn read_binary(records: &[u8]) -> Vec<Vec3> {
+    /// Records per parallel block: large enough that rayon's bookkeeping is nothing beside it.
+    const BLOCK: usize = 1 << 12;
     let mut positions = vec![Vec3::ZERO; records.len() / RECORD_BYTES * 3];
     positions
-        .par_chunks_mut(3)
-        .zip(records.par_chunks_exact(RECORD_BYTES))
-        .for_each(|(corners, record)| {
-            for (k, corner) in corners.iter_mut().enumerate() {
-                let at = 12 + 12 * k; // after the normal
+        .par_chunks_mut(3 * BLOCK)
+        .zip(records.par_chunks(RECORD_BYTES * BLOCK))
+        .for_each(|(corners, block)| {
+            for (corners, record) in corners.chunks_exact_mut(3).zip(block.chunks_exact(RECORD_BYTES)) {
+                // The nine little-endian f32 after the normal.
                 let f = |i: usize| {
-                    let b = &record[at + 4 * i..at + 4 * i + 4];
-                    f32::from_le_bytes([b[0], b[1], b[2], b[3]])
+                    let at = 12 + 4 * i;
+                    f32::from_le_bytes([record[at], record[at + 1], record[at + 2], record[at + 3]])
                 };
-                *corner = Vec3::new(f(0), f(1), f(2));
+                corners[0] = Vec3::new(f(0), f(1), f(2));
+                corners[1] = Vec3::new(f(3), f(4), f(5));
+                corners[2] = Vec3::new(f(6), f(7), f(8));
             }
         });
     positions
