@@ -334,3 +334,84 @@ fn bake_scene_keeps_a_3mf_object_apart_from_its_instances() {
         }
     }
 }
+
+/// fixtures/cad/SOURCES.md: the 3MF Consortium's conformance and example files.
+#[test]
+fn the_3mf_consortiums_passing_files_load_with_trimeshs_triangle_counts() {
+    for (file, triangles) in [
+        ("cube_gears.3mf", 25_692),
+        ("cylinder.3mf", 88),
+        ("MUSTPASS_Chapter4.2_Components.3mf", 60),
+        ("MUSTPASS_Chapter3.2c_MultipleItemsTransform.3mf", 60),
+        ("MUSTPASS_Chapter2.3a_IgnorableMarkup.3mf", 12),
+        ("MUSTPASS_Chapter3.2b_UnitsMeasurementMM.3mf", 12),
+    ] {
+        let loaded = load::load(&fixture(&format!("cad/{file}")), &Limits::DEFAULT)
+            .unwrap_or_else(|e| panic!("{file}: {e}"));
+        assert_eq!(loaded.mesh.triangles.len(), triangles, "{file}");
+        assert!(loaded.warnings.is_empty(), "{file}: {:?}", loaded.warnings);
+    }
+}
+
+#[test]
+fn the_3mf_consortiums_failing_files_are_refused_naming_the_problem() {
+    for (file, expected) in [
+        (
+            "MUSTFAIL_Chapter2.1.1a_PartsRelationships_NonExist3DModelPart.3mf",
+            "no relationship of the 3D model type",
+        ),
+        ("MUSTFAIL_Chapter2.3.2a_NonUTF_Encoding.3mf", "UTF-8"),
+        (
+            "MUSTFAIL_Chapter2.3.2b_DataTypeDefinitionInXMLMarkup.3mf",
+            "DOCTYPE",
+        ),
+        (
+            "MUSTFAIL_Chapter3.4.3.1a_NotMatchingObjectIdInBuildItem.3mf",
+            "object 14 is placed but not defined",
+        ),
+        (
+            "MUSTFAIL_Chapter3.4a_MoreThanOneModel.3mf",
+            "two objects have id 13",
+        ),
+        (
+            "MUSTFAIL_Chapter3.4b_MissingBuildElement.3mf",
+            "the build places no object",
+        ),
+    ] {
+        let error = load::load(&fixture(&format!("cad/{file}")), &Limits::DEFAULT)
+            .err()
+            .unwrap_or_else(|| panic!("{file} was accepted"))
+            .to_string();
+        assert!(error.contains(file) && error.contains(expected), "{error}");
+    }
+}
+
+/// A CAD tool's export with cracks in every gear: the weld leaves 170 boundary edges, the default
+/// stitch closes them all, object by object as in the flattened part.
+#[test]
+fn the_cracks_of_a_public_cad_export_are_stitched() {
+    let path = fixture("cad/cube_gears.3mf");
+    let open = bake(&path, &BakeOptions::DEFAULT.with_stitch(Stitch::Off)).asset;
+    assert_eq!(open.header.stats.edges.boundary, 170);
+    let stitched = bake(&path, &BakeOptions::DEFAULT);
+    assert_eq!(
+        (
+            stitched.stitched.boundary_before,
+            stitched.stitched.boundary_after
+        ),
+        (170, 0)
+    );
+    assert_eq!(stitched.asset.header.stats.edges.boundary, 0);
+    let scene = chamfer_preprocess::scene::bake_scene(&path, "gears", &BakeOptions::DEFAULT)
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.assets.len(), 17);
+    let before: u64 = scene
+        .assets
+        .iter()
+        .map(|(_, b)| b.stitched.boundary_before)
+        .sum();
+    assert!(before > 0);
+    for (name, baked) in &scene.assets {
+        assert_eq!(baked.asset.header.stats.edges.boundary, 0, "{name}");
+    }
+}

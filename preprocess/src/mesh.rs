@@ -36,7 +36,9 @@ pub struct Mesh {
 /// STL, BENCHMARKS.md "STL and 3MF"), a block scan almost nothing.
 pub(crate) fn first_where<T: Sync>(items: &[T], pred: impl Fn(&T) -> bool + Sync) -> Option<usize> {
     const BLOCK: usize = 1 << 14;
-    let block = items.par_chunks(BLOCK).position_first(|b| b.iter().any(&pred))?;
+    let block = items
+        .par_chunks(BLOCK)
+        .position_first(|b| b.iter().any(&pred))?;
     let within = items[block * BLOCK..].iter().position(pred)?;
     Some(block * BLOCK + within)
 }

@@ -126,7 +126,10 @@ fn read_binary(records: &[u8]) -> Vec<Vec3> {
         .par_chunks_mut(3 * BLOCK)
         .zip(records.par_chunks(RECORD_BYTES * BLOCK))
         .for_each(|(corners, block)| {
-            for (corners, record) in corners.chunks_exact_mut(3).zip(block.chunks_exact(RECORD_BYTES)) {
+            for (corners, record) in corners
+                .chunks_exact_mut(3)
+                .zip(block.chunks_exact(RECORD_BYTES))
+            {
                 // The nine little-endian f32 after the normal.
                 let f = |i: usize| {
                     let at = 12 + 4 * i;
