@@ -16,6 +16,11 @@ use crate::{
     normals, radii, stitch, weld,
 };
 
+/// The setting in which a bake with stitching on records the boundary edges stitching started
+/// from (a record of the bake's work beside the options' own settings; `inspect` reports
+/// stitched = this − the boundary edges left).
+pub const STITCH_BOUNDARY_BEFORE: &str = "stitch_boundary_before";
+
 /// A baked asset and what it took.
 #[derive(Clone, Debug)]
 pub struct Baked {
@@ -223,7 +228,7 @@ pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Er
     if options.stitch != crate::Stitch::Off {
         // Provenance beside the tolerance: inspect reports it with the boundary edges left.
         asset.header.settings.push((
-            "stitch_boundary_before".into(),
+            STITCH_BOUNDARY_BEFORE.into(),
             stitched.boundary_before.to_string(),
         ));
     }

@@ -102,7 +102,7 @@ fn stitch_report(asset: &Asset) -> serde_json::Value {
             .map(|(_, v)| v.clone())
     };
     let remaining = asset.header.stats.edges.boundary;
-    let before = setting("stitch_boundary_before").and_then(|v| v.parse::<u64>().ok());
+    let before = setting(crate::bake::STITCH_BOUNDARY_BEFORE).and_then(|v| v.parse::<u64>().ok());
     json!({
         "tolerance": setting("stitch"),
         "boundary_before": before,

@@ -17,7 +17,8 @@ fn asset_of(baked: Baked) -> PyAsset {
     PyAsset::new(baked.asset, None, baked.warnings)
 }
 
-/// Bakes a mesh file (.obj, .gltf, .glb, .ply, .ply.gz), or a file's bytes, into an Asset.
+/// Bakes a mesh file (.obj, .gltf, .glb, .ply, .stl, .3mf; .ply.gz, .stl.gz), or a file's bytes,
+/// into an Asset.
 ///
 /// `source` is a path (str or os.PathLike) or bytes; bytes need `name`, a file name whose
 /// extension picks the format (`"part.glb"`; `.gz` bytes are inflated) and beside which files the
@@ -33,6 +34,10 @@ fn asset_of(baked: Baked) -> PyAsset {
 ///   radius_rel: float       ... as a fraction of the bounding box's diagonal (e.g. 0.005)
 ///   radius_valleys: bool    give valley creases the radius too (False)
 ///   intersections: bool     also find intersection edges (False)
+///   stitch_rel: float       stitch cracks between separately tessellated faces within this
+///                           fraction of the bounding box's diagonal (1e-4)
+///   stitch_epsilon: float   ... within this distance, in mesh units
+///   no_stitch: bool         do not stitch (False)
 ///   max_triangles, max_vertices, max_instances, max_input_bytes: int
 ///                           refuse a file asking for more than this (chamfer.OPTIONS lists all)
 ///
@@ -154,7 +159,9 @@ pub fn bake_arrays(
 }
 
 /// The bake settings the options give, as recorded in an asset (name -> value): checks the
-/// options without baking anything (OptionsError if they are wrong).
+/// options without baking anything (OptionsError if they are wrong). An asset's settings are
+/// these plus what its bake recorded of its work: `stitch_boundary_before` (the boundary edges
+/// stitching started from) when stitching is on.
 #[pyfunction]
 #[pyo3(signature = (**options))]
 pub fn settings(options: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<(String, String)>> {
@@ -164,7 +171,7 @@ pub fn settings(options: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<(String, St
 /// Writes the mesh `input` to `output` with its marked and chamfer edges embedded (what
 /// `chamfer annotate` does): a PLY `edge` element, or glTF `extras.chamfer` per primitive and, as
 /// `gltf_edges` asks, the EXT_mesh_primitive_edge_visibility ("edge-visibility") and
-/// CESIUM_primitive_outline ("outline") extensions. An OBJ becomes the PLY, glTF or GLB `output`
+/// CESIUM_primitive_outline ("outline") extensions. An OBJ, STL or 3MF becomes the PLY, glTF or GLB `output`
 /// names. Options as for bake(). Returns {"edges", "hard_edges", "silhouette_edges", "warnings"}.
 /// Raises WriteError if `output` is `input`, and what bake() raises.
 #[pyfunction]

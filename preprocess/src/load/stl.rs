@@ -22,6 +22,11 @@ use crate::limits::Limited;
 use crate::mesh::{Mesh, first_non_finite};
 use crate::{Error, Limits};
 
+/// `limits` with the vertex limit at most `u32::MAX`: a soup numbers its corners in u32.
+fn vertex_limit(limits: &Limits) -> Limits {
+    limits.with_max_vertices(limits.max_vertices.min(u64::from(u32::MAX)))
+}
+
 /// Bytes before the first binary record: an 80-byte header and the u32 triangle count.
 const HEADER_BYTES: usize = 84;
 /// Bytes of one binary record: normal, three vertices (12 little-endian f32) and a u16 attribute.
@@ -40,7 +45,7 @@ pub(super) fn parse(
     };
     if let Some(count) = binary_count(bytes) {
         limits.check(path, Limited::Triangles, count)?;
-        limits.check(path, Limited::Vertices, count.saturating_mul(3))?;
+        vertex_limit(limits).check(path, Limited::Vertices, count.saturating_mul(3))?;
         return Ok(soup(read_binary(&bytes[HEADER_BYTES..])))
             .and_then(|mesh| refuse_non_finite(mesh, &invalid, |v| format!("triangle {}", v / 3)));
     }
@@ -92,7 +97,7 @@ pub(super) fn check_stream_prefix(
     }
     let count = u64::from(u32::from_le_bytes([count[0], count[1], count[2], count[3]]));
     limits.check(path, Limited::Triangles, count)?;
-    limits.check(path, Limited::Vertices, count.saturating_mul(3))?;
+    vertex_limit(limits).check(path, Limited::Vertices, count.saturating_mul(3))?;
     let expected = count * RECORD_BYTES as u64 + HEADER_BYTES as u64;
     if prefix.len() as u64 > expected {
         return Err(Error::Parse {
@@ -283,7 +288,7 @@ fn read_ascii(
             }
             let triangles = positions.len() as u64 / 3 + 1;
             limits.check(path, Limited::Triangles, triangles)?;
-            limits.check(path, Limited::Vertices, triangles.saturating_mul(3))?;
+            vertex_limit(limits).check(path, Limited::Vertices, triangles.saturating_mul(3))?;
             expect(&mut words, "normal")?;
             for _ in 0..3 {
                 number(&mut words, "facet normal")?;

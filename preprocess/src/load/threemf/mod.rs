@@ -44,7 +44,7 @@ pub(super) fn parse(
         else {
             continue;
         };
-        // Counted against the limits before expanding, so within u32.
+        // At most u32::MAX vertices in all (checked in `read`), so neither this nor `v + base` wraps.
         let base = mesh.positions.len() as u32;
         mesh.positions
             .extend(positions.iter().map(|&p| transform.transform_point3(p)));
@@ -160,7 +160,11 @@ fn read(
     }
     limits.check(path, Limited::Instances, sum.instances)?;
     limits.check(path, Limited::Triangles, sum.triangles)?;
-    limits.check(path, Limited::Vertices, sum.vertices)?;
+    // Vertex numbers are u32 whatever the limit says.
+    let vertex_cap = limits.max_vertices.min(u64::from(u32::MAX));
+    limits
+        .with_max_vertices(vertex_cap)
+        .check(path, Limited::Vertices, sum.vertices)?;
     let to_millimetres = Mat4::from_scale(glam::Vec3::splat(scale));
     let mut instances = Vec::new();
     for item in &model.build {
