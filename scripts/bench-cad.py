@@ -8,7 +8,6 @@
     bench-cad.py all --chamfer BIN --peer BIN --rounds N OUT_DIR MESH.ply
                                             every row, round after round in the same run, as Markdown
 """
-import io
 import json
 import os
 import re
@@ -17,9 +16,9 @@ import struct
 import subprocess
 import sys
 import time
-import zipfile
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path[:0] = [HERE, os.path.join(HERE, "..", "fixtures")]
 
 
 def make(ply, out):
@@ -41,55 +40,13 @@ def make(ply, out):
             f.write("".join("   vertex %.9g %.9g %.9g\n" % tuple(p) for p in t))
             f.write("  endloop\n endfacet\n")
         f.write("endsolid bunny-loop2\n")
-    # 3MF: one object, one build item, deflated as writers do.
-    model = io.StringIO()
-    model.write('<?xml version="1.0" encoding="UTF-8"?>\n<model unit="millimeter" '
-                'xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02"><resources><object id="1" type="model"><mesh><vertices>\n')
-    model.writelines('<vertex x="%.9g" y="%.9g" z="%.9g"/>\n' % tuple(p) for p in positions.tolist())
-    model.write("</vertices><triangles>\n")
-    model.writelines('<triangle v1="%d" v2="%d" v3="%d"/>\n' % tuple(t) for t in triangles.tolist())
-    model.write('</triangles></mesh></object></resources><build><item objectid="1"/></build></model>\n')
-    rels = ('<?xml version="1.0" encoding="UTF-8"?><Relationships xmlns="http://schemas.openxmlformats.org/package/2006/relationships">'
-            '<Relationship Target="/3D/3dmodel.model" Id="rel0" Type="http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel"/></Relationships>')
-    types = ('<?xml version="1.0" encoding="UTF-8"?><Types xmlns="http://schemas.openxmlformats.org/package/2006/content-types">'
-             '<Default Extension="rels" ContentType="application/vnd.openxmlformats-package.relationships+xml"/>'
-             '<Default Extension="model" ContentType="application/vnd.ms-package.3dmanufacturing-3dmodel+xml"/></Types>')
-    with zipfile.ZipFile(os.path.join(out, "bunny.3mf"), "w", zipfile.ZIP_DEFLATED) as z:
-        z.writestr("[Content_Types].xml", types)
-        z.writestr("_rels/.rels", rels)
-        z.writestr("3D/3dmodel.model", model.getvalue())
-    cracked(os.path.join(out, "cracked.obj"))
-
-
-def cracked(path):
-    """A unit cube whose six faces are tessellated on their own, on grids of 200 to 205 cells a side,
-    so every edge where two faces meet is a crack of T-junctions (the fixture box-cracked.obj, large)."""
-    lines, base = [], 1
-    faces = []
-    for axis in range(3):
-        for side in (0.0, 1.0):
-            u, v = [0.0] * 3, [0.0] * 3
-            u[(axis + 1) % 3], v[(axis + 2) % 3] = 1.0, 1.0
-            if side == 0.0:
-                u, v = v, u
-            o = [0.0] * 3
-            o[axis] = side
-            faces.append((o, u, v))
-    for k, (o, u, v) in enumerate(faces):
-        nu, nv = 200 + k, 205 - k
-        for j in range(nv + 1):
-            for i in range(nu + 1):
-                p = [o[c] + u[c] * i / nu + v[c] * j / nv for c in range(3)]
-                lines.append("v %.9g %.9g %.9g" % tuple(p))
-        for j in range(nv):
-            for i in range(nu):
-                a = base + j * (nu + 1) + i
-                b, c, d = a + 1, a + nu + 2, a + nu + 1
-                lines.append("f %d %d %d" % (a, b, c))
-                lines.append("f %d %d %d" % (a, c, d))
-        base += (nu + 1) * (nv + 1)
-    with open(path, "w") as f:
-        f.write("\n".join(lines) + "\n")
+    # 3MF (one object, one build item) and the cracked cube, as the fixtures make them, large.
+    fixtures = import_module("make_fixtures")
+    write = fixtures.write
+    write(os.path.join(out, "bunny.3mf"), fixtures.threemf(
+        [(1, fixtures.threemf_mesh(positions.tolist(), triangles.tolist()))], [(1, None)]))
+    # Grids of 200 to 205 cells a side: about 0.5 M triangles, every cube edge a crack of T-junctions.
+    write(os.path.join(out, "cracked.obj"), fixtures.obj(*fixtures.box_cracked(lambda k: (200 + k, 205 - k))))
 
 
 def trimesh_times(path):

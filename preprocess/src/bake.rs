@@ -283,11 +283,7 @@ fn assemble(
     rings: caps::Rings,
     render: normals::RenderMesh,
 ) -> Asset {
-    let (bounds_min, bounds_max) = positions
-        .iter()
-        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| {
-            (lo.min(p), hi.max(p))
-        });
+    let (bounds_min, bounds_max) = crate::mesh::bounds(positions);
     let radius_scale = edges.radii.iter().fold(0.0f32, |m, &r| m.max(r));
     let edge_attributes = edges
         .flags

@@ -29,11 +29,7 @@ const _: () = assert!(DIRECTION_BITS + 3 * MORTON_BITS + 31 <= 64);
 
 /// The new order: `order[new] = old` edge index. Deterministic for any thread count.
 pub fn coherent_order(positions: &[Vec3], edges: &Edges) -> Vec<u32> {
-    let (lo, hi) = positions
-        .iter()
-        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| {
-            (lo.min(p), hi.max(p))
-        });
+    let (lo, hi) = crate::mesh::bounds(positions);
     let cells = ((1u32 << MORTON_BITS) - 1) as f32;
     let scale = (hi - lo).max(Vec3::splat(f32::MIN_POSITIVE)).recip() * cells;
     let mut keys: Vec<u64> = edges

@@ -31,6 +31,15 @@ pub struct Mesh {
     pub marks: Vec<Mark>,
 }
 
+/// The bounding box of `positions`: (min, max) corners; (+inf, -inf) when there are none.
+pub(crate) fn bounds(positions: &[Vec3]) -> (Vec3, Vec3) {
+    positions
+        .iter()
+        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| {
+            (lo.min(p), hi.max(p))
+        })
+}
+
 /// The index of the first item for which `pred` holds, in parallel over blocks: rayon's
 /// `position_first` per item costs ~10 ns an item in its bookkeeping (a third of loading a binary
 /// STL, BENCHMARKS.md "STL and 3MF"), a block scan almost nothing.

@@ -60,11 +60,7 @@ impl Stitch {
             Self::Off => None,
             Self::Absolute(distance) => Some(distance),
             Self::Relative(fraction) => {
-                let (lo, hi) = positions
-                    .iter()
-                    .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| {
-                        (lo.min(p), hi.max(p))
-                    });
+                let (lo, hi) = crate::mesh::bounds(positions);
                 Some(fraction * (hi - lo).length()).filter(|d| d.is_finite())
             }
         }

@@ -28,11 +28,7 @@ pub fn assign_radii(
         Radius::None => None,
         Radius::Absolute(r) => Some(r),
         Radius::Relative(f) => {
-            let (lo, hi) = positions
-                .iter()
-                .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| {
-                    (lo.min(p), hi.max(p))
-                });
+            let (lo, hi) = crate::mesh::bounds(positions);
             Some(f * (hi - lo).length())
         }
     };
