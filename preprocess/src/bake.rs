@@ -12,7 +12,7 @@ use rayon::prelude::*;
 use crate::corners::VertexCorners;
 use crate::mesh::{Mark, Mesh, MeshError};
 use crate::{
-    BakeOptions, Error, adjacency, caps, classify, degenerate, edge_order, intersections, load,
+    BakeOptions, Error, adjacency, caps, classify, degenerate, intersections, load, mesh_order,
     normals, radii, stitch, weld,
 };
 
@@ -38,6 +38,9 @@ pub struct Baked {
     pub radii: Vec<f32>,
     /// What stitching did (all zero when [`BakeOptions::stitch`] is off or nothing was open).
     pub stitched: stitch::Stitched,
+    /// The asset's topology vertex of each vertex of the input mesh (welded, then numbered in the
+    /// order the written triangles first use them).
+    pub input_vertex_map: Vec<u32>,
 }
 
 /// Wall-clock time of each bake step.
@@ -158,7 +161,8 @@ pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Er
             ..*m
         })
         .collect();
-    let positions = welded.positions;
+    let mut positions = welded.positions;
+    let mut input_vertex_map = welded.remap;
     stats.welded_vertices = positions.len() as u64;
     if materials.windows(2).all(|w| w[0] == w[1]) {
         materials = Vec::new(); // one material: no seams to look for
@@ -170,6 +174,23 @@ pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Er
             count: stats.degenerate_triangles as usize,
         }));
     }
+    // Coherent triangles, vertices numbered by first use: what the clusters cull by and what the
+    // compact format's codecs need (mesh_order.rs).
+    let order = mesh_order::triangle_order(&positions, &triangles);
+    let new_of =
+        mesh_order::reorder_mesh(&mut positions, &mut triangles, &mut materials, &order);
+    drop(order);
+    let marks: Vec<Mark> = marks
+        .iter()
+        .map(|m| Mark {
+            vertices: m.vertices.map(|i| new_of[i as usize]),
+            ..*m
+        })
+        .collect();
+    input_vertex_map
+        .par_iter_mut()
+        .for_each(|v| *v = new_of[*v as usize]);
+    drop(new_of);
     lap(&mut timings.weld);
 
     let mut edges = adjacency::adjacency(&triangles, &materials, positions.len());
@@ -201,13 +222,13 @@ pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Er
     // Edges go into the order they are written in (the runtime's clusters cull) before the rings
     // are built, so the rings need no renumbering and the copies are made while memory is low;
     // the steps below do not depend on the edges' order. Timed as part of `assemble`.
-    let order = edge_order::coherent_order(&positions, &edges);
-    edge_order::reorder(&mut edges, &mut caps::Rings::default(), &order);
+    let corners = VertexCorners::new(&triangles, positions.len());
+    let order = mesh_order::edge_order(&corners, &triangles, &edges);
+    mesh_order::reorder(&mut edges, &mut caps::Rings::default(), &order);
     drop(order);
     let mut ordering = Duration::ZERO;
     lap(&mut ordering);
 
-    let corners = VertexCorners::new(&triangles, positions.len());
     let rings = caps::rings_around(&corners, &triangles, &edges, positions.len());
     lap(&mut timings.caps);
 
@@ -250,6 +271,7 @@ pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Er
         radii,
         intersections: intersection_stats,
         stitched,
+        input_vertex_map,
     })
 }
 

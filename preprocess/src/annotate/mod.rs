@@ -43,7 +43,7 @@ use glam::Vec3;
 
 use crate::load::{self, Format, format_of};
 use crate::write::ensure_not_an_input;
-use crate::{BakeOptions, Error, bake, weld};
+use crate::{BakeOptions, Error, bake};
 
 /// What [`annotate`] wrote.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -208,8 +208,6 @@ pub fn annotate_with(
         path: input.to_owned(),
         source,
     })?;
-    // The bake welds with the same function and options, so this remap is its vertex numbering.
-    let remap = weld::weld(&mesh.positions, options.weld.distance(&mesh.positions)).remap;
     let name = input.file_name().map_or_else(
         || input.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
@@ -222,10 +220,11 @@ pub fn annotate_with(
         },
         other => other,
     })?;
+    let remap = &baked.input_vertex_map;
     let marked = MarkedEdges::of(&baked.asset, &baked.radii);
     let mut annotated = match format {
         Format::Ply => Annotated {
-            edges: ply::write(input, &bytes, output, &marked, &remap)?,
+            edges: ply::write(input, &bytes, output, &marked, remap)?,
             ..Annotated::default()
         },
         _ => {
@@ -233,7 +232,7 @@ pub fn annotate_with(
             let baked_edges = gltf::BakedEdges {
                 marked: &marked,
                 kinds: kinds.as_ref(),
-                remap: &remap,
+                remap,
                 triangles: &triangles,
                 spans: &spans,
             };

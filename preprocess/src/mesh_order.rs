@@ -1,11 +1,14 @@
-//! The order edges are written in: runs of 64 that are small in space and whose faces look one way,
-//! so the runtime's cluster test (`chamfer_runtime::asset::clusters`, issue 14) can skip whole runs
-//! that cannot be drawn from a camera.
+//! The order triangles, vertices and edges are written in.
 //!
-//! Edges are sorted by a cell of a cube map of their faces' normal (six faces of 6 × 6 cells, each
-//! at most about 19° across) and then along a Morton curve through their midpoints: a run of
-//! consecutive edges then covers a small patch of surface that faces one way, within a few tens of
-//! degrees. The order changes nothing the runtime draws, only how much its cluster test culls.
+//! Triangles are sorted by a cell of a cube map of their normal (six faces of 6 × 6 cells, each at
+//! most about 19° across) and then along a Morton curve through their centroids; vertices are
+//! numbered in the order the sorted triangles first use them; edges follow the corner of their
+//! first face (face a, `adjacency`). So a run of 64 consecutive edges covers a small patch of
+//! surface that faces one way, within a few tens of degrees, and the runtime's cluster test
+//! (`chamfer_runtime::asset::clusters`, issue 14) can skip whole runs that cannot be drawn from a
+//! camera; and the compact asset (format 5, issue 24) can store each edge as one bit of its face-a
+//! corner and code indices and positions as deltas between neighbours. The order changes nothing
+//! the runtime draws.
 
 use std::sync::atomic::{AtomicU32, Ordering};
 
@@ -14,10 +17,10 @@ use rayon::prelude::*;
 
 use crate::adjacency::Edges;
 use crate::caps::Rings;
-use chamfer_runtime::asset::EdgeFlags;
+use crate::corners::VertexCorners;
 
 /// Bits per axis of the Morton code (24 in all, above them the direction cell; the low 31 bits of
-/// a `u64` key hold the edge index).
+/// a `u64` key hold the triangle index).
 const MORTON_BITS: u32 = 8;
 /// Cells per side of each face of the normal cube map.
 const DIRECTION_CELLS: u32 = 6;
@@ -27,38 +30,98 @@ const DIRECTION_BITS: u32 = (6 * DIRECTION_CELLS * DIRECTION_CELLS)
     .ilog2();
 const _: () = assert!(DIRECTION_BITS + 3 * MORTON_BITS + 31 <= 64);
 
-/// The new order: `order[new] = old` edge index. Deterministic for any thread count.
-pub fn coherent_order(positions: &[Vec3], edges: &Edges) -> Vec<u32> {
+/// The coherent triangle order: `order[new] = old` triangle index. Deterministic for any thread
+/// count (ties keep the input order).
+pub(crate) fn triangle_order(positions: &[Vec3], triangles: &[[u32; 3]]) -> Vec<u32> {
     let (lo, hi) = crate::mesh::bounds(positions);
     let cells = ((1u32 << MORTON_BITS) - 1) as f32;
     let scale = (hi - lo).max(Vec3::splat(f32::MIN_POSITIVE)).recip() * cells;
-    let mut keys: Vec<u64> = edges
-        .vertices
+    let mut keys: Vec<u64> = triangles
         .par_iter()
-        .zip(edges.flags.par_iter())
         .enumerate()
-        .map(|(e, (&[v0, v1, v2, v3], &flags))| {
-            let [p0, p1, p2, p3] = [v0, v1, v2, v3].map(|v| positions[v as usize]);
-            let mut normal = (p1 - p0).cross(p2 - p0).normalize_or_zero();
-            if !flags.intersects(EdgeFlags::BOUNDARY | EdgeFlags::NON_MANIFOLD) {
-                let b = (p0 - p1).cross(p3 - p1).normalize_or_zero();
-                normal += if flags.contains(EdgeFlags::FLIPPED) {
-                    -b
-                } else {
-                    b
-                };
-            }
-            let cell = ((p0 + p1) * 0.5 - lo) * scale;
+        .map(|(t, tri)| {
+            let [p0, p1, p2] = tri.map(|v| positions[v as usize]);
+            let normal = (p1 - p0).cross(p2 - p0).normalize_or_zero();
+            let cell = ((p0 + p1 + p2) * (1.0 / 3.0) - lo) * scale;
             let cell = cell.clamp(Vec3::ZERO, Vec3::splat(cells)).as_uvec3();
             // (Sorting by region first, then direction, culled less on every mesh tried.)
             let key = (direction(normal) << (3 * MORTON_BITS)) | morton(cell.x, cell.y, cell.z);
-            (key << 31) | e as u64
+            (key << 31) | t as u64
         })
         .collect();
     keys.par_sort_unstable();
     keys.into_iter()
         .map(|k| (k & ((1 << 31) - 1)) as u32)
         .collect()
+}
+
+/// Puts `triangles` (and their `materials`, when there are any) in `order` and renumbers the
+/// vertices in the order the triangles first use them (vertices no triangle uses keep their order,
+/// after the used ones). Returns `new_of[old]`, the new number of each vertex.
+pub(crate) fn reorder_mesh(
+    positions: &mut Vec<Vec3>,
+    triangles: &mut Vec<[u32; 3]>,
+    materials: &mut Vec<u32>,
+    order: &[u32],
+) -> Vec<u32> {
+    *triangles = gather(triangles, order);
+    if !materials.is_empty() {
+        *materials = gather(materials, order);
+    }
+    const UNSEEN: u32 = u32::MAX;
+    let mut new_of = vec![UNSEEN; positions.len()];
+    let mut next = 0u32;
+    for &v in triangles.as_flattened() {
+        let slot = &mut new_of[v as usize];
+        if *slot == UNSEEN {
+            *slot = next;
+            next += 1;
+        }
+    }
+    for slot in new_of.iter_mut().filter(|s| **s == UNSEEN) {
+        *slot = next;
+        next += 1;
+    }
+    let mut old_of = vec![0u32; positions.len()];
+    for (old, &new) in new_of.iter().enumerate() {
+        old_of[new as usize] = old as u32;
+    }
+    *positions = gather(positions, &old_of);
+    triangles
+        .par_iter_mut()
+        .for_each(|t| *t = t.map(|v| new_of[v as usize]));
+    new_of
+}
+
+/// The edge order that follows the triangles: `order[new] = old` edge index, edges sorted by the
+/// corner (`3 * triangle + k`) of their face a, the lowest corner whose triangle winds `v0 -> v1`
+/// with `v2` opposite (see [`face_a_corner`]).
+pub(crate) fn edge_order(corners: &VertexCorners, triangles: &[[u32; 3]], edges: &Edges) -> Vec<u32> {
+    let mut keys: Vec<u64> = edges
+        .vertices
+        .par_iter()
+        .enumerate()
+        .map(|(e, v)| {
+            // Every edge of the bake has its face a; an edge built elsewhere without one goes last.
+            let corner = face_a_corner(corners, triangles, *v).unwrap_or(u32::MAX);
+            (u64::from(corner) << 32) | e as u64
+        })
+        .collect();
+    keys.par_sort_unstable();
+    keys.into_iter().map(|k| k as u32).collect()
+}
+
+/// The lowest corner at `v0` whose triangle is `(v0, v1, v2)` in its own winding.
+pub(crate) fn face_a_corner(
+    corners: &VertexCorners,
+    triangles: &[[u32; 3]],
+    [v0, v1, v2, _]: [u32; 4],
+) -> Option<u32> {
+    corners.of(v0).iter().copied().find(|&c| {
+        let t = triangles[c as usize / 3];
+        let k = c as usize % 3;
+        t[(k + 1) % 3] == v1 && t[(k + 2) % 3] == v2
+    })
 }
 
 /// The cell of the normal cube map that `n` points into: its face (±x, ±y, ±z), then a cell of
@@ -139,6 +202,7 @@ fn gather<T: Copy + Send + Sync>(values: &[T], order: &[u32]) -> Vec<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use chamfer_runtime::asset::EdgeFlags;
 
     #[test]
     fn morton_interleaves_bits() {
