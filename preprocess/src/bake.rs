@@ -177,8 +177,7 @@ pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Er
     // Coherent triangles, vertices numbered by first use: what the clusters cull by and what the
     // compact format's codecs need (mesh_order.rs).
     let order = mesh_order::triangle_order(&positions, &triangles);
-    let new_of =
-        mesh_order::reorder_mesh(&mut positions, &mut triangles, &mut materials, &order);
+    let new_of = mesh_order::reorder_mesh(&mut positions, &mut triangles, &mut materials, &order);
     drop(order);
     let marks: Vec<Mark> = marks
         .iter()

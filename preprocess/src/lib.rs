@@ -28,6 +28,7 @@ mod bake;
 pub mod build;
 pub mod caps;
 pub mod classify;
+pub mod compact;
 mod corners;
 pub mod degenerate;
 pub mod draw;

@@ -96,7 +96,11 @@ pub(crate) fn reorder_mesh(
 /// The edge order that follows the triangles: `order[new] = old` edge index, edges sorted by the
 /// corner (`3 * triangle + k`) of their face a, the lowest corner whose triangle winds `v0 -> v1`
 /// with `v2` opposite (see [`face_a_corner`]).
-pub(crate) fn edge_order(corners: &VertexCorners, triangles: &[[u32; 3]], edges: &Edges) -> Vec<u32> {
+pub(crate) fn edge_order(
+    corners: &VertexCorners,
+    triangles: &[[u32; 3]],
+    edges: &Edges,
+) -> Vec<u32> {
     let mut keys: Vec<u64> = edges
         .vertices
         .par_iter()

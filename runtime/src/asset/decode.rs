@@ -1,6 +1,7 @@
 //! Reading an asset: every length, index and float is checked before anything is trusted.
 
 use super::clusters::{self, CLUSTER_BYTES, EdgeCluster};
+use super::compact;
 use super::{
     Asset, DecodeError, EdgeFlags, FORMAT_VERSION, Header, IndexWidth, Indices, MAGIC,
     MAX_HEADER_BYTES, MAX_RING, SECTION_ALIGN, SectionKind, attribute_flags, envelope,
@@ -30,39 +31,91 @@ impl Asset {
             Some(range) => &bytes[range.clone()],
             None => &[],
         };
+        for (raw, coded) in TWINS {
+            if !section(raw).is_empty() && !section(coded).is_empty() {
+                return Err(length_error(
+                    coded,
+                    format!(
+                        "present beside {} (a file holds one or the other)",
+                        raw.name()
+                    ),
+                ));
+            }
+        }
+        let coded = |kind: SectionKind| Some(section(kind)).filter(|s| !s.is_empty());
 
-        let render_normals = read_vec3s(
-            SectionKind::RenderNormals,
-            section(SectionKind::RenderNormals),
-        )?;
+        let coded_triangles = coded(SectionKind::MeshIndicesCoded)
+            .map(compact::Reader::mesh_indices)
+            .transpose()?;
+        let triangle_bound = coded_triangles
+            .as_ref()
+            .map_or(section(SectionKind::MeshIndices).len() / 2, Vec::len);
+        let reader = compact::Reader {
+            limit: triangle_bound.max(1 << 16),
+        };
+        let counts = match coded(SectionKind::RenderVertexCountsCoded) {
+            Some(bytes) => reader.counts(bytes)?,
+            None => section(SectionKind::RenderVertexCounts).to_vec(),
+        };
+        let topology_positions = match coded(SectionKind::TopologyPositionsCoded) {
+            Some(bytes) => reader.positions(bytes)?,
+            None => read_vec3s(
+                SectionKind::TopologyPositions,
+                section(SectionKind::TopologyPositions),
+            )?,
+        };
+        let render_normals = match coded(SectionKind::RenderNormalsCoded) {
+            Some(bytes) => reader.normals(bytes)?,
+            None => read_vec3s(
+                SectionKind::RenderNormals,
+                section(SectionKind::RenderNormals),
+            )?,
+        };
         let render_vertices = render_normals.len();
-        let topology_positions = read_vec3s(
-            SectionKind::TopologyPositions,
-            section(SectionKind::TopologyPositions),
-        )?;
         let render_positions = read_render_positions(
             section(SectionKind::RenderPositions),
-            section(SectionKind::RenderVertexCounts),
+            &counts,
             &topology_positions,
             render_vertices,
         )?;
-        let mesh_indices = read_indices(
-            SectionKind::MeshIndices,
-            section(SectionKind::MeshIndices),
-            render_vertices,
-            3,
-        )?;
-        let edge_attributes = read_u32s(
-            SectionKind::EdgeAttributes,
-            section(SectionKind::EdgeAttributes),
-        )?;
+        let mesh_indices = match coded_triangles {
+            Some(values) => {
+                checked_indices(SectionKind::MeshIndicesCoded, values, render_vertices)?
+            }
+            None => read_indices(
+                SectionKind::MeshIndices,
+                section(SectionKind::MeshIndices),
+                render_vertices,
+                3,
+            )?,
+        };
+        let edge_attributes = match coded(SectionKind::EdgeAttributesCoded) {
+            Some(bytes) => reader.words(SectionKind::EdgeAttributesCoded, bytes)?,
+            None => read_u32s(
+                SectionKind::EdgeAttributes,
+                section(SectionKind::EdgeAttributes),
+            )?,
+        };
         let edges = edge_attributes.len();
-        let edge_vertices = read_indices(
-            SectionKind::EdgeVertices,
-            section(SectionKind::EdgeVertices),
-            topology_positions.len(),
-            4,
-        )?;
+        let edge_vertices = match coded(SectionKind::EdgeCorners) {
+            Some(bytes) => {
+                if counts.is_empty() {
+                    return Err(length_error(
+                        SectionKind::EdgeCorners,
+                        "present without render vertex counts (the corners' vertices come from them)".into(),
+                    ));
+                }
+                let topology = compact::topology_of(&mesh_indices.to_u32_vec(), &counts);
+                let values = reader.edges(bytes, &topology, topology_positions.len())?;
+                Indices::with_bound(values, topology_positions.len())
+            }
+            None => read_indices(
+                SectionKind::EdgeVertices,
+                section(SectionKind::EdgeVertices),
+                topology_positions.len(),
+                4,
+            )?,
+        };
         if edge_vertices.len() != 4 * edges {
             return Err(length_error(
                 SectionKind::EdgeVertices,
@@ -74,38 +127,21 @@ impl Asset {
             ));
         }
         let ends = 2 * edges;
-        let next_ends = read_indices(
-            SectionKind::NextEnds,
-            section(SectionKind::NextEnds),
-            ends,
-            1,
-        )?;
-        if !next_ends.is_empty() && next_ends.len() != ends {
-            return Err(length_error(
-                SectionKind::NextEnds,
-                format!(
-                    "{} entries for {} edge ends (must be 0 or one per end)",
-                    next_ends.len(),
-                    ends
-                ),
-            ));
-        }
-        let cap_heads = read_indices(
-            SectionKind::CapHeads,
-            section(SectionKind::CapHeads),
-            ends,
-            1,
-        )?;
-        // A head is where the walk around its vertex's ring starts: without rings it means nothing.
-        if next_ends.is_empty() && !cap_heads.is_empty() {
-            return Err(length_error(
-                SectionKind::CapHeads,
-                format!(
-                    "{} cap heads but no next ends (the runtime walks a head's ring)",
-                    cap_heads.len()
-                ),
-            ));
-        }
+        let rings_coded = coded(SectionKind::RingOrders);
+        let (next_ends, cap_heads) = match rings_coded {
+            Some(bytes) => {
+                let (next, heads) = compact::Reader::rings(
+                    bytes,
+                    &edge_vertices.to_u32_vec(),
+                    topology_positions.len(),
+                )?;
+                (
+                    Indices::with_bound(next, ends),
+                    Indices::with_bound(heads, ends),
+                )
+            }
+            None => raw_rings(&section, ends)?,
+        };
 
         let intersection_segments = read_segments(section(SectionKind::IntersectionSegments))?;
         let intersection_starts = read_u32s(
@@ -113,10 +149,12 @@ impl Asset {
             section(SectionKind::IntersectionPolylines),
         )?;
 
-        let stored_clusters = ranges[SectionKind::EdgeClusters as usize - 1]
-            .is_some()
-            .then(|| read_clusters(section(SectionKind::EdgeClusters), edges))
-            .transpose()?;
+        // Format 5 may leave the clusters to the loader; earlier formats store them from version 3.
+        let clusters = section(SectionKind::EdgeClusters);
+        let stored_clusters = (ranges[SectionKind::EdgeClusters as usize - 1].is_some()
+            && (!clusters.is_empty() || kinds.len() < SectionKind::ALL.len()))
+        .then(|| read_clusters(clusters, edges))
+        .transpose()?;
 
         let mut asset = Asset {
             header,
@@ -133,12 +171,97 @@ impl Asset {
             edge_clusters: Vec::new(),
         };
         validate_attributes(&asset)?;
-        validate_ring_lengths(&asset)?;
-        validate_rings(&asset)?;
+        // Rings decoded from their orders are cycles within bounds by construction.
+        if rings_coded.is_none() {
+            validate_ring_lengths(&asset)?;
+            validate_rings(&asset)?;
+        }
         validate_intersections(&asset)?;
         asset.edge_clusters = stored_clusters.unwrap_or_else(|| clusters::edge_clusters(&asset));
         Ok(asset)
     }
+}
+
+/// Each raw section and the coded one that can replace it (format 5).
+const TWINS: [(SectionKind, SectionKind); 8] = [
+    (SectionKind::MeshIndices, SectionKind::MeshIndicesCoded),
+    (
+        SectionKind::TopologyPositions,
+        SectionKind::TopologyPositionsCoded,
+    ),
+    (SectionKind::RenderNormals, SectionKind::RenderNormalsCoded),
+    (SectionKind::EdgeVertices, SectionKind::EdgeCorners),
+    (
+        SectionKind::EdgeAttributes,
+        SectionKind::EdgeAttributesCoded,
+    ),
+    (SectionKind::NextEnds, SectionKind::RingOrders),
+    (SectionKind::CapHeads, SectionKind::RingOrders),
+    (
+        SectionKind::RenderVertexCounts,
+        SectionKind::RenderVertexCountsCoded,
+    ),
+];
+
+/// The stored next ends and cap heads (of `ends` edge ends).
+fn raw_rings<'a>(
+    section: &impl Fn(SectionKind) -> &'a [u8],
+    ends: usize,
+) -> Result<(Indices, Indices), DecodeError> {
+    let next_ends = read_indices(
+        SectionKind::NextEnds,
+        section(SectionKind::NextEnds),
+        ends,
+        1,
+    )?;
+    if !next_ends.is_empty() && next_ends.len() != ends {
+        return Err(length_error(
+            SectionKind::NextEnds,
+            format!(
+                "{} entries for {} edge ends (must be 0 or one per end)",
+                next_ends.len(),
+                ends
+            ),
+        ));
+    }
+    let cap_heads = read_indices(
+        SectionKind::CapHeads,
+        section(SectionKind::CapHeads),
+        ends,
+        1,
+    )?;
+    // A head is where the walk around its vertex's ring starts: without rings it means nothing.
+    if next_ends.is_empty() && !cap_heads.is_empty() {
+        return Err(length_error(
+            SectionKind::CapHeads,
+            format!(
+                "{} cap heads but no next ends (the runtime walks a head's ring)",
+                cap_heads.len()
+            ),
+        ));
+    }
+    Ok((next_ends, cap_heads))
+}
+
+/// Decoded indices that must be below `bound`.
+fn checked_indices(
+    kind: SectionKind,
+    values: Vec<u32>,
+    bound: usize,
+) -> Result<Indices, DecodeError> {
+    if let Some((position, &value)) = values
+        .iter()
+        .enumerate()
+        .find(|&(_, &v)| v as usize >= bound)
+    {
+        return Err(DecodeError::IndexOutOfRange {
+            kind,
+            position: position as u64,
+            value,
+            bound: bound as u64,
+        });
+    }
+    Ok(Indices::with_bound(values, bound))
 }
 
 /// The render positions: the stored ones, one per normal, or, when the file has render vertex

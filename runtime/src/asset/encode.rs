@@ -23,6 +23,50 @@ impl Asset {
         self.encode_as(FORMAT_VERSION, &SectionKind::ALL, &self.clusters(), out)
     }
 
+    /// Writes the asset as a compact file (format 5, see [`compact`](super::compact)): coded
+    /// sections where they apply, raw ones elsewhere, no clusters (the loader computes them).
+    ///
+    /// Lossless options decode to an asset equal to this one; lossy ones move each topology position
+    /// by at most [`Grid::error_bound`](super::compact::Grid::error_bound) per axis and each normal
+    /// by at most [`octahedral_error_bound`](super::compact::quantize::octahedral_error_bound).
+    /// Fails if `out` fails or the options are out of range.
+    pub fn encode_compact(
+        &self,
+        options: &super::CompactOptions,
+        codecs: &dyn super::Codecs,
+        out: &mut impl Write,
+    ) -> io::Result<()> {
+        let derived = self.compact_derived(options, codecs)?;
+        self.write_as(FORMAT_VERSION, &SectionKind::ALL, &derived, out)
+    }
+
+    /// The sections [`encode_compact`](Self::encode_compact) writes, with their bytes' total.
+    pub fn encode_compact_to_vec(
+        &self,
+        options: &super::CompactOptions,
+        codecs: &dyn super::Codecs,
+    ) -> io::Result<Vec<u8>> {
+        let mut bytes = Vec::new();
+        self.encode_compact(options, codecs, &mut bytes)?;
+        Ok(bytes)
+    }
+
+    fn compact_derived(
+        &self,
+        options: &super::CompactOptions,
+        codecs: &dyn super::Codecs,
+    ) -> io::Result<Derived<'static>> {
+        options.check().map_err(io::Error::other)?;
+        let render_counts = render_vertex_counts(self);
+        let coded = super::compact::encode(self, options, render_counts.as_deref(), codecs);
+        Ok(Derived {
+            clusters: &[],
+            render_counts,
+            keep_positions: false,
+            coded,
+        })
+    }
+
     /// The sections [`encode`](Self::encode) writes: kind, offset and length in the file.
     pub fn encoded_sections(&self) -> Vec<SectionEntry> {
         let clusters = self.clusters();
@@ -125,6 +169,16 @@ impl Asset {
 
     /// A section's bytes as written: the stored ones, or the derived ones.
     fn encoded_section<'a>(&'a self, kind: SectionKind, derived: &'a Derived<'a>) -> &'a [u8] {
+        if let Some((_, bytes)) = derived.coded.iter().find(|(k, _)| *k == kind) {
+            return bytes;
+        }
+        // A raw section gives way to its coded twin.
+        if kind
+            .twin()
+            .is_some_and(|twin| derived.coded.iter().any(|(k, _)| *k == twin))
+        {
+            return &[];
+        }
         match kind {
             SectionKind::EdgeClusters => bytemuck::cast_slice(derived.clusters),
             SectionKind::RenderVertexCounts => derived.render_counts.as_deref().unwrap_or(&[]),
@@ -178,6 +232,8 @@ struct Derived<'a> {
     render_counts: Option<Vec<u8>>,
     /// Write the render positions even with the counts (only tests make such a file).
     keep_positions: bool,
+    /// The coded sections of a compact file, each in place of its raw twin.
+    coded: Vec<(SectionKind, Vec<u8>)>,
 }
 
 impl<'a> Derived<'a> {
@@ -190,6 +246,7 @@ impl<'a> Derived<'a> {
             clusters,
             render_counts,
             keep_positions: false,
+            coded: Vec::new(),
         }
     }
 }

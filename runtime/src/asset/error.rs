@@ -46,6 +46,14 @@ pub enum DecodeError {
         /// What is wrong.
         reason: String,
     },
+    /// A coded section (format 5) that does not decode.
+    #[error("section {}: {reason}", kind.name())]
+    BadCoding {
+        /// The section.
+        kind: SectionKind,
+        /// What is wrong.
+        reason: String,
+    },
     /// An index points past the end of what it indexes.
     #[error(
         "section {}: element {position} is {value}, out of range (must be below {bound})", kind.name()

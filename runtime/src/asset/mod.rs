@@ -74,12 +74,14 @@ compile_error!(
 );
 
 pub mod clusters;
+pub mod compact;
 mod decode;
 mod encode;
 mod envelope;
 mod error;
 
 pub use clusters::{CLUSTER_EDGES, EdgeCluster};
+pub use compact::{Codecs, CompactOptions};
 pub use error::DecodeError;
 
 use serde::{Deserialize, Serialize};
@@ -87,7 +89,7 @@ use serde::{Deserialize, Serialize};
 /// The eight bytes every asset starts with.
 pub const MAGIC: [u8; 8] = *b"CHAMFER\0";
 /// The format version this crate writes (and the newest it reads).
-pub const FORMAT_VERSION: u32 = 4;
+pub const FORMAT_VERSION: u32 = 5;
 /// The oldest format version this crate still reads.
 pub const OLDEST_READ_VERSION: u32 = 1;
 /// The largest header accepted; real headers are a few hundred bytes.
@@ -345,11 +347,26 @@ pub enum SectionKind {
     /// One `u8` per topology vertex: how many render vertices copy its position, in order; or
     /// empty (version 4). When present, [`RenderPositions`](Self::RenderPositions) is empty.
     RenderVertexCounts = 12,
+    /// [`MeshIndices`](Self::MeshIndices), coded (version 5, [`compact`]).
+    MeshIndicesCoded = 13,
+    /// [`TopologyPositions`](Self::TopologyPositions) on a grid or lossless, coded (version 5).
+    TopologyPositionsCoded = 14,
+    /// [`RenderNormals`](Self::RenderNormals) octahedral or lossless, coded (version 5).
+    RenderNormalsCoded = 15,
+    /// [`EdgeVertices`](Self::EdgeVertices) as one bit per mesh corner (version 5).
+    EdgeCorners = 16,
+    /// [`EdgeAttributes`](Self::EdgeAttributes), coded (version 5).
+    EdgeAttributesCoded = 17,
+    /// [`NextEnds`](Self::NextEnds) and [`CapHeads`](Self::CapHeads) as each vertex's ring order
+    /// (version 5).
+    RingOrders = 18,
+    /// [`RenderVertexCounts`](Self::RenderVertexCounts), coded (version 5).
+    RenderVertexCountsCoded = 19,
 }
 
 impl SectionKind {
     /// Every kind, in the order sections are written.
-    pub const ALL: [Self; 12] = [
+    pub const ALL: [Self; 19] = [
         Self::RenderPositions,
         Self::RenderNormals,
         Self::MeshIndices,
@@ -362,7 +379,36 @@ impl SectionKind {
         Self::IntersectionPolylines,
         Self::EdgeClusters,
         Self::RenderVertexCounts,
+        Self::MeshIndicesCoded,
+        Self::TopologyPositionsCoded,
+        Self::RenderNormalsCoded,
+        Self::EdgeCorners,
+        Self::EdgeAttributesCoded,
+        Self::RingOrders,
+        Self::RenderVertexCountsCoded,
     ];
+
+    /// The coded kind that replaces this raw one in a compact file, and back; `None` for the kinds
+    /// that have no other form.
+    pub const fn twin(self) -> Option<Self> {
+        Some(match self {
+            Self::MeshIndices => Self::MeshIndicesCoded,
+            Self::TopologyPositions => Self::TopologyPositionsCoded,
+            Self::RenderNormals => Self::RenderNormalsCoded,
+            Self::EdgeVertices => Self::EdgeCorners,
+            Self::EdgeAttributes => Self::EdgeAttributesCoded,
+            Self::NextEnds | Self::CapHeads => Self::RingOrders,
+            Self::RenderVertexCounts => Self::RenderVertexCountsCoded,
+            Self::MeshIndicesCoded => Self::MeshIndices,
+            Self::TopologyPositionsCoded => Self::TopologyPositions,
+            Self::RenderNormalsCoded => Self::RenderNormals,
+            Self::EdgeCorners => Self::EdgeVertices,
+            Self::EdgeAttributesCoded => Self::EdgeAttributes,
+            Self::RingOrders => Self::NextEnds,
+            Self::RenderVertexCountsCoded => Self::RenderVertexCounts,
+            _ => return None,
+        })
+    }
 
     /// The kinds a file of format `version` holds (every one of them, possibly empty), or `None`
     /// for a version this crate does not read.
@@ -371,7 +417,8 @@ impl SectionKind {
             1 => Some(&Self::ALL[..8]),
             2 => Some(&Self::ALL[..10]),
             3 => Some(&Self::ALL[..11]),
-            4 => Some(&Self::ALL),
+            4 => Some(&Self::ALL[..12]),
+            5 => Some(&Self::ALL),
             _ => None,
         }
     }
@@ -396,6 +443,13 @@ impl SectionKind {
             Self::IntersectionPolylines => "intersection_polylines",
             Self::EdgeClusters => "edge_clusters",
             Self::RenderVertexCounts => "render_vertex_counts",
+            Self::MeshIndicesCoded => "mesh_indices_coded",
+            Self::TopologyPositionsCoded => "topology_positions_coded",
+            Self::RenderNormalsCoded => "render_normals_coded",
+            Self::EdgeCorners => "edge_corners",
+            Self::EdgeAttributesCoded => "edge_attributes_coded",
+            Self::RingOrders => "ring_orders",
+            Self::RenderVertexCountsCoded => "render_vertex_counts_coded",
         }
     }
 }
@@ -614,7 +668,14 @@ impl Asset {
             SectionKind::IntersectionPolylines => bytemuck::cast_slice(&self.intersection_starts),
             SectionKind::EdgeClusters => bytemuck::cast_slice(&self.edge_clusters),
             // Derived when encoding, never held.
-            SectionKind::RenderVertexCounts => &[],
+            SectionKind::RenderVertexCounts
+            | SectionKind::MeshIndicesCoded
+            | SectionKind::TopologyPositionsCoded
+            | SectionKind::RenderNormalsCoded
+            | SectionKind::EdgeCorners
+            | SectionKind::EdgeAttributesCoded
+            | SectionKind::RingOrders
+            | SectionKind::RenderVertexCountsCoded => &[],
         }
     }
 }
