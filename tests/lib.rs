@@ -468,3 +468,66 @@ pub mod cube {
             .collect()
     }
 }
+
+/// What an asset holds, independent of how its bake numbered vertices, triangles and edges and of
+/// the corner each triangle starts at: every number is named by the positions it refers to.
+/// Two bakes of one mesh by bakes that order their output differently have equal contents.
+#[derive(Debug, PartialEq, Eq)]
+pub struct Content {
+    /// Per render triangle, its corners' (position, normal) bits, rotated to start at the least.
+    pub triangles: Vec<[[u32; 6]; 3]>,
+    /// Per edge, the positions of `v0 v1 v2 v3`, its attribute word and, per end, the edge and end
+    /// that follows it around its vertex.
+    pub edges: Vec<([[u32; 3]; 4], u32, [Option<([[u32; 3]; 4], u32)>; 2])>,
+    /// The positions of the vertices whose rings have a cap head.
+    pub capped: Vec<[u32; 3]>,
+}
+
+/// The [`Content`] of `asset`.
+pub fn content(asset: &chamfer_runtime::asset::Asset) -> Content {
+    let bits = |p: [f32; 3]| p.map(f32::to_bits);
+    let render = |v: u32| {
+        let (p, n) = (
+            bits(asset.render_positions[v as usize]),
+            bits(asset.render_normals[v as usize]),
+        );
+        [p[0], p[1], p[2], n[0], n[1], n[2]]
+    };
+    let indices = asset.mesh_indices.to_u32_vec();
+    let mut triangles: Vec<[[u32; 6]; 3]> = indices
+        .chunks_exact(3)
+        .map(|t| {
+            let corners = [render(t[0]), render(t[1]), render(t[2])];
+            let first = (0..3).min_by_key(|&k| corners[k]).unwrap_or(0);
+            std::array::from_fn(|k| corners[(first + k) % 3])
+        })
+        .collect();
+    triangles.sort_unstable();
+    let vertices = asset.edge_vertices.to_u32_vec();
+    let edge_key = |e: usize| -> [[u32; 3]; 4] {
+        std::array::from_fn(|k| bits(asset.topology_positions[vertices[4 * e + k] as usize]))
+    };
+    let next = asset.next_ends.to_u32_vec();
+    let mut edges: Vec<_> = (0..asset.edge_count())
+        .map(|e| {
+            let follower = |end: usize| next.get(end).map(|&n| (edge_key(n as usize / 2), n % 2));
+            (
+                edge_key(e),
+                asset.edge_attributes[e],
+                [follower(2 * e), follower(2 * e + 1)],
+            )
+        })
+        .collect();
+    edges.sort_unstable();
+    let mut capped: Vec<[u32; 3]> = asset
+        .cap_heads
+        .iter()
+        .map(|h| bits(asset.topology_positions[asset.end_vertex(h) as usize]))
+        .collect();
+    capped.sort_unstable();
+    Content {
+        triangles,
+        edges,
+        capped,
+    }
+}
