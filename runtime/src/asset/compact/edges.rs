@@ -6,8 +6,14 @@
 //! of a triangle's corners does not change), so the edges of an asset are one bit per corner of
 //! the mesh: set where an edge starts.
 //!
-//! Contract: [`encode`] returns the bits only when [`decode`] rebuilds exactly the given edges;
-//! [`decode`] checks the bits against the mesh and otherwise cannot fail.
+//! The decoder works on a range of triangles, so that two threads can each take half a mesh, and
+//! [`CornerBits::ends_at`] lists the edge ends at a vertex from the bits alone, so that the rings
+//! ([`super::rings`]) decode beside the edges rather than after them.
+//!
+//! Contract: [`encode`] returns the bits only when [`decode_range`] rebuilds exactly the given
+//! edges; [`CornerBits::new`] checks the bits against the mesh, after which decoding cannot fail.
+
+use std::ops::Range;
 
 /// The corners (`3 * triangle + k`) at each vertex, in increasing order.
 pub(crate) struct VertexCorners {
@@ -16,7 +22,8 @@ pub(crate) struct VertexCorners {
 }
 
 impl VertexCorners {
-    /// Every index of `triangles` must be below `vertex_count`.
+    /// Every index of `triangles` must be below `vertex_count`, and there are fewer than 2^32
+    /// corners.
     pub(crate) fn new(triangles: &[u32], vertex_count: usize) -> Self {
         let mut starts = vec![0u32; vertex_count + 1];
         for &v in triangles {
@@ -34,11 +41,16 @@ impl VertexCorners {
         Self { starts, corners }
     }
 
-    fn of(&self, v: u32) -> &[u32] {
+    pub(crate) fn of(&self, v: u32) -> &[u32] {
         &self.corners[self.starts[v as usize] as usize..self.starts[v as usize + 1] as usize]
+    }
+
+    pub(crate) fn vertex_count(&self) -> usize {
+        self.starts.len() - 1
     }
 }
 
+/// Corner `c`'s triangle's corners starting at `c`: `c`, the next, the previous.
 fn rotation(c: usize) -> [usize; 3] {
     let (t, k) = (c / 3 * 3, c % 3);
     [t + k, t + (k + 1) % 3, t + (k + 2) % 3]
@@ -67,7 +79,7 @@ fn edge_at(c: usize, triangles: &[u32], corners: &VertexCorners) -> [u32; 4] {
 }
 
 /// One bit per corner of `triangles` (three indices each), or `None` if `edges` (four vertices
-/// each) are not the mesh's edges in the order of their face-a corners.
+/// each) are not the mesh's edges in the order of their face-a triangles and `v0`.
 pub(crate) fn encode(edges: &[u32], triangles: &[u32], corners: &VertexCorners) -> Option<Vec<u8>> {
     let mut bits = vec![0u8; triangles.len().div_ceil(8)];
     let mut previous = None;
@@ -87,48 +99,105 @@ pub(crate) fn encode(edges: &[u32], triangles: &[u32], corners: &VertexCorners) 
     Some(bits)
 }
 
-/// The edges (four vertices each) of the set bits, which must be `edge_count` and all name corners.
-pub(crate) fn decode(
-    bits: &[u8],
-    edge_count: usize,
+/// The corner bits of a mesh, checked, with the number of set bits before every 64 corners: the
+/// edge that starts at a corner is its rank among the set corners.
+pub(crate) struct CornerBits {
+    words: Vec<u64>,
+    ranks: Vec<u32>,
+}
+
+impl CornerBits {
+    /// Reads the bits of `corners` corners, which must be `edge_count` set bits, none past the
+    /// last corner. `Err` says what is wrong.
+    pub(crate) fn new(bytes: &[u8], corners: usize, edge_count: usize) -> Result<Self, String> {
+        if bytes.len() != corners.div_ceil(8) {
+            return Err(format!(
+                "{} bytes of corner bits for {corners} corners (must be {})",
+                bytes.len(),
+                corners.div_ceil(8)
+            ));
+        }
+        let spare = bytes.len() * 8 - corners;
+        if spare > 0 && bytes[bytes.len() - 1] >> (8 - spare) != 0 {
+            return Err("bits set past the last corner".into());
+        }
+        let words: Vec<u64> = bytes
+            .chunks(8)
+            .map(|chunk| {
+                let mut word = [0u8; 8];
+                word[..chunk.len()].copy_from_slice(chunk);
+                u64::from_le_bytes(word)
+            })
+            .collect();
+        let mut ranks = Vec::with_capacity(words.len() + 1);
+        let mut set = 0u64;
+        for word in &words {
+            ranks.push(set as u32);
+            set += u64::from(word.count_ones());
+        }
+        if set != edge_count as u64 {
+            return Err(format!("{set} corners set for {edge_count} edges"));
+        }
+        Ok(Self { words, ranks })
+    }
+
+    fn is_set(&self, c: usize) -> bool {
+        self.words[c / 64] >> (c % 64) & 1 != 0
+    }
+
+    /// The number of set corners before corner `c` (`c` at most the corner count).
+    pub(crate) fn rank(&self, c: usize) -> usize {
+        let Some(&before) = self.ranks.get(c / 64) else {
+            return self.ranks.last().map_or(0, |&r| r as usize)
+                + self.words.last().map_or(0, |w| w.count_ones() as usize);
+        };
+        let below = self.words[c / 64] & ((1u64 << (c % 64)) - 1);
+        before as usize + below.count_ones() as usize
+    }
+
+    /// The edge ends (`2 * edge + end`) at vertex `v`, ascending, into `out`: the `v0` end of the
+    /// edge at each of its corners, and the `v1` end of the edge at the corner before each one.
+    pub(crate) fn ends_at(&self, v: u32, corners: &VertexCorners, out: &mut Vec<u32>) {
+        out.clear();
+        for &c in corners.of(v) {
+            let c = c as usize;
+            if self.is_set(c) {
+                out.push(2 * self.rank(c) as u32);
+            }
+            let previous = rotation(c)[2];
+            if self.is_set(previous) {
+                out.push(2 * self.rank(previous) as u32 + 1);
+            }
+        }
+        out.sort_unstable();
+    }
+}
+
+/// Writes the edges (four vertices each) of the set corners of `range` triangles into `out`,
+/// which holds exactly those edges.
+pub(crate) fn decode_range(
+    bits: &CornerBits,
     triangles: &[u32],
     corners: &VertexCorners,
-) -> Result<Vec<u32>, String> {
-    if bits.len() != triangles.len().div_ceil(8) {
-        return Err(format!(
-            "{} bytes of corner bits for {} corners (must be {})",
-            bits.len(),
-            triangles.len(),
-            triangles.len().div_ceil(8)
-        ));
-    }
-    let set: usize = bits.iter().map(|b| b.count_ones() as usize).sum();
-    if set != edge_count {
-        return Err(format!("{set} corners set for {edge_count} edges"));
-    }
-    let spare = bits.len() * 8 - triangles.len();
-    if spare > 0 && bits[bits.len() - 1] >> (8 - spare) != 0 {
-        return Err("bits set past the last corner".into());
-    }
-    let bit = |c: usize| bits[c / 8] >> (c % 8) & 1 != 0;
-    let mut edges = Vec::with_capacity(4 * edge_count);
-    for t in 0..triangles.len() / 3 {
+    range: Range<usize>,
+    out: &mut [u32],
+) {
+    let mut edges = out.chunks_exact_mut(4);
+    for t in range {
         let first = 3 * t;
-        if bits.get(first / 8).is_some_and(|&b| b == 0) && first % 8 < 6 {
-            continue; // no corner of this triangle is set (the common case of a zero byte)
-        }
-        let mut set: [(u32, usize); 3] = [(0, 0); 3];
+        let mut set = [(0u32, 0usize); 3];
         let mut n = 0;
         for c in first..first + 3 {
-            if bit(c) {
+            if bits.is_set(c) {
                 set[n] = (triangles[c], c);
                 n += 1;
             }
         }
         set[..n].sort_unstable();
         for &(_, c) in &set[..n] {
-            edges.extend_from_slice(&edge_at(c, triangles, corners));
+            if let Some(edge) = edges.next() {
+                edge.copy_from_slice(&edge_at(c, triangles, corners));
+            }
         }
     }
-    Ok(edges)
 }

@@ -1,5 +1,6 @@
 //! Next-index rings (thesis §13) and cap heads (§10.5) stored as the order of each vertex's ring:
-//! the loader knows which edge ends lie at a vertex (from the edges), so a ring of `d` ends is one of
+//! the loader knows which edge ends lie at a vertex (from the corner bits of the edges, see
+//! [`CornerBits::ends_at`]; rings are coded only beside corner-coded edges), so a ring of `d` ends is one of
 //! `(d - 1)!` cycles, plus which end is its head: `log2(d!)` bits, about 10 bits for the six ends of a
 //! typical vertex against 6 × 32 bits of next indices and a head.
 //!
@@ -9,62 +10,40 @@
 //! Bits are packed from the low bit of little-endian 64-bit words; the section is whole words.
 
 use super::super::MAX_RING;
-
-/// The edge ends at each vertex in increasing order, as a compressed list.
-pub(crate) struct VertexEnds {
-    starts: Vec<u32>,
-    ends: Vec<u32>,
-}
-
-impl VertexEnds {
-    /// `end_vertices[end]` is the vertex of each end. Fails with the first vertex that has more than
-    /// [`MAX_RING`] ends (and its count).
-    pub(crate) fn new(end_vertices: &[u32], vertex_count: usize) -> Result<Self, (u32, u64)> {
-        let mut starts = vec![0u32; vertex_count + 1];
-        for &v in end_vertices {
-            starts[v as usize + 1] += 1;
-        }
-        if let Some(v) = starts.iter().position(|&c| c > MAX_RING) {
-            return Err(((v - 1) as u32, u64::from(starts[v])));
-        }
-        for v in 0..vertex_count {
-            starts[v + 1] += starts[v];
-        }
-        let mut cursor = starts.clone();
-        let mut ends = vec![0u32; end_vertices.len()];
-        for (end, &v) in end_vertices.iter().enumerate() {
-            ends[cursor[v as usize] as usize] = end as u32;
-            cursor[v as usize] += 1;
-        }
-        Ok(Self { starts, ends })
-    }
-
-    fn of(&self, v: usize) -> &[u32] {
-        &self.ends[self.starts[v] as usize..self.starts[v + 1] as usize]
-    }
-
-    fn vertex_count(&self) -> usize {
-        self.starts.len() - 1
-    }
-}
+use super::edges::{CornerBits, VertexCorners};
 
 fn rank_bits(candidates: usize) -> u32 {
     usize::BITS - (candidates - 1).leading_zeros()
 }
 
-/// The code of `next` and `heads`, or `None` when they are not one ring per vertex with two or more
-/// ends, each with one head, heads by increasing vertex (as the bake builds them).
-/// Also returns the number of bits of code.
-pub(crate) fn encode(next: &[u32], heads: &[u32], ends: &VertexEnds) -> Option<(Vec<u8>, u64)> {
+/// Why a ring code is refused.
+#[derive(Debug, PartialEq, Eq)]
+pub(crate) enum RingError {
+    /// A vertex has more ends than a ring may have.
+    TooLong { vertex: u32, ends: u64 },
+    /// The code does not fit the ends.
+    Code(&'static str),
+}
+
+/// The code of `next` and `heads` over the edges of `bits` (corners of `triangles`), or `None`
+/// when they are not one ring per vertex with two or more ends, each with one head, heads by
+/// increasing vertex (as the bake builds them). Also returns the number of bits of code.
+pub(crate) fn encode(
+    next: &[u32],
+    heads: &[u32],
+    bits: &CornerBits,
+    triangles: &[u32],
+    corners: &VertexCorners,
+) -> Option<(Vec<u8>, u64)> {
     let mut writer = BitWriter::default();
     let mut heads = heads.iter();
     let mut left = Vec::new();
-    for v in 0..ends.vertex_count() {
-        let at = ends.of(v);
-        match at.len() {
+    for v in 0..corners.vertex_count() as u32 {
+        bits.ends_at(v, triangles, corners, &mut left);
+        match left.len() {
             0 => continue,
             1 => {
-                if next[at[0] as usize] != at[0] {
+                if *next.get(left[0] as usize)? != left[0] {
                     return None;
                 }
                 continue;
@@ -72,8 +51,6 @@ pub(crate) fn encode(next: &[u32], heads: &[u32], ends: &VertexEnds) -> Option<(
             _ => {}
         }
         let head = *heads.next()?;
-        left.clear();
-        left.extend_from_slice(at);
         let mut end = head;
         while left.len() > 1 {
             let rank = left.binary_search(&end).ok()?;
@@ -92,34 +69,44 @@ pub(crate) fn encode(next: &[u32], heads: &[u32], ends: &VertexEnds) -> Option<(
     })
 }
 
-/// Rebuilds the rings and heads from their code. `Err` says why the code is refused.
+/// Rebuilds the rings (a next end per end, `end_count` of them) and heads over the edges of
+/// `bits` (corners of `triangles`) from their code of `code_bits` bits.
 pub(crate) fn decode(
     bytes: &[u8],
-    bits: u64,
-    ends: &VertexEnds,
+    code_bits: u64,
+    bits: &CornerBits,
+    triangles: &[u32],
+    corners: &VertexCorners,
     end_count: usize,
-) -> Result<(Vec<u32>, Vec<u32>), &'static str> {
+) -> Result<(Vec<u32>, Vec<u32>), RingError> {
     if !bytes.len().is_multiple_of(8) {
-        return Err("not a whole number of 64-bit words");
+        return Err(RingError::Code("not a whole number of 64-bit words"));
     }
     let mut reader = BitReader::new(bytes);
     let mut next: Vec<u32> = (0..end_count as u32).collect();
     let mut heads = Vec::new();
     let mut left = Vec::new();
-    for v in 0..ends.vertex_count() {
-        let at = ends.of(v);
-        if at.len() < 2 {
+    for v in 0..corners.vertex_count() as u32 {
+        bits.ends_at(v, triangles, corners, &mut left);
+        if left.len() < 2 {
             continue;
         }
-        left.clear();
-        left.extend_from_slice(at);
+        if left.len() > MAX_RING as usize {
+            return Err(RingError::TooLong {
+                vertex: v,
+                ends: left.len() as u64,
+            });
+        }
         let mut previous = None;
         while left.len() > 1 {
             let rank = reader
                 .take(rank_bits(left.len()))
-                .ok_or("the code ends before the last ring")? as usize;
+                .ok_or(RingError::Code("the code ends before the last ring"))?
+                as usize;
             if rank >= left.len() {
-                return Err("a rank is beyond the ends left at its vertex");
+                return Err(RingError::Code(
+                    "a rank is beyond the ends left at its vertex",
+                ));
             }
             let end = left.remove(rank);
             match previous {
@@ -131,10 +118,14 @@ pub(crate) fn decode(
         if let Some(p) = previous {
             next[p as usize] = left[0];
         }
-        next[left[0] as usize] = *heads.last().ok_or("a ring has no head")?;
+        next[left[0] as usize] = *heads
+            .last()
+            .ok_or(RingError::Code("a ring has no head"))?;
     }
-    if reader.consumed != bits || !reader.rest_is_padding() {
-        return Err("the code's length is not that of its rings");
+    if reader.consumed != code_bits || !reader.rest_is_padding() {
+        return Err(RingError::Code(
+            "the code's length is not that of its rings",
+        ));
     }
     Ok((next, heads))
 }

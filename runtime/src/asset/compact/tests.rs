@@ -180,39 +180,10 @@ fn the_index_decoder_refuses_what_the_reference_decoder_refuses() {
     assert!(index_codec::decode(&encoded, 1 << 30).is_err());
 }
 
-#[test]
-fn rings_round_trip_through_their_orders() {
-    // Vertex 0 has ends 0, 2, 4, 6 (edges 0..4 at v0) in the ring 4 -> 0 -> 6 -> 2 -> 4, head 6;
-    // vertex 1 has ends 1 and 3; vertex 2 has end 5 alone; vertex 3 has end 7 alone.
-    let end_vertices = [0, 1, 0, 1, 0, 2, 0, 3];
-    let ends = rings::VertexEnds::new(&end_vertices, 4).expect("ends");
-    let mut next: Vec<u32> = (0..8).collect();
-    (next[4], next[0], next[6], next[2]) = (0, 6, 2, 4);
-    (next[1], next[3]) = (3, 1);
-    let heads = [6, 3];
-    let (code, bits) = rings::encode(&next, &heads, &ends).expect("codable");
-    // Vertex 0: 2 + 2 + 1 bits, vertex 1: 1 bit.
-    assert_eq!(bits, 6);
-    assert_eq!(
-        rings::decode(&code, bits, &ends, 8),
-        Ok((next.clone(), heads.to_vec()))
-    );
-    // Two cycles at one vertex, a missing head or heads out of order cannot be coded.
-    let mut split = next.clone();
-    (split[4], split[0], split[6], split[2]) = (0, 4, 2, 6);
-    assert!(rings::encode(&split, &heads, &ends).is_none());
-    assert!(rings::encode(&next, &[6], &ends).is_none());
-    assert!(rings::encode(&next, &[3, 6], &ends).is_none());
-    // A rank past the ends left, and a code with bits to spare, are refused.
-    assert!(rings::decode(&[0xff; 8], 6, &ends, 8).is_err());
-    assert!(rings::decode(&code, bits + 1, &ends, 8).is_err());
-}
-
-#[test]
-fn edges_are_one_bit_per_face_a_corner() {
-    // The quad 0 1 2 3 as [0, 1, 2] and [0, 2, 3]; edges by face a, then by v0.
+/// The quad 0 1 2 3 as triangles [0, 1, 2] and [0, 2, 3], its five edges by face a and then by
+/// `v0`, and their corner bits.
+fn quad() -> ([u32; 6], [u32; 20], edges::VertexCorners) {
     let triangles = [0, 1, 2, 0, 2, 3];
-    let corners = edges::VertexCorners::new(&triangles, 4);
     let all = [
         0, 1, 2, 0, // corner 0: boundary
         1, 2, 0, 1, // corner 1: boundary
@@ -220,10 +191,64 @@ fn edges_are_one_bit_per_face_a_corner() {
         2, 3, 0, 2, // corner 4
         3, 0, 2, 3, // corner 5
     ];
+    let corners = edges::VertexCorners::new(&triangles, 4);
+    (triangles, all, corners)
+}
+
+fn decode_edges(
+    bits: &[u8],
+    count: usize,
+    triangles: &[u32],
+    corners: &edges::VertexCorners,
+) -> Result<Vec<u32>, String> {
+    let bits = edges::CornerBits::new(bits, triangles.len(), count)?;
+    let mut out = vec![0; 4 * count];
+    edges::decode_range(&bits, triangles, corners, 0..triangles.len() / 3, &mut out);
+    Ok(out)
+}
+
+#[test]
+fn rings_round_trip_through_their_orders() {
+    let (triangles, all, corners) = quad();
+    let bits = edges::encode(&all, &triangles, &corners).expect("codable");
+    let bits = edges::CornerBits::new(&bits, 6, 5).expect("bits");
+    // Ends (2 * edge + end) per vertex: 0: 0, 5, 9; 1: 1, 2; 2: 3, 4, 6; 3: 7, 8.
+    let mut at = Vec::new();
+    bits.ends_at(0, &corners, &mut at);
+    assert_eq!(at, [0, 5, 9]);
+    bits.ends_at(2, &corners, &mut at);
+    assert_eq!(at, [3, 4, 6]);
+    let mut next: Vec<u32> = (0..10).collect();
+    (next[0], next[9], next[5]) = (9, 5, 0);
+    (next[1], next[2]) = (2, 1);
+    (next[3], next[6], next[4]) = (6, 4, 3);
+    (next[7], next[8]) = (8, 7);
+    let heads = [5, 2, 3, 7];
+    let (code, code_bits) = rings::encode(&next, &heads, &bits, &corners).expect("codable");
+    // 2 + 1 bits at vertex 0, 1 at vertex 1, 2 + 1 at vertex 2, 1 at vertex 3.
+    assert_eq!(code_bits, 8);
+    assert_eq!(
+        rings::decode(&code, code_bits, &bits, &corners, 10),
+        Ok((next.clone(), heads.to_vec()))
+    );
+    // Two cycles at one vertex, a missing head or heads out of order cannot be coded.
+    let mut split = next.clone();
+    (split[3], split[6], split[4]) = (3, 4, 6);
+    assert!(rings::encode(&split, &heads, &bits, &corners).is_none());
+    assert!(rings::encode(&next, &[5, 2, 3], &bits, &corners).is_none());
+    assert!(rings::encode(&next, &[2, 5, 3, 7], &bits, &corners).is_none());
+    // A rank past the ends left, and a code with bits to spare, are refused.
+    assert!(rings::decode(&[0xff; 8], 8, &bits, &corners, 10).is_err());
+    assert!(rings::decode(&code, code_bits + 1, &bits, &corners, 10).is_err());
+}
+
+#[test]
+fn edges_are_one_bit_per_face_a_corner() {
+    let (triangles, all, corners) = quad();
     let bits = edges::encode(&all, &triangles, &corners).expect("codable");
     assert_eq!(bits, vec![0b0011_0111]);
     assert_eq!(
-        edges::decode(&bits, 5, &triangles, &corners),
+        decode_edges(&bits, 5, &triangles, &corners),
         Ok(all.to_vec())
     );
     // The same mesh with its first triangle rotated, as the index codec may: the same edges.
@@ -231,7 +256,7 @@ fn edges_are_one_bit_per_face_a_corner() {
     let rotated_corners = edges::VertexCorners::new(&rotated, 4);
     let bits = edges::encode(&all, &rotated, &rotated_corners).expect("codable");
     assert_eq!(
-        edges::decode(&bits, 5, &rotated, &rotated_corners),
+        decode_edges(&bits, 5, &rotated, &rotated_corners),
         Ok(all.to_vec())
     );
     // The diagonal dropped (coplanar): still codable.
@@ -242,7 +267,7 @@ fn edges_are_one_bit_per_face_a_corner() {
         .flat_map(|(_, e)| e.to_vec())
         .collect();
     let bits = edges::encode(&kept, &triangles, &corners).expect("codable");
-    assert_eq!(edges::decode(&bits, 4, &triangles, &corners), Ok(kept));
+    assert_eq!(decode_edges(&bits, 4, &triangles, &corners), Ok(kept));
     // Out of order, or a v3 the rule does not give: not codable.
     let mut swapped = all.to_vec();
     swapped[..8].rotate_left(4);
@@ -250,9 +275,10 @@ fn edges_are_one_bit_per_face_a_corner() {
     let mut wrong = all.to_vec();
     wrong[11] = 2;
     assert!(edges::encode(&wrong, &triangles, &corners).is_none());
-    // A count that disagrees with the bits, or bits past the last corner, are refused.
-    assert!(edges::decode(&[0b0011_0111], 4, &triangles, &corners).is_err());
-    assert!(edges::decode(&[0b1011_0111], 6, &triangles, &corners).is_err());
+    // A count that disagrees with the bits, bits past the last corner or too few bytes are refused.
+    assert!(decode_edges(&[0b0011_0111], 4, &triangles, &corners).is_err());
+    assert!(decode_edges(&[0b1011_0111], 6, &triangles, &corners).is_err());
+    assert!(decode_edges(&[], 0, &triangles, &corners).is_err());
 }
 
 #[test]
