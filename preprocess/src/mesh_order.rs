@@ -94,25 +94,26 @@ pub(crate) fn reorder_mesh(
 }
 
 /// The edge order that follows the triangles: `order[new] = old` edge index, edges sorted by the
-/// corner (`3 * triangle + k`) of their face a, the lowest corner whose triangle winds `v0 -> v1`
-/// with `v2` opposite (see [`face_a_corner`]).
+/// triangle of their face a (the lowest corner whose triangle winds `v0 -> v1` with `v2` opposite,
+/// see [`face_a_corner`]) and then by `v0`: an order that rotating a triangle's corners (as the
+/// compact format's index codec may) does not change.
 pub(crate) fn edge_order(
     corners: &VertexCorners,
     triangles: &[[u32; 3]],
     edges: &Edges,
 ) -> Vec<u32> {
-    let mut keys: Vec<u64> = edges
+    let mut keys: Vec<(u64, u32)> = edges
         .vertices
         .par_iter()
         .enumerate()
         .map(|(e, v)| {
             // Every edge of the bake has its face a; an edge built elsewhere without one goes last.
-            let corner = face_a_corner(corners, triangles, *v).unwrap_or(u32::MAX);
-            (u64::from(corner) << 32) | e as u64
+            let triangle = face_a_corner(corners, triangles, *v).map_or(u32::MAX, |c| c / 3);
+            ((u64::from(triangle) << 32) | u64::from(v[0]), e as u32)
         })
         .collect();
     keys.par_sort_unstable();
-    keys.into_iter().map(|k| k as u32).collect()
+    keys.into_iter().map(|(_, e)| e).collect()
 }
 
 /// The lowest corner at `v0` whose triangle is `(v0, v1, v2)` in its own winding.

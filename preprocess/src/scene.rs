@@ -107,11 +107,18 @@ pub fn bake_scene(path: &Path, stem: &str, options: &BakeOptions) -> Result<Bake
     })
 }
 
-/// Writes a baked scene into `folder` (each file atomically): the assets, then `{stem}.scene.json`.
-/// Returns the scene file's path.
-pub fn write_scene(baked: &BakedScene, folder: &Path, stem: &str) -> Result<PathBuf, Error> {
+/// Writes a baked scene into `folder` (each file atomically): the assets (compact with `compact`),
+/// then `{stem}.scene.json`. Returns the scene file's path.
+pub fn write_scene(
+    baked: &BakedScene,
+    folder: &Path,
+    stem: &str,
+    compact: Option<&chamfer_runtime::asset::CompactOptions>,
+) -> Result<PathBuf, Error> {
     for (name, asset) in &baked.assets {
-        write_atomically(&folder.join(name), |out| asset.asset.encode(out))?;
+        write_atomically(&folder.join(name), |out| {
+            crate::compact::encode(&asset.asset, compact, out)
+        })?;
     }
     let scene_path = folder.join(format!("{stem}.scene.json"));
     let text = baked.scene.to_json();

@@ -40,6 +40,26 @@ pub struct EdgeCluster {
     pad: [u32; 3],
 }
 
+impl EdgeCluster {
+    /// A cluster of these bounds and flags.
+    pub(crate) fn new(
+        center: [f32; 3],
+        radius: f32,
+        axis: [f32; 3],
+        cos_angle: f32,
+        flags: EdgeFlags,
+    ) -> Self {
+        Self {
+            center,
+            radius,
+            axis,
+            cos_angle,
+            flags: u32::from(flags.0),
+            pad: [0; 3],
+        }
+    }
+}
+
 /// Bytes per cluster in the asset and on the GPU.
 pub const CLUSTER_BYTES: usize = std::mem::size_of::<EdgeCluster>();
 

@@ -33,7 +33,7 @@ impl Asset {
     pub fn encode_compact(
         &self,
         options: &super::CompactOptions,
-        codecs: &dyn super::Codecs,
+        codecs: &(dyn super::Codecs + Sync),
         out: &mut impl Write,
     ) -> io::Result<()> {
         let derived = self.compact_derived(options, codecs)?;
@@ -44,7 +44,7 @@ impl Asset {
     pub fn encode_compact_to_vec(
         &self,
         options: &super::CompactOptions,
-        codecs: &dyn super::Codecs,
+        codecs: &(dyn super::Codecs + Sync),
     ) -> io::Result<Vec<u8>> {
         let mut bytes = Vec::new();
         self.encode_compact(options, codecs, &mut bytes)?;
@@ -54,7 +54,7 @@ impl Asset {
     fn compact_derived(
         &self,
         options: &super::CompactOptions,
-        codecs: &dyn super::Codecs,
+        codecs: &(dyn super::Codecs + Sync),
     ) -> io::Result<Derived<'static>> {
         options.check().map_err(io::Error::other)?;
         let render_counts = render_vertex_counts(self);

@@ -79,9 +79,10 @@ mod decode;
 mod encode;
 mod envelope;
 mod error;
+mod join;
 
 pub use clusters::{CLUSTER_EDGES, EdgeCluster};
-pub use compact::{Codecs, CompactOptions};
+pub use compact::{Codecs, CompactOptions, Precision};
 pub use error::DecodeError;
 
 use serde::{Deserialize, Serialize};
@@ -362,11 +363,13 @@ pub enum SectionKind {
     RingOrders = 18,
     /// [`RenderVertexCounts`](Self::RenderVertexCounts), coded (version 5).
     RenderVertexCountsCoded = 19,
+    /// [`EdgeClusters`](Self::EdgeClusters), quantized and coded (version 5).
+    EdgeClustersCoded = 20,
 }
 
 impl SectionKind {
     /// Every kind, in the order sections are written.
-    pub const ALL: [Self; 19] = [
+    pub const ALL: [Self; 20] = [
         Self::RenderPositions,
         Self::RenderNormals,
         Self::MeshIndices,
@@ -386,6 +389,7 @@ impl SectionKind {
         Self::EdgeAttributesCoded,
         Self::RingOrders,
         Self::RenderVertexCountsCoded,
+        Self::EdgeClustersCoded,
     ];
 
     /// The coded kind that replaces this raw one in a compact file, and back; `None` for the kinds
@@ -399,6 +403,7 @@ impl SectionKind {
             Self::EdgeAttributes => Self::EdgeAttributesCoded,
             Self::NextEnds | Self::CapHeads => Self::RingOrders,
             Self::RenderVertexCounts => Self::RenderVertexCountsCoded,
+            Self::EdgeClusters => Self::EdgeClustersCoded,
             Self::MeshIndicesCoded => Self::MeshIndices,
             Self::TopologyPositionsCoded => Self::TopologyPositions,
             Self::RenderNormalsCoded => Self::RenderNormals,
@@ -406,6 +411,7 @@ impl SectionKind {
             Self::EdgeAttributesCoded => Self::EdgeAttributes,
             Self::RingOrders => Self::NextEnds,
             Self::RenderVertexCountsCoded => Self::RenderVertexCounts,
+            Self::EdgeClustersCoded => Self::EdgeClusters,
             _ => return None,
         })
     }
@@ -450,6 +456,7 @@ impl SectionKind {
             Self::EdgeAttributesCoded => "edge_attributes_coded",
             Self::RingOrders => "ring_orders",
             Self::RenderVertexCountsCoded => "render_vertex_counts_coded",
+            Self::EdgeClustersCoded => "edge_clusters_coded",
         }
     }
 }
@@ -675,7 +682,8 @@ impl Asset {
             | SectionKind::EdgeCorners
             | SectionKind::EdgeAttributesCoded
             | SectionKind::RingOrders
-            | SectionKind::RenderVertexCountsCoded => &[],
+            | SectionKind::RenderVertexCountsCoded
+            | SectionKind::EdgeClustersCoded => &[],
         }
     }
 }

@@ -8,8 +8,9 @@ use std::time::{Duration, Instant};
 use anyhow::{Context, bail};
 use chamfer_preprocess::write::{ensure_not_an_input, ensure_replaceable, write_atomically};
 use chamfer_preprocess::{
-    BakeOptions, Baked, Error, Limits, Radius, Stitch, WeldTolerance, bake_file, build,
+    BakeOptions, Baked, Error, Limits, Radius, Stitch, WeldTolerance, bake_file, build, compact,
 };
+use chamfer_runtime::asset::CompactOptions;
 use clap::Args;
 use rayon::prelude::*;
 
@@ -57,6 +58,39 @@ pub struct BakeArgs {
     /// folder), instead of one flattened asset. `chamfer render` draws the scene file.
     #[arg(long)]
     scene: bool,
+    #[command(flatten)]
+    compact: CompactArgs,
+}
+
+/// How the asset is stored (shared with `chamfer demo`).
+#[derive(Args, Clone)]
+pub struct CompactArgs {
+    /// Write the compact format for shipping: coded sections, positions on a grid of
+    /// --position-bits per axis over the bounding box, octahedral normals of --normal-bits
+    /// (`chamfer inspect` states each error bound). The loader decodes it to the same GPU sections.
+    #[arg(long)]
+    compact: bool,
+    /// Bits per axis of the compact positions' grid (1 to 16), or 32 to keep them exact.
+    #[arg(long, value_name = "BITS", default_value_t = CompactOptions::default().position_bits, requires = "compact")]
+    position_bits: u32,
+    /// Bits per component of the compact normals' octahedral code (2 to 16), or 32 to keep them exact.
+    #[arg(long, value_name = "BITS", default_value_t = CompactOptions::default().normal_bits, requires = "compact")]
+    normal_bits: u32,
+}
+
+impl CompactArgs {
+    /// The compact options, checked; `None` for the uncompressed format.
+    pub fn to_options(&self) -> anyhow::Result<Option<CompactOptions>> {
+        if !self.compact {
+            return Ok(None);
+        }
+        let options = CompactOptions {
+            position_bits: self.position_bits,
+            normal_bits: self.normal_bits,
+        };
+        options.check().map_err(anyhow::Error::msg)?;
+        Ok(Some(options))
+    }
 }
 
 /// The bake settings as command-line flags (shared with `chamfer demo`).
@@ -153,15 +187,16 @@ impl OptionArgs {
 
 pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
     let options = args.options.to_options()?;
+    let compact = args.compact.to_options()?;
     if args.scene {
-        return run_scenes(args, &options);
+        return run_scenes(args, &options, compact.as_ref());
     }
     let jobs = plan(&args.inputs, &args.output)?;
     let progress = Progress::start(jobs.len());
-    let results: Vec<anyhow::Result<(Baked, Duration)>> = jobs
+    let results: Vec<anyhow::Result<(Baked, Duration, u64)>> = jobs
         .par_iter()
         .map(|(input, output)| {
-            let result = bake_one(input, output, &options);
+            let result = bake_one(input, output, &options, compact.as_ref());
             progress.done_one();
             result
         })
@@ -172,12 +207,12 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
     let mut stdout = Ok(());
     for ((input, output), result) in jobs.iter().zip(results) {
         match result {
-            Ok((baked, write)) => {
+            Ok((baked, write, bytes)) => {
                 for warning in &baked.warnings {
                     crate::warn(format_args!("warning: {}: {warning}", input.display()));
                 }
                 if stdout.is_ok() {
-                    stdout = crate::say(report(input, output, &baked, write, args.timings));
+                    stdout = crate::say(report(input, output, &baked, write, bytes, args.timings));
                 }
             }
             Err(e) => {
@@ -193,7 +228,11 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
 }
 
 /// `bake --scene`: each input's meshes and scene file into the output folder.
-fn run_scenes(args: &BakeArgs, options: &BakeOptions) -> anyhow::Result<()> {
+fn run_scenes(
+    args: &BakeArgs,
+    options: &BakeOptions,
+    compact: Option<&CompactOptions>,
+) -> anyhow::Result<()> {
     let folder = &args.output;
     if folder.exists() && !folder.is_dir() {
         bail!(
@@ -220,7 +259,7 @@ fn run_scenes(args: &BakeArgs, options: &BakeOptions) -> anyhow::Result<()> {
         for warning in &baked.warnings {
             crate::warn(format_args!("warning: {}: {warning}", input.display()));
         }
-        let written = chamfer_preprocess::scene::write_scene(&baked, folder, &name)?;
+        let written = chamfer_preprocess::scene::write_scene(&baked, folder, &name, compact)?;
         crate::say(format_args!(
             "{} -> {}: {} instances of {} assets",
             input.display(),
@@ -304,14 +343,23 @@ fn bake_one(
     input: &Path,
     output: &Path,
     options: &BakeOptions,
-) -> anyhow::Result<(Baked, Duration)> {
+    compact: Option<&CompactOptions>,
+) -> anyhow::Result<(Baked, Duration, u64)> {
     let baked = bake_file(input, options)?;
     let start = Instant::now();
-    write_atomically(output, |out| baked.asset.encode(out))?;
-    Ok((baked, start.elapsed()))
+    write_atomically(output, |out| compact::encode(&baked.asset, compact, out))?;
+    let bytes = std::fs::metadata(output).map_or(0, |m| m.len());
+    Ok((baked, start.elapsed(), bytes))
 }
 
-fn report(input: &Path, output: &Path, baked: &Baked, write: Duration, timings: bool) -> String {
+fn report(
+    input: &Path,
+    output: &Path,
+    baked: &Baked,
+    write: Duration,
+    bytes: u64,
+    timings: bool,
+) -> String {
     let stats = &baked.asset.header.stats;
     let mut text = format!(
         "{} -> {}: {} triangles, {} edges kept of {} ({} creases, {} boundary, {} coplanar dropped), {} bytes",
@@ -323,7 +371,7 @@ fn report(input: &Path, output: &Path, baked: &Baked, write: Duration, timings: 
         stats.edges.crease,
         stats.edges.boundary,
         stats.edges.coplanar_dropped,
-        baked.asset.encoded_len(),
+        bytes,
     );
     let stitched = &baked.stitched;
     if stitched.boundary_before > stitched.boundary_after {

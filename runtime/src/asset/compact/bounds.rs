@@ -149,7 +149,9 @@ pub(crate) fn decode(
         let word = |k: usize| u16::from_le_bytes([r[2 * k], r[2 * k + 1]]);
         let axis = [word(4) as i16, word(5) as i16];
         if axis.iter().any(|&a| i32::from(a).abs() > limit) || word(7) != 0 {
-            return Err(format!("cluster {index}: axis code or padding out of range"));
+            return Err(format!(
+                "cluster {index}: axis code or padding out of range"
+            ));
         }
         let center = grid.position([word(0), word(1), word(2)]);
         if !center.iter().all(|v| v.is_finite()) {
@@ -170,13 +172,7 @@ pub(crate) fn decode(
                 round_down(half_angle(steps).cos()),
             ),
         };
-        clusters.push(EdgeCluster::new(
-            center,
-            radius,
-            axis,
-            cos_angle,
-            flags,
-        ));
+        clusters.push(EdgeCluster::new(center, radius, axis, cos_angle, flags));
     }
     Ok(clusters)
 }

@@ -41,7 +41,7 @@ impl VertexCorners {
         Self { starts, corners }
     }
 
-    pub(crate) fn of(&self, v: u32) -> &[u32] {
+    fn of(&self, v: u32) -> &[u32] {
         &self.corners[self.starts[v as usize] as usize..self.starts[v as usize + 1] as usize]
     }
 
@@ -50,32 +50,36 @@ impl VertexCorners {
     }
 }
 
-/// Corner `c`'s triangle's corners starting at `c`: `c`, the next, the previous.
-fn rotation(c: usize) -> [usize; 3] {
-    let (t, k) = (c / 3 * 3, c % 3);
-    [t + k, t + (k + 1) % 3, t + (k + 2) % 3]
+/// The corner before `c` in its triangle.
+fn corner_before(c: usize) -> usize {
+    if c.is_multiple_of(3) { c + 2 } else { c - 1 }
 }
 
-/// The edge whose face a has corner `c`.
+/// The edge whose face a has corner `c`: `v3` is the vertex opposite it in the lowest other
+/// triangle at `v0` that holds `v1`. (Face a is the lowest triangle that holds the edge, so the
+/// search starts after `c` in `v0`'s corners, which are in increasing order.)
 fn edge_at(c: usize, triangles: &[u32], corners: &VertexCorners) -> [u32; 4] {
-    let [a, b, o] = rotation(c).map(|i| triangles[i]);
-    let face = c / 3;
-    let v3 = corners
-        .of(a)
+    let (t, k) = (c / 3, c % 3);
+    let at = |i: usize| triangles[3 * t + (k + i) % 3];
+    let (a, b) = (at(0), at(1));
+    let fan = corners.of(a);
+    let after = fan.partition_point(|&other| other as usize <= c);
+    let v3 = fan[after..]
         .iter()
-        .filter(|&&other| other as usize / 3 != face)
-        .find_map(|&other| {
-            let [_, next, previous] = rotation(other as usize).map(|i| triangles[i]);
+        .map(|&other| other as usize)
+        .find_map(|other| {
+            let next = triangles[other / 3 * 3 + (other + 1) % 3];
+            let before = triangles[corner_before(other)];
             if next == b {
-                Some(previous)
-            } else if previous == b {
+                Some(before)
+            } else if before == b {
                 Some(next)
             } else {
                 None
             }
         })
         .unwrap_or(a);
-    [a, b, o, v3]
+    [a, b, at(2), v3]
 }
 
 /// One bit per corner of `triangles` (three indices each), or `None` if `edges` (four vertices
@@ -85,10 +89,9 @@ pub(crate) fn encode(edges: &[u32], triangles: &[u32], corners: &VertexCorners) 
     let mut previous = None;
     for edge in edges.chunks_exact(4) {
         let (v0, v1, v2) = (edge[0], edge[1], edge[2]);
-        let c = corners.of(v0).iter().copied().find(|&c| {
-            let [_, next, opposite] = rotation(c as usize).map(|i| triangles[i]);
-            next == v1 && opposite == v2
-        })? as usize;
+        let c = corners.of(v0).iter().map(|&c| c as usize).find(|&c| {
+            triangles[c / 3 * 3 + (c + 1) % 3] == v1 && triangles[corner_before(c)] == v2
+        })?;
         let key = (c / 3, v0);
         if previous.is_some_and(|p| p >= key) || edge_at(c, triangles, corners) != *edge {
             return None;
@@ -99,17 +102,20 @@ pub(crate) fn encode(edges: &[u32], triangles: &[u32], corners: &VertexCorners) 
     Some(bits)
 }
 
-/// The corner bits of a mesh, checked, with the number of set bits before every 64 corners: the
-/// edge that starts at a corner is its rank among the set corners.
+/// The corner bits of a mesh, checked, and the edge that starts at each corner.
 pub(crate) struct CornerBits {
     words: Vec<u64>,
-    ranks: Vec<u32>,
+    /// Per corner, the edge that starts there, or `NONE`.
+    edge_of_corner: Vec<u32>,
 }
 
+const NONE: u32 = u32::MAX;
+
 impl CornerBits {
-    /// Reads the bits of `corners` corners, which must be `edge_count` set bits, none past the
-    /// last corner. `Err` says what is wrong.
-    pub(crate) fn new(bytes: &[u8], corners: usize, edge_count: usize) -> Result<Self, String> {
+    /// Reads the bits of the corners of `triangles`, which must be `edge_count` set bits, none past
+    /// the last corner. `Err` says what is wrong.
+    pub(crate) fn new(bytes: &[u8], triangles: &[u32], edge_count: usize) -> Result<Self, String> {
+        let corners = triangles.len();
         if bytes.len() != corners.div_ceil(8) {
             return Err(format!(
                 "{} bytes of corner bits for {corners} corners (must be {})",
@@ -121,38 +127,53 @@ impl CornerBits {
         if spare > 0 && bytes[bytes.len() - 1] >> (8 - spare) != 0 {
             return Err("bits set past the last corner".into());
         }
-        let words: Vec<u64> = bytes
-            .chunks(8)
-            .map(|chunk| {
-                let mut word = [0u8; 8];
-                word[..chunk.len()].copy_from_slice(chunk);
-                u64::from_le_bytes(word)
-            })
-            .collect();
-        let mut ranks = Vec::with_capacity(words.len() + 1);
-        let mut set = 0u64;
-        for word in &words {
-            ranks.push(set as u32);
-            set += u64::from(word.count_ones());
-        }
+        // One spare word, so that the three bits of a triangle are always two words' reach.
+        let mut words: Vec<u64> = Vec::with_capacity(bytes.len() / 8 + 2);
+        words.extend(bytes.chunks(8).map(|chunk| {
+            let mut word = [0u8; 8];
+            word[..chunk.len()].copy_from_slice(chunk);
+            u64::from_le_bytes(word)
+        }));
+        words.push(0);
+        let set: u64 = words.iter().map(|w| u64::from(w.count_ones())).sum();
         if set != edge_count as u64 {
             return Err(format!("{set} corners set for {edge_count} edges"));
         }
-        Ok(Self { words, ranks })
-    }
-
-    fn is_set(&self, c: usize) -> bool {
-        self.words[c / 64] >> (c % 64) & 1 != 0
-    }
-
-    /// The number of set corners before corner `c` (`c` at most the corner count).
-    pub(crate) fn rank(&self, c: usize) -> usize {
-        let Some(&before) = self.ranks.get(c / 64) else {
-            return self.ranks.last().map_or(0, |&r| r as usize)
-                + self.words.last().map_or(0, |w| w.count_ones() as usize);
+        let mut bits = Self {
+            words,
+            edge_of_corner: Vec::new(),
         };
-        let below = self.words[c / 64] & ((1u64 << (c % 64)) - 1);
-        before as usize + below.count_ones() as usize
+        // Set corners come in corner order; within a triangle the edges go by `v0`, so each
+        // triangle's set corners are numbered together once its last one is seen.
+        let mut edge_of_corner = vec![NONE; corners];
+        let mut next = 0u32;
+        let mut group: ([usize; 3], usize) = ([0; 3], 0);
+        let mut flush = |(members, n): ([usize; 3], usize), edge_of_corner: &mut [u32]| {
+            let members = &mut { members }[..n];
+            if n > 1 {
+                members.sort_unstable_by_key(|&c| (triangles[c], c));
+            }
+            for &c in members.iter() {
+                edge_of_corner[c] = next;
+                next += 1;
+            }
+        };
+        for (w, &word) in bits.words.iter().enumerate() {
+            let mut rest = word;
+            while rest != 0 {
+                let c = w * 64 + rest.trailing_zeros() as usize;
+                rest &= rest - 1;
+                if group.1 > 0 && group.0[0] / 3 != c / 3 {
+                    flush(group, &mut edge_of_corner);
+                    group.1 = 0;
+                }
+                group.0[group.1] = c;
+                group.1 += 1;
+            }
+        }
+        flush(group, &mut edge_of_corner);
+        bits.edge_of_corner = edge_of_corner;
+        Ok(bits)
     }
 
     /// The edge ends (`2 * edge + end`) at vertex `v`, ascending, into `out`: the `v0` end of the
@@ -161,15 +182,61 @@ impl CornerBits {
         out.clear();
         for &c in corners.of(v) {
             let c = c as usize;
-            if self.is_set(c) {
-                out.push(2 * self.rank(c) as u32);
+            let starting = self.edge_of_corner[c];
+            if starting != NONE {
+                out.push(2 * starting);
             }
-            let previous = rotation(c)[2];
-            if self.is_set(previous) {
-                out.push(2 * self.rank(previous) as u32 + 1);
+            let ending = self.edge_of_corner[corner_before(c)];
+            if ending != NONE {
+                out.push(2 * ending + 1);
             }
         }
         out.sort_unstable();
+    }
+
+    /// The set corners of triangle `t`, in the order of their edges: by `v0`, then by corner.
+    fn set_in(&self, t: usize, triangles: &[u32]) -> [Option<usize>; 3] {
+        let c = 3 * t;
+        let (w, shift) = (c / 64, c % 64);
+        let mut three = self.words[w] >> shift;
+        if shift > 61 {
+            three |= self.words[w + 1] << (64 - shift);
+        }
+        let key = |k: usize| (triangles[c + k], k);
+        match three & 7 {
+            0 => [None; 3],
+            1 => [Some(c), None, None],
+            2 => [Some(c + 1), None, None],
+            4 => [Some(c + 2), None, None],
+            pair @ (3 | 5 | 6) => {
+                let (x, y) = match pair {
+                    3 => (0, 1),
+                    5 => (0, 2),
+                    _ => (1, 2),
+                };
+                let (x, y) = if key(x) < key(y) { (x, y) } else { (y, x) };
+                [Some(c + x), Some(c + y), None]
+            }
+            _ => {
+                let mut order = [0, 1, 2];
+                order.sort_unstable_by_key(|&k| key(k));
+                order.map(|k| Some(c + k))
+            }
+        }
+    }
+
+    /// The number of edges before those of triangle `t` (`t` at most the triangle count).
+    pub(crate) fn edges_before(&self, t: usize) -> usize {
+        let c = 3 * t;
+        let whole: usize = self.words[..c / 64]
+            .iter()
+            .map(|w| w.count_ones() as usize)
+            .sum();
+        let part = self
+            .words
+            .get(c / 64)
+            .map_or(0, |w| (w & ((1u64 << (c % 64)) - 1)).count_ones() as usize);
+        whole + part
     }
 }
 
@@ -184,17 +251,7 @@ pub(crate) fn decode_range(
 ) {
     let mut edges = out.chunks_exact_mut(4);
     for t in range {
-        let first = 3 * t;
-        let mut set = [(0u32, 0usize); 3];
-        let mut n = 0;
-        for c in first..first + 3 {
-            if bits.is_set(c) {
-                set[n] = (triangles[c], c);
-                n += 1;
-            }
-        }
-        set[..n].sort_unstable();
-        for &(_, c) in &set[..n] {
+        for c in bits.set_in(t, triangles).into_iter().flatten() {
             if let Some(edge) = edges.next() {
                 edge.copy_from_slice(&edge_at(c, triangles, corners));
             }

@@ -77,7 +77,8 @@ fn encode_mesh(
     coded.push((SectionKind::RenderVertexCountsCoded, bytes));
 
     let topology = topology_triangles(&triangles, counts);
-    let corners = VertexCorners::new(&topology, asset.topology_positions.len());
+    let vertex_count = asset.topology_positions.len();
+    let corners = VertexCorners::new(&topology, vertex_count);
     let Some(bits) = edges::encode(&asset.edge_vertices.to_u32_vec(), &topology, &corners) else {
         return coded;
     };
@@ -87,7 +88,7 @@ fn encode_mesh(
     if asset.next_ends.is_empty() {
         return coded;
     }
-    let Ok(bits) = CornerBits::new(&bits, topology.len(), asset.edge_count()) else {
+    let Ok(bits) = CornerBits::new(&bits, &topology, asset.edge_count()) else {
         return coded;
     };
     let code = rings::encode(

@@ -103,4 +103,3 @@ pub trait Codecs {
 
 #[cfg(test)]
 mod tests;
-

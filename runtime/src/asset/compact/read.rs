@@ -89,21 +89,26 @@ impl Reader {
             return floats(kind, rest, count);
         }
         let (grid, rest) = read_grid(bits, rest)?;
-        let points = vertex_codec::decode(rest, count, 8).map_err(codec_error(kind))?;
+        // The grid points (8 bytes) are decoded into the front of the positions (12 bytes) and
+        // widened in place from the back, so the points need no buffer of their own.
+        vertex_codec::fits(rest, count, 8).map_err(codec_error(kind))?;
+        let mut positions = vec![[0.0f32; 3]; count];
+        let bytes: &mut [u8] = bytemuck::cast_slice_mut(&mut positions);
+        vertex_codec::decode_into(rest, &mut bytes[..8 * count], 8).map_err(codec_error(kind))?;
         let top = (1u32 << bits) - 1;
-        let mut positions = Vec::with_capacity(count);
-        for (position, p) in points.chunks_exact(8).enumerate() {
+        for i in (0..count).rev() {
+            let p = &bytes[8 * i..8 * i + 6];
             let q = [0, 2, 4].map(|k| u16::from_le_bytes([p[k], p[k + 1]]));
             // A grid point past `2^bits - 1`, or one whose position overflows, is not a position.
             let point = grid.position(q);
             if q.iter().any(|&v| u32::from(v) > top) || !point.iter().all(|v| v.is_finite()) {
                 return Err(DecodeError::Invalid {
                     kind,
-                    position: position as u64,
+                    position: i as u64,
                     reason: format!("grid point beyond {bits} bits or not finite"),
                 });
             }
-            positions.push(point);
+            bytes[12 * i..12 * i + 12].copy_from_slice(bytemuck::bytes_of(&point));
         }
         Ok(positions)
     }
@@ -122,10 +127,14 @@ impl Reader {
                 format!("{bits} bits per component (2 to 16, or 32)"),
             ));
         }
-        let codes = vertex_codec::decode(rest, count, 4).map_err(codec_error(kind))?;
+        // Codes (4 bytes) decoded into the front of the normals and widened in place from the back.
+        vertex_codec::fits(rest, count, 4).map_err(codec_error(kind))?;
+        let mut normals = vec![[0.0f32; 3]; count];
+        let bytes: &mut [u8] = bytemuck::cast_slice_mut(&mut normals);
+        vertex_codec::decode_into(rest, &mut bytes[..4 * count], 4).map_err(codec_error(kind))?;
         let scale = (1i32 << (bits - 1)) - 1;
-        let mut normals = Vec::with_capacity(count);
-        for (position, c) in codes.chunks_exact(4).enumerate() {
+        for i in (0..count).rev() {
+            let c = &bytes[4 * i..4 * i + 4];
             let code = [
                 i16::from_le_bytes([c[0], c[1]]),
                 i16::from_le_bytes([c[2], c[3]]),
@@ -133,11 +142,12 @@ impl Reader {
             if code.iter().any(|&v| i32::from(v).abs() > scale) {
                 return Err(DecodeError::Invalid {
                     kind,
-                    position: position as u64,
+                    position: i as u64,
                     reason: format!("octahedral code beyond {bits} bits"),
                 });
             }
-            normals.push(quantize::decode_octahedral(code, bits));
+            let normal = quantize::decode_octahedral(code, bits);
+            bytes[12 * i..12 * i + 12].copy_from_slice(bytemuck::bytes_of(&normal));
         }
         Ok(normals)
     }
@@ -145,16 +155,16 @@ impl Reader {
     /// The edge attribute words.
     pub(crate) fn words(&self, kind: SectionKind, bytes: &[u8]) -> Result<Vec<u32>, DecodeError> {
         let (count, rest) = self.count(kind, bytes)?;
-        let bytes = vertex_codec::decode(rest, count, 4).map_err(codec_error(kind))?;
-        Ok(bytemuck::pod_collect_to_vec(&bytes))
+        vertex_codec::decode(rest, count).map_err(codec_error(kind))
     }
 
     /// The render vertex counts.
     pub(crate) fn counts(&self, bytes: &[u8]) -> Result<Vec<u8>, DecodeError> {
         let kind = SectionKind::RenderVertexCountsCoded;
         let (count, rest) = self.count(kind, bytes)?;
-        let mut counts =
-            vertex_codec::decode(rest, count.div_ceil(4), 4).map_err(codec_error(kind))?;
+        let words: Vec<[u8; 4]> =
+            vertex_codec::decode(rest, count.div_ceil(4)).map_err(codec_error(kind))?;
+        let mut counts: Vec<u8> = bytemuck::cast_vec(words);
         if counts[count..].iter().any(|&c| c != 0) {
             return Err(coding_error(
                 kind,
@@ -165,16 +175,16 @@ impl Reader {
         Ok(counts)
     }
 
-    /// The corner bits of a mesh of `corners` corners, and the number of edges they hold.
+    /// The corner bits of the corners of `triangles`, and the number of edges they hold.
     pub(crate) fn corner_bits(
         &self,
         bytes: &[u8],
-        corners: usize,
+        triangles: &[u32],
     ) -> Result<(usize, CornerBits), DecodeError> {
         let kind = SectionKind::EdgeCorners;
         let (edges, bits) = self.count(kind, bytes)?;
         let bits =
-            CornerBits::new(bits, corners, edges).map_err(|reason| coding_error(kind, reason))?;
+            CornerBits::new(bits, triangles, edges).map_err(|reason| coding_error(kind, reason))?;
         Ok((edges, bits))
     }
 
@@ -199,9 +209,9 @@ impl Reader {
         let (prefix, rest) = rest
             .split_first_chunk::<{ bounds::PREFIX_BYTES }>()
             .ok_or_else(|| coding_error(kind, "shorter than its grid"))?;
-        let records = vertex_codec::decode(rest, count, bounds::RECORD_BYTES)
-            .map_err(codec_error(kind))?;
-        bounds::decode(prefix, &records, edge_attributes)
+        let records: Vec<[u8; bounds::RECORD_BYTES]> =
+            vertex_codec::decode(rest, count).map_err(codec_error(kind))?;
+        bounds::decode(prefix, records.as_flattened(), edge_attributes)
             .map_err(|reason| coding_error(kind, reason))
     }
 }
@@ -270,8 +280,7 @@ fn read_grid(bits: u32, bytes: &[u8]) -> Result<(Grid, &[u8]), DecodeError> {
 }
 
 fn floats(kind: SectionKind, rest: &[u8], count: usize) -> Result<Vec<[f32; 3]>, DecodeError> {
-    let bytes = vertex_codec::decode(rest, count, 12).map_err(codec_error(kind))?;
-    let values: Vec<[f32; 3]> = bytemuck::pod_collect_to_vec(&bytes);
+    let values: Vec<[f32; 3]> = vertex_codec::decode(rest, count).map_err(codec_error(kind))?;
     match values.iter().position(|v| !v.iter().all(|x| x.is_finite())) {
         Some(position) => Err(DecodeError::NonFinite {
             kind,

@@ -25,21 +25,20 @@ pub(crate) enum RingError {
     Code(&'static str),
 }
 
-/// The code of `next` and `heads` over the edges of `bits` (corners of `triangles`), or `None`
+/// The code of `next` and `heads` over the edges of `bits`, or `None`
 /// when they are not one ring per vertex with two or more ends, each with one head, heads by
 /// increasing vertex (as the bake builds them). Also returns the number of bits of code.
 pub(crate) fn encode(
     next: &[u32],
     heads: &[u32],
     bits: &CornerBits,
-    triangles: &[u32],
     corners: &VertexCorners,
 ) -> Option<(Vec<u8>, u64)> {
     let mut writer = BitWriter::default();
     let mut heads = heads.iter();
     let mut left = Vec::new();
     for v in 0..corners.vertex_count() as u32 {
-        bits.ends_at(v, triangles, corners, &mut left);
+        bits.ends_at(v, corners, &mut left);
         match left.len() {
             0 => continue,
             1 => {
@@ -70,12 +69,11 @@ pub(crate) fn encode(
 }
 
 /// Rebuilds the rings (a next end per end, `end_count` of them) and heads over the edges of
-/// `bits` (corners of `triangles`) from their code of `code_bits` bits.
+/// `bits` from their code of `code_bits` bits.
 pub(crate) fn decode(
     bytes: &[u8],
     code_bits: u64,
     bits: &CornerBits,
-    triangles: &[u32],
     corners: &VertexCorners,
     end_count: usize,
 ) -> Result<(Vec<u32>, Vec<u32>), RingError> {
@@ -87,7 +85,7 @@ pub(crate) fn decode(
     let mut heads = Vec::new();
     let mut left = Vec::new();
     for v in 0..corners.vertex_count() as u32 {
-        bits.ends_at(v, triangles, corners, &mut left);
+        bits.ends_at(v, corners, &mut left);
         if left.len() < 2 {
             continue;
         }
@@ -118,9 +116,7 @@ pub(crate) fn decode(
         if let Some(p) = previous {
             next[p as usize] = left[0];
         }
-        next[left[0] as usize] = *heads
-            .last()
-            .ok_or(RingError::Code("a ring has no head"))?;
+        next[left[0] as usize] = *heads.last().ok_or(RingError::Code("a ring has no head"))?;
     }
     if reader.consumed != code_bits || !reader.rest_is_padding() {
         return Err(RingError::Code(

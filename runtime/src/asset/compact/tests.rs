@@ -31,6 +31,18 @@ fn mixed_bytes(len: usize, seed: u32) -> Vec<u8> {
         .collect()
 }
 
+/// The vertex decoder's bytes for `count` vertices of `stride` bytes.
+fn decode_bytes(
+    encoded: &[u8],
+    count: usize,
+    stride: usize,
+) -> Result<Vec<u8>, vertex_codec::CodecError> {
+    vertex_codec::fits(encoded, count, stride)?;
+    let mut out = vec![0u8; count * stride];
+    vertex_codec::decode_into(encoded, &mut out, stride)?;
+    Ok(out)
+}
+
 #[test]
 fn the_vertex_decoder_reads_what_the_reference_encoder_writes() {
     for (count, seed) in [
@@ -59,7 +71,7 @@ fn the_vertex_decoder_reads_what_the_reference_encoder_writes() {
                     _ => reference_vertices_v0::<[u8; 16]>(&data),
                 },
             ] {
-                let decoded = vertex_codec::decode(&encoded, count, stride)
+                let decoded = decode_bytes(&encoded, count, stride)
                     .unwrap_or_else(|e| panic!("{count} × {stride}: {e:?}"));
                 assert_eq!(decoded, data, "{count} vertices of {stride} bytes");
             }
@@ -73,22 +85,19 @@ fn the_vertex_decoder_refuses_what_the_reference_decoder_refuses() {
     let encoded = reference_vertices::<[u8; 8]>(&data);
     // Every truncation, a wrong count and flipped bytes: the same verdict as meshoptimizer's.
     for cut in (0..encoded.len()).step_by(7) {
-        let ours = vertex_codec::decode(&encoded[..cut], 300, 8);
+        let ours = decode_bytes(&encoded[..cut], 300, 8);
         let theirs = meshopt::decode_vertex_buffer::<[u8; 8]>(&encoded[..cut], 300);
         assert_eq!(ours.is_ok(), theirs.is_ok(), "cut at {cut}");
     }
     // (A count within the last block's group of 16 decodes the same bytes: the stream does not
     // store the count, only the caller does.)
     for count in [0usize, 100, 256, 1 << 30] {
-        assert!(
-            vertex_codec::decode(&encoded, count, 8).is_err(),
-            "count {count}"
-        );
+        assert!(decode_bytes(&encoded, count, 8).is_err(), "count {count}");
     }
     for at in (0..encoded.len()).step_by(3) {
         let mut bad = encoded.clone();
         bad[at] ^= 0x5a;
-        let ours = vertex_codec::decode(&bad, 300, 8);
+        let ours = decode_bytes(&bad, 300, 8);
         let theirs = meshopt::decode_vertex_buffer::<[u8; 8]>(&bad, 300);
         assert_eq!(ours.is_ok(), theirs.is_ok(), "byte {at} flipped");
         if let (Ok(a), Ok(b)) = (ours, theirs) {
@@ -201,7 +210,7 @@ fn decode_edges(
     triangles: &[u32],
     corners: &edges::VertexCorners,
 ) -> Result<Vec<u32>, String> {
-    let bits = edges::CornerBits::new(bits, triangles.len(), count)?;
+    let bits = edges::CornerBits::new(bits, triangles, count)?;
     let mut out = vec![0; 4 * count];
     edges::decode_range(&bits, triangles, corners, 0..triangles.len() / 3, &mut out);
     Ok(out)
@@ -211,7 +220,7 @@ fn decode_edges(
 fn rings_round_trip_through_their_orders() {
     let (triangles, all, corners) = quad();
     let bits = edges::encode(&all, &triangles, &corners).expect("codable");
-    let bits = edges::CornerBits::new(&bits, 6, 5).expect("bits");
+    let bits = edges::CornerBits::new(&bits, &triangles, 5).expect("bits");
     // Ends (2 * edge + end) per vertex: 0: 0, 5, 9; 1: 1, 2; 2: 3, 4, 6; 3: 7, 8.
     let mut at = Vec::new();
     bits.ends_at(0, &corners, &mut at);

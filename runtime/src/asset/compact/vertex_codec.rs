@@ -46,8 +46,9 @@ fn block_vertices(stride: usize) -> usize {
     ((BLOCK_BYTES / stride) & !(GROUP - 1)).min(BLOCK_MAX_VERTICES)
 }
 
-/// Decodes `count` vertices of `stride` bytes (a multiple of 4, at most 256).
-pub(crate) fn decode(encoded: &[u8], count: usize, stride: usize) -> Result<Vec<u8>, CodecError> {
+/// The stream's version after its header, if `encoded` could hold `count` vertices of `stride`
+/// bytes: what a caller checks before allocating the output.
+pub(crate) fn fits(encoded: &[u8], count: usize, stride: usize) -> Result<u8, CodecError> {
     if stride == 0 || stride > 256 || !stride.is_multiple_of(4) {
         return Err(CodecError::Malformed);
     }
@@ -56,31 +57,60 @@ pub(crate) fn decode(encoded: &[u8], count: usize, stride: usize) -> Result<Vec<
         return Err(CodecError::Header);
     }
     let version = header & 0x0f;
-    let tail_len = stride + if version == 0 { 0 } else { stride / 4 };
-    let tail_padded = tail_len.max(if version == 0 { 32 } else { 24 });
-    if body.len() < tail_padded {
+    if body.len() < tail_padded(version, stride) {
         return Err(CodecError::Truncated);
     }
-    let tail = &body[body.len() - tail_len..];
+    // Every block reads at least a header byte per vertex byte (version 0) or a control byte per
+    // four (version 1): a count the stream cannot hold is refused before anything is allocated.
+    let least_per_block = if version == 0 { stride } else { stride / 4 };
+    if count
+        .div_ceil(block_vertices(stride))
+        .saturating_mul(least_per_block)
+        > body.len()
+    {
+        return Err(CodecError::Truncated);
+    }
+    Ok(version)
+}
+
+fn tail_len(version: u8, stride: usize) -> usize {
+    stride + if version == 0 { 0 } else { stride / 4 }
+}
+
+fn tail_padded(version: u8, stride: usize) -> usize {
+    tail_len(version, stride).max(if version == 0 { 32 } else { 24 })
+}
+
+/// Decodes `count` vertices of type `T` (whose size is the stride: a multiple of 4, at most 256).
+pub(crate) fn decode<T: bytemuck::Pod>(encoded: &[u8], count: usize) -> Result<Vec<T>, CodecError> {
+    fits(encoded, count, std::mem::size_of::<T>())?;
+    let mut out = vec![T::zeroed(); count];
+    decode_into(
+        encoded,
+        bytemuck::cast_slice_mut(&mut out),
+        std::mem::size_of::<T>(),
+    )?;
+    Ok(out)
+}
+
+/// Decodes `out.len() / stride` vertices of `stride` bytes into `out` (which the caller sized after
+/// [`fits`]).
+pub(crate) fn decode_into(encoded: &[u8], out: &mut [u8], stride: usize) -> Result<(), CodecError> {
+    let count = out.len() / stride;
+    let version = fits(encoded, count, stride)?;
+    let body = &encoded[1..];
+    let tail = &body[body.len() - tail_len(version, stride)..];
     let mut last = [0u8; 256];
     last[..stride].copy_from_slice(&tail[..stride]);
     let channels = &tail[stride..];
-    // Every block reads at least a header byte per vertex byte (version 0) or a control byte per
-    // four (version 1): a count the stream cannot hold is refused before anything is allocated.
-    let per_block = block_vertices(stride);
-    let least_per_block = if version == 0 { stride } else { stride / 4 };
-    if count.div_ceil(per_block).saturating_mul(least_per_block) > body.len() {
-        return Err(CodecError::Truncated);
-    }
-    let mut out = vec![0u8; count * stride];
     let mut reader = Reader { data: body, at: 0 };
-    for chunk in out.chunks_mut(per_block * stride) {
+    for chunk in out[..count * stride].chunks_mut(block_vertices(stride) * stride) {
         reader.block(chunk, stride, &mut last, version, channels)?;
     }
-    if body.len() - reader.at != tail_padded {
+    if body.len() - reader.at != tail_padded(version, stride) {
         return Err(CodecError::Malformed);
     }
-    Ok(out)
+    Ok(())
 }
 
 struct Reader<'a> {
