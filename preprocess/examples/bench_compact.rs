@@ -92,9 +92,9 @@ fn measure(mesh: &Path, out: &Path, runs: usize) -> Result<(), Box<dyn std::erro
     // The GPU-ready bytes a load produces: every section the renderer uploads.
     let gpu_bytes: usize = SectionKind::ALL
         .iter()
+        .filter(|k| k.is_gpu_ready())
         .map(|&k| decoded.section_bytes(k).len())
-        .sum::<usize>()
-        + std::mem::size_of_val(decoded.render_positions.as_slice());
+        .sum();
 
     println!(
         "### {name}: {} triangles, {} edges (bake {:.0} ms)\n",
@@ -145,15 +145,18 @@ fn measure(mesh: &Path, out: &Path, runs: usize) -> Result<(), Box<dyn std::erro
     }
     println!("\nGPU-ready bytes after a load: {gpu_bytes}\n");
 
-    // Each section: stored, decoded, and the time its decode step takes (median).
+    // Each section: stored, decoded, and what its decode steps take (median of their sums).
     let mut steps: Vec<Vec<(SectionKind, Duration)>> = Vec::new();
     for _ in 0..runs {
-        let times = std::sync::Mutex::new((Instant::now(), Vec::new()));
+        let times = std::sync::Mutex::new((Instant::now(), Vec::<(SectionKind, Duration)>::new()));
         Asset::decode_observed(&compact, &|kind| {
             if let Ok(mut times) = times.lock() {
                 let now = Instant::now();
                 let since = now - times.0;
-                times.1.push((kind, since));
+                match times.1.iter_mut().find(|(k, _)| *k == kind) {
+                    Some((_, total)) => *total += since,
+                    None => times.1.push((kind, since)),
+                }
                 times.0 = now;
             }
         })?;
@@ -161,17 +164,20 @@ fn measure(mesh: &Path, out: &Path, runs: usize) -> Result<(), Box<dyn std::erro
     }
     let stored = Asset::decode(&compact)?.header.sections;
     let raw_sections = asset.encoded_sections();
+    let length = |table: &[chamfer_runtime::asset::SectionEntry], k: SectionKind| {
+        table
+            .iter()
+            .find(|s| s.kind == k as u32)
+            .map_or(0, |s| s.length)
+    };
     println!("| section | stored bytes | replaces | raw bytes | saved | decode ms |");
     println!("|---|---:|---|---:|---:|---:|");
-    for (i, &(kind, _)) in steps[0].iter().enumerate() {
-        let mut times: Vec<Duration> = steps.iter().map(|s| s[i].1).collect();
+    for &(kind, _) in &steps[0] {
+        let mut times: Vec<Duration> = steps
+            .iter()
+            .filter_map(|s| s.iter().find(|(k, _)| *k == kind).map(|(_, d)| *d))
+            .collect();
         times.sort_unstable();
-        let length = |table: &[chamfer_runtime::asset::SectionEntry], k: SectionKind| {
-            table
-                .iter()
-                .find(|s| s.kind == k as u32)
-                .map_or(0, |s| s.length)
-        };
         let twin = kind.twin();
         let raw_bytes = twin.map_or(length(&raw_sections, kind), |t| {
             length(&raw_sections, t)

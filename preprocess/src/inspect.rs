@@ -2,7 +2,7 @@
 //! exactly this) and the Python package's `Asset.stats` returns. Its keys are stable: pipelines
 //! read them.
 
-use chamfer_runtime::asset::{Asset, SectionKind};
+use chamfer_runtime::asset::{Asset, Precision, SectionKind};
 use serde_json::json;
 
 /// Bytes of the sections that describe edges, per kept edge: the figure the thesis compares (§11.2).
@@ -19,10 +19,12 @@ pub fn edge_bytes(asset: &Asset) -> u64 {
 }
 
 /// The report of `asset`, whose file is `total_bytes` long (its [`encoded_len`](Asset::encoded_len)
-/// when it was never written): counts, edge classes, chamfer radii, intersections, bounds and bytes
-/// per section (the file's own section table when the asset was decoded from one, else what
-/// encoding it writes).
-pub fn summary(asset: &Asset, total_bytes: u64) -> serde_json::Value {
+/// when it was never written) and stores positions and normals with `precision` (read from the
+/// file with [`Asset::precision`]; `None`: exact): counts, edge classes, chamfer radii,
+/// intersections, bounds, the precision, and bytes per section as stored (the file's own section
+/// table when the asset was decoded from one, else what encoding it writes) and as decoded (the
+/// GPU-ready arrays, what an uncompressed file stores).
+pub fn summary(asset: &Asset, total_bytes: u64, precision: Option<Precision>) -> serde_json::Value {
     let s = &asset.header.stats;
     let e = &s.edges;
     // The file's own table when the asset was read from one, else what encoding it writes.
@@ -41,6 +43,14 @@ pub fn summary(asset: &Asset, total_bytes: u64) -> serde_json::Value {
         .iter()
         .map(|&k| (k.name().to_owned(), json!(length(k))))
         .collect();
+    // The arrays a load hands the renderer: the raw kinds, whatever the file stored.
+    let decoded: serde_json::Map<String, serde_json::Value> = SectionKind::ALL
+        .iter()
+        .filter(|k| k.is_gpu_ready())
+        .map(|&k| (k.name().to_owned(), json!(asset.section_bytes(k).len())))
+        .collect();
+    let decoded_total: u64 = decoded.values().filter_map(|v| v.as_u64()).sum();
+    let precision = precision.unwrap_or(Precision::EXACT);
     let per_edge = if asset.edge_count() == 0 {
         0.0
     } else {
@@ -86,7 +96,19 @@ pub fn summary(asset: &Asset, total_bytes: u64) -> serde_json::Value {
             "length": asset.intersection_length(),
         },
         "bounds": { "min": asset.header.bounds_min, "max": asset.header.bounds_max },
-        "bytes": { "total": total_bytes, "per_section": per_section, "per_edge": per_edge },
+        "precision": {
+            "position_bits": precision.position_bits,
+            "position_error": precision.position_error,
+            "normal_bits": precision.normal_bits,
+            "normal_error_radians": precision.normal_error,
+        },
+        "bytes": {
+            "total": total_bytes,
+            "per_section": per_section,
+            "decoded_per_section": decoded,
+            "decoded_total": decoded_total,
+            "per_edge": per_edge,
+        },
     })
 }
 

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use chamfer_preprocess::Limits;
 use chamfer_preprocess::write::write_atomically;
-use chamfer_runtime::asset::{Asset, EdgeFlags, Indices};
+use chamfer_runtime::asset::{Asset, CompactOptions, EdgeFlags, Indices, Precision};
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
@@ -22,18 +22,32 @@ use crate::errors::{self, Failure};
 #[pyclass(frozen, module = "chamfer", name = "Asset")]
 pub struct PyAsset {
     asset: Asset,
-    /// The length of the file it was read from; `None` for an asset never written.
-    file_bytes: Option<u64>,
+    /// The length of the file it was read from and the precision that file stores; `None` for an
+    /// asset never written.
+    file: Option<(u64, Precision)>,
     warnings: Vec<String>,
 }
 
 impl PyAsset {
-    pub fn new(asset: Asset, file_bytes: Option<u64>, warnings: Vec<String>) -> Self {
+    pub fn new(asset: Asset, file: Option<(u64, Precision)>, warnings: Vec<String>) -> Self {
         Self {
             asset,
-            file_bytes,
+            file,
             warnings,
         }
+    }
+
+    /// The asset decoded from a file's `bytes`.
+    fn from_file(asset: Asset, bytes: &[u8]) -> Self {
+        let precision = Asset::precision(bytes).unwrap_or(Precision::EXACT);
+        Self::new(asset, Some((bytes.len() as u64, precision)), Vec::new())
+    }
+
+    /// The file's bytes: compact (format 5's coded sections) or not.
+    fn file_bytes(&self, compact: Option<CompactOptions>) -> std::io::Result<Vec<u8>> {
+        let mut bytes = Vec::new();
+        chamfer_preprocess::compact::encode(&self.asset, compact.as_ref(), &mut bytes)?;
+        Ok(bytes)
     }
 
     pub fn asset(&self) -> &Asset {
@@ -75,8 +89,11 @@ impl PyAsset {
     /// intersections {...}, bounds, bytes {...}).
     #[getter]
     fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let total = self.file_bytes.unwrap_or_else(|| self.asset.encoded_len());
-        let report = chamfer_preprocess::inspect::summary(&self.asset, total);
+        let (total, precision) = match self.file {
+            Some((bytes, precision)) => (bytes, Some(precision)),
+            None => (self.asset.encoded_len(), None),
+        };
+        let report = chamfer_preprocess::inspect::summary(&self.asset, total, precision);
         // The report is JSON already (one source of truth with the CLI); Python's json module
         // turns it into dicts, lists and numbers.
         py.import("json")?
@@ -218,17 +235,43 @@ impl PyAsset {
         view(slf.as_any(), starts, &[starts.len()])
     }
 
-    /// The asset as the bytes of a `.chamfer` file (what save() writes).
-    fn encode<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
-        let bytes = py.detach(|| self.asset.encode_to_vec());
-        PyBytes::new(py, &bytes)
+    /// The asset as the bytes of a `.chamfer` file (what save() writes): with `compact`, the
+    /// compact format for shipping (positions on a grid of `position_bits` per axis, normals as
+    /// `normal_bits` octahedral codes; 32 keeps either exact), as `chamfer bake --compact`.
+    #[pyo3(signature = (*, compact = false, position_bits = 16, normal_bits = 12))]
+    fn encode<'py>(
+        &self,
+        py: Python<'py>,
+        compact: bool,
+        position_bits: u32,
+        normal_bits: u32,
+    ) -> PyResult<Bound<'py, PyBytes>> {
+        let options = compact_options(compact, position_bits, normal_bits)?;
+        let bytes = py
+            .detach(|| self.file_bytes(options))
+            .map_err(|e| errors::internal(e.to_string()))?;
+        Ok(PyBytes::new(py, &bytes))
     }
 
     /// Writes the asset to `path` through a temporary file renamed into place: a failure leaves
-    /// an existing file as it was; a FIFO or device is never replaced.
-    fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
-        py.detach(|| write_atomically(&path, |out| self.asset.encode(out)))
-            .map_err(|e| errors::from_library_writing(e, &path))
+    /// an existing file as it was; a FIFO or device is never replaced. `compact`, `position_bits`
+    /// and `normal_bits` as for encode().
+    #[pyo3(signature = (path, *, compact = false, position_bits = 16, normal_bits = 12))]
+    fn save(
+        &self,
+        py: Python<'_>,
+        path: PathBuf,
+        compact: bool,
+        position_bits: u32,
+        normal_bits: u32,
+    ) -> PyResult<()> {
+        let options = compact_options(compact, position_bits, normal_bits)?;
+        py.detach(|| {
+            write_atomically(&path, |out| {
+                chamfer_preprocess::compact::encode(&self.asset, options.as_ref(), out)
+            })
+        })
+        .map_err(|e| errors::from_library_writing(e, &path))
     }
 
     fn __reduce__<'py>(
@@ -236,7 +279,8 @@ impl PyAsset {
         py: Python<'py>,
     ) -> PyResult<(Bound<'py, PyAny>, (Bound<'py, PyBytes>,))> {
         let decode = py.import("chamfer._chamfer")?.getattr("decode")?;
-        Ok((decode, (self.encode(py),)))
+        let bytes = py.detach(|| self.asset.encode_to_vec());
+        Ok((decode, (PyBytes::new(py, &bytes),)))
     }
 
     fn __repr__(&self) -> String {
@@ -254,12 +298,12 @@ impl PyAsset {
 /// 2 GiB) or AssetError (not a valid asset), each naming the file.
 #[pyfunction]
 pub fn load(py: Python<'_>, path: PathBuf) -> PyResult<PyAsset> {
-    let (asset, length) = py.detach(|| -> Result<_, Failure> {
+    let asset = py.detach(|| -> Result<_, Failure> {
         let bytes = chamfer_preprocess::load::read(&path, &Limits::DEFAULT)?;
         let asset = Asset::decode(&bytes).map_err(|e| Failure::Decode(path.clone(), e))?;
-        Ok((asset, bytes.len() as u64))
+        Ok(PyAsset::from_file(asset, &bytes))
     })?;
-    Ok(PyAsset::new(asset, Some(length), Vec::new()))
+    Ok(asset)
 }
 
 /// Decodes the bytes of a `.chamfer` file (what Asset.encode() returns); `name` names them in
@@ -270,7 +314,30 @@ pub fn decode(py: Python<'_>, data: &[u8], name: &str) -> PyResult<PyAsset> {
     let asset = py
         .detach(|| Asset::decode(data))
         .map_err(|e| errors::from_decode(name.as_ref(), e))?;
-    Ok(PyAsset::new(asset, Some(data.len() as u64), Vec::new()))
+    Ok(PyAsset::from_file(asset, data))
+}
+
+/// The compact options of encode() and save(), checked; `None` when not compact.
+fn compact_options(
+    compact: bool,
+    position_bits: u32,
+    normal_bits: u32,
+) -> PyResult<Option<CompactOptions>> {
+    if !compact {
+        let defaults = CompactOptions::default();
+        if (position_bits, normal_bits) != (defaults.position_bits, defaults.normal_bits) {
+            return Err(errors::options(
+                "position_bits and normal_bits apply to compact files: pass compact=True".into(),
+            ));
+        }
+        return Ok(None);
+    }
+    let options = CompactOptions {
+        position_bits,
+        normal_bits,
+    };
+    options.check().map_err(errors::options)?;
+    Ok(Some(options))
 }
 
 /// The edge flag names and bits, for `chamfer.EdgeFlags`.

@@ -392,6 +392,12 @@ impl SectionKind {
         Self::EdgeClustersCoded,
     ];
 
+    /// Whether a decoded asset holds this kind as an array for the GPU (the raw kinds but the render
+    /// vertex counts, which only say how to rebuild the render positions).
+    pub const fn is_gpu_ready(self) -> bool {
+        (self as u32) < Self::RenderVertexCounts as u32
+    }
+
     /// The coded kind that replaces this raw one in a compact file, and back; `None` for the kinds
     /// that have no other form.
     pub const fn twin(self) -> Option<Self> {

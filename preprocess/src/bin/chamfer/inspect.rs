@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use anyhow::Context;
 use chamfer_preprocess::Limits;
 use chamfer_preprocess::inspect::summary;
+use chamfer_runtime::asset::compact::LOSSLESS_BITS;
 use chamfer_runtime::asset::{Asset, SectionKind};
 use clap::Args;
 
@@ -12,27 +13,40 @@ use clap::Args;
 #[derive(Args)]
 #[command(after_help = "Examples:
   chamfer inspect model.chamfer
-  chamfer inspect model.chamfer --json | jq .edges.crease")]
+  chamfer inspect model.chamfer --json | jq .edges.crease
+  chamfer inspect model.chamfer --timings        (what decoding each section costs)")]
 pub struct InspectArgs {
     /// The asset.
     asset: PathBuf,
-    /// Print JSON (stable keys: vertices, welded_vertices, triangles, degenerate_triangles, edges, stitch, intersections, bytes).
+    /// Print JSON (stable keys: vertices, welded_vertices, triangles, degenerate_triangles, edges, stitch, intersections, precision, bytes).
     #[arg(long)]
     json: bool,
+    /// Also decode the file section by section on one thread and print what each section took
+    /// (JSON: `decode_ms`).
+    #[arg(long)]
+    timings: bool,
 }
 
 impl InspectArgs {
     /// Inspect `asset` as a table.
     pub fn for_path(asset: PathBuf) -> Self {
-        Self { asset, json: false }
+        Self {
+            asset,
+            json: false,
+            timings: false,
+        }
     }
 }
 
 pub fn run(args: &InspectArgs) -> anyhow::Result<()> {
     let bytes = chamfer_preprocess::load::read(&args.asset, &Limits::DEFAULT)?;
-    let asset = Asset::decode(&bytes)
-        .with_context(|| format!("{}: not a valid .chamfer asset", args.asset.display()))?;
-    let report = summary(&asset, bytes.len() as u64);
+    let invalid = || format!("{}: not a valid .chamfer asset", args.asset.display());
+    let asset = Asset::decode(&bytes).with_context(invalid)?;
+    let precision = Asset::precision(&bytes).with_context(invalid)?;
+    let mut report = summary(&asset, bytes.len() as u64, Some(precision));
+    if args.timings {
+        report["decode_ms"] = decode_times(&bytes).with_context(invalid)?;
+    }
     if args.json {
         crate::say(serde_json::to_string_pretty(&report)?)
     } else {
@@ -45,6 +59,25 @@ pub fn run(args: &InspectArgs) -> anyhow::Result<()> {
         )?;
         crate::say(text.trim_end())
     }
+}
+
+/// Milliseconds per section of a decode on this thread, in the order the decoder takes them.
+fn decode_times(bytes: &[u8]) -> anyhow::Result<serde_json::Value> {
+    let times = std::sync::Mutex::new((std::time::Instant::now(), serde_json::Map::new()));
+    Asset::decode_observed(bytes, &|kind| {
+        if let Ok(mut times) = times.lock() {
+            let now = std::time::Instant::now();
+            let ms = (now - times.0).as_secs_f64() * 1e3;
+            // A section observed twice (checked again once the asset is whole) adds up.
+            let entry = times.1.entry(kind.name()).or_insert(0.0.into());
+            *entry = (entry.as_f64().unwrap_or(0.0) + ms).into();
+            times.0 = now;
+        }
+    })?;
+    let (_, map) = times
+        .into_inner()
+        .map_err(|_| anyhow::anyhow!("a decode step panicked"))?;
+    Ok(map.into())
 }
 
 /// The readable report: the same numbers as `--json`.
@@ -124,28 +157,59 @@ fn table(out: &mut String, name: &str, asset: &Asset, r: &serde_json::Value) -> 
         i["closed"],
         i["length"].as_f64().unwrap_or(0.0)
     )?;
+    let p = &r["precision"];
+    let exact = |bits: &serde_json::Value| bits.as_u64() == Some(u64::from(LOSSLESS_BITS));
+    if exact(&p["position_bits"]) && exact(&p["normal_bits"]) {
+        writeln!(out, "  precision      exact (positions and normals as baked)")?;
+    } else {
+        writeln!(
+            out,
+            "  precision      positions on a {}-bit grid, within {:.3e} per axis; normals {}-bit octahedral, within {:.2e} rad",
+            p["position_bits"],
+            p["position_error"].as_f64().unwrap_or(0.0),
+            p["normal_bits"],
+            p["normal_error_radians"].as_f64().unwrap_or(0.0)
+        )?;
+    }
     let b = &r["bytes"];
     writeln!(
         out,
-        "  bytes          {} total, {:.1} per kept edge (edge + attribute + next + cap sections)",
+        "  bytes          {} stored ({:.2} per triangle), {} decoded; {:.1} per kept edge (edge + attribute + next + cap sections, decoded)",
         b["total"],
+        b["total"].as_f64().unwrap_or(0.0) / r["triangles"].as_f64().unwrap_or(0.0).max(1.0),
+        b["decoded_total"],
         b["per_edge"].as_f64().unwrap_or(0.0)
+    )?;
+    writeln!(
+        out,
+        "    {:<26} {:>12} {:>12}{}",
+        "section",
+        "stored",
+        "decoded",
+        if r.get("decode_ms").is_some() { "   decode ms" } else { "" }
     )?;
     let derived = b["per_section"][SectionKind::RenderVertexCounts.name()]
         .as_u64()
-        .is_some_and(|n| n > 0);
+        .is_some_and(|n| n > 0)
+        || b["per_section"][SectionKind::RenderVertexCountsCoded.name()]
+            .as_u64()
+            .is_some_and(|n| n > 0);
     for kind in SectionKind::ALL {
+        let stored = &b["per_section"][kind.name()];
+        let decoded = &b["decoded_per_section"][kind.name()];
+        let ms = &r["decode_ms"][kind.name()];
+        // Rows for the coded kinds a file does not use are noise.
+        if !kind.is_gpu_ready() && stored.as_u64() == Some(0) && kind != SectionKind::RenderVertexCounts {
+            continue;
+        }
         let note = if derived && kind == SectionKind::RenderPositions {
             "  (repeated from topology_positions by render_vertex_counts)"
         } else {
             ""
         };
-        writeln!(
-            out,
-            "    {:<18} {}{note}",
-            kind.name(),
-            b["per_section"][kind.name()]
-        )?;
+        let decoded = if decoded.is_null() { "—".to_owned() } else { decoded.to_string() };
+        let ms = ms.as_f64().map_or(String::new(), |ms| format!(" {ms:>11.2}"));
+        writeln!(out, "    {:<26} {:>12} {:>12}{ms}{note}", kind.name(), stored.to_string(), decoded)?;
     }
     Ok(())
 }

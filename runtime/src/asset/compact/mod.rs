@@ -93,6 +93,16 @@ pub struct Precision {
     pub normal_error: f32,
 }
 
+impl Precision {
+    /// What a file that is not compact (or a compact one without loss) stores: every number exact.
+    pub const EXACT: Self = Self {
+        position_bits: LOSSLESS_BITS,
+        position_error: 0.0,
+        normal_bits: LOSSLESS_BITS,
+        normal_error: 0.0,
+    };
+}
+
 /// The reference encoders of the two meshoptimizer codecs (the bake passes the `meshopt` crate's).
 pub trait Codecs {
     /// `meshopt_encodeVertexBuffer` of `data`, vertices of `stride` bytes (a multiple of 4).

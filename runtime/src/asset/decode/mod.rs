@@ -49,11 +49,11 @@ impl Asset {
         decode(bytes, true, &|_| ())
     }
 
-    /// [`decode`](Self::decode) on this thread alone, calling `observer` with each section the file
-    /// holds as soon as it is decoded and checked (and with
+    /// [`decode`](Self::decode) on this thread alone, calling `observer` with a section the file
+    /// holds each time a part of its decoding and checking ends (and with
     /// [`EdgeClusters`](SectionKind::EdgeClusters) after clusters a file does not hold are
-    /// computed): the time between two calls is what that section costs (`chamfer inspect
-    /// --timings`).
+    /// computed): the time between two calls is what that part cost, and a section's parts add up
+    /// to what it costs (`chamfer inspect --timings`).
     pub fn decode_observed(
         bytes: &[u8],
         observer: &(dyn Fn(SectionKind) + Sync),
@@ -229,7 +229,11 @@ fn decode(
             let mesh_indices = mesh_indices(&sections, &reader, &shape)?;
             step(SectionKind::MeshIndices);
             let corner_mesh = match sections.coded(SectionKind::EdgeCorners) {
-                Some(coded) => Some(corner_mesh(coded, &reader, &mesh_indices, &counts, &shape)?),
+                Some(coded) => {
+                    let mesh = corner_mesh(coded, &reader, &mesh_indices, &counts, &shape)?;
+                    step(SectionKind::EdgeVertices);
+                    Some(mesh)
+                }
                 None => None,
             };
             Ok((mesh_indices, corner_mesh))
