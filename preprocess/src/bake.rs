@@ -319,6 +319,8 @@ fn assemble(
         })
         .collect();
     let render_vertices = render.positions.len();
+    let mut indices = render.indices;
+    crate::compact::rotate_as_the_codec(&mut indices, render_vertices);
     let edge_count = edges.len();
     let edge_vertices: Vec<u32> = bytemuck::allocation::cast_vec(edges.vertices);
     Asset {
@@ -334,7 +336,7 @@ fn assemble(
         },
         render_positions: render.positions,
         render_normals: render.normals,
-        mesh_indices: Indices::with_bound(render.indices, render_vertices),
+        mesh_indices: Indices::with_bound(indices, render_vertices),
         topology_positions: positions.iter().map(|p| p.to_array()).collect(),
         edge_vertices: Indices::with_bound(edge_vertices, positions.len()),
         edge_attributes,

@@ -35,6 +35,19 @@ impl Codecs for Meshopt {
     }
 }
 
+/// Starts every triangle at the corner meshoptimizer's index codec would start it at (its winding
+/// kept), so that a compact file's coded indices decode to exactly these (`indices` are triangles
+/// of vertices below `vertex_count`). The codec's choice is its encoder's: run it and keep what it
+/// decodes to. Leaves `indices` as they are if the codec fails (it does not, for such input).
+pub(crate) fn rotate_as_the_codec(indices: &mut [u32], vertex_count: usize) {
+    let Ok(stream) = meshopt::encode_index_buffer(indices, vertex_count) else {
+        return;
+    };
+    if let Ok(decoded) = meshopt::decode_index_buffer::<u32>(&stream, indices.len()) {
+        indices.copy_from_slice(&decoded);
+    }
+}
+
 /// Writes `asset` raw ([`Asset::encode`]) or, with `compact`, as a compact file.
 pub fn encode(
     asset: &Asset,

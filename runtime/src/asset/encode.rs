@@ -24,11 +24,15 @@ impl Asset {
     }
 
     /// Writes the asset as a compact file (format 5, see [`compact`](super::compact)): coded
-    /// sections where they apply, raw ones elsewhere, no clusters (the loader computes them).
+    /// sections where they apply, raw ones elsewhere.
     ///
-    /// Lossless options decode to an asset equal to this one; lossy ones move each topology position
-    /// by at most [`Grid::error_bound`](super::compact::Grid::error_bound) per axis and each normal
-    /// by at most [`octahedral_error_bound`](super::compact::quantize::octahedral_error_bound).
+    /// With [`CompactOptions::LOSSLESS`] the file decodes to an asset equal to this one, provided
+    /// its triangles start at the corners meshoptimizer's index codec starts them at (the bake's
+    /// do; otherwise a triangle may start at another of its corners, its winding kept). Lossy
+    /// options move each topology position by at most
+    /// [`Grid::error_bound`](super::compact::Grid::error_bound) per axis and each normal by at most
+    /// [`octahedral_error_bound`](super::compact::quantize::octahedral_error_bound), and store the
+    /// clusters' bounds quantized and widened so that they still hold the decoded edges.
     /// Fails if `out` fails or the options are out of range.
     pub fn encode_compact(
         &self,

@@ -160,7 +160,10 @@ fn table(out: &mut String, name: &str, asset: &Asset, r: &serde_json::Value) -> 
     let p = &r["precision"];
     let exact = |bits: &serde_json::Value| bits.as_u64() == Some(u64::from(LOSSLESS_BITS));
     if exact(&p["position_bits"]) && exact(&p["normal_bits"]) {
-        writeln!(out, "  precision      exact (positions and normals as baked)")?;
+        writeln!(
+            out,
+            "  precision      exact (positions and normals as baked)"
+        )?;
     } else {
         writeln!(
             out,
@@ -186,7 +189,11 @@ fn table(out: &mut String, name: &str, asset: &Asset, r: &serde_json::Value) -> 
         "section",
         "stored",
         "decoded",
-        if r.get("decode_ms").is_some() { "   decode ms" } else { "" }
+        if r.get("decode_ms").is_some() {
+            "   decode ms"
+        } else {
+            ""
+        }
     )?;
     let derived = b["per_section"][SectionKind::RenderVertexCounts.name()]
         .as_u64()
@@ -199,7 +206,10 @@ fn table(out: &mut String, name: &str, asset: &Asset, r: &serde_json::Value) -> 
         let decoded = &b["decoded_per_section"][kind.name()];
         let ms = &r["decode_ms"][kind.name()];
         // Rows for the coded kinds a file does not use are noise.
-        if !kind.is_gpu_ready() && stored.as_u64() == Some(0) && kind != SectionKind::RenderVertexCounts {
+        if !kind.is_gpu_ready()
+            && stored.as_u64() == Some(0)
+            && kind != SectionKind::RenderVertexCounts
+        {
             continue;
         }
         let note = if derived && kind == SectionKind::RenderPositions {
@@ -207,9 +217,21 @@ fn table(out: &mut String, name: &str, asset: &Asset, r: &serde_json::Value) -> 
         } else {
             ""
         };
-        let decoded = if decoded.is_null() { "—".to_owned() } else { decoded.to_string() };
-        let ms = ms.as_f64().map_or(String::new(), |ms| format!(" {ms:>11.2}"));
-        writeln!(out, "    {:<26} {:>12} {:>12}{ms}{note}", kind.name(), stored.to_string(), decoded)?;
+        let decoded = if decoded.is_null() {
+            "—".to_owned()
+        } else {
+            decoded.to_string()
+        };
+        let ms = ms
+            .as_f64()
+            .map_or(String::new(), |ms| format!(" {ms:>11.2}"));
+        writeln!(
+            out,
+            "    {:<26} {:>12} {:>12}{ms}{note}",
+            kind.name(),
+            stored.to_string(),
+            decoded
+        )?;
     }
     Ok(())
 }

@@ -40,8 +40,11 @@ pub(crate) fn encode(
         (SectionKind::RenderNormalsCoded, normals),
         (SectionKind::EdgeAttributesCoded, attributes),
     ]);
-    if let Some(bytes) = encode_clusters(asset, seen, codecs) {
-        coded.push((SectionKind::EdgeClustersCoded, bytes));
+    // Lossless files keep the exact clusters (raw), so that they decode to the asset itself.
+    if *options != CompactOptions::LOSSLESS {
+        if let Some(bytes) = encode_clusters(asset, seen, codecs) {
+            coded.push((SectionKind::EdgeClustersCoded, bytes));
+        }
     }
     coded
 }
