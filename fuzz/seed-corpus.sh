@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Copies the fixtures into fuzz/corpus/<target>/ as libFuzzer's starting inputs, and bakes three of
-# them into assets for the `asset` target. Run from anywhere; safe to run again.
+# them into assets for the `asset` target, uncompressed and compact (format 5's coded sections).
+# Run from anywhere; safe to run again.
 set -euo pipefail
 cd "$(dirname "$0")"
 fixtures=../fixtures
@@ -14,4 +15,6 @@ cp "$fixtures"/shapes/*.glb "$fixtures"/broken/*.glb corpus/glb/
 for mesh in shapes/cube.obj shapes/cube-marked-le.ply shapes/two-materials.glb; do
     cargo run --quiet --release --manifest-path ../Cargo.toml --bin chamfer -- \
         bake "$fixtures/$mesh" -o "corpus/asset/$(basename "$mesh").chamfer" >/dev/null
+    cargo run --quiet --release --manifest-path ../Cargo.toml --bin chamfer -- \
+        bake "$fixtures/$mesh" --compact -o "corpus/asset/$(basename "$mesh").compact.chamfer" >/dev/null
 done

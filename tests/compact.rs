@@ -303,3 +303,279 @@ fn every_technique_draws_the_same_picture_from_a_compact_file() {
         );
     }
 }
+
+// Hostile compact files: each class of damage to a coded section is a typed error naming the
+// section, found before anything the file declares is allocated.
+
+/// The fandisk's compact file, and where each of its sections lies.
+fn hostile_seed() -> (Vec<u8>, Vec<chamfer_runtime::asset::SectionEntry>) {
+    let asset = bake_file(&fixture("meshes/fandisk.obj"), &BakeOptions::DEFAULT)
+        .expect("bakes")
+        .asset;
+    let bytes = compact(&asset, &CompactOptions::default());
+    let sections = Asset::decode(&bytes).expect("decodes").header.sections;
+    (bytes, sections)
+}
+
+fn section_range(
+    sections: &[chamfer_runtime::asset::SectionEntry],
+    kind: SectionKind,
+) -> std::ops::Range<usize> {
+    let entry = sections
+        .iter()
+        .find(|s| s.kind == kind as u32)
+        .expect("section listed");
+    entry.offset as usize..(entry.offset + entry.length) as usize
+}
+
+/// `bytes` with `value` written at `at` bytes into section `kind` (`at` may count from its end
+/// when negative).
+fn patched(kind: SectionKind, at: isize, value: &[u8]) -> Vec<u8> {
+    let (mut bytes, sections) = hostile_seed();
+    let range = section_range(&sections, kind);
+    let start = if at < 0 {
+        range.end - at.unsigned_abs()
+    } else {
+        range.start + at as usize
+    };
+    bytes[start..start + value.len()].copy_from_slice(value);
+    bytes
+}
+
+/// `bytes` with section `kind` cut to `length` bytes in the section table (the rest of its bytes
+/// left as a gap, which the format allows, or cut off the file after the last section).
+fn shortened(kind: SectionKind, length: u64) -> Vec<u8> {
+    let (mut bytes, sections) = hostile_seed();
+    let entry = sections
+        .iter()
+        .find(|s| s.kind == kind as u32)
+        .expect("section listed");
+    let mut pattern = entry.kind.to_le_bytes().to_vec();
+    pattern.extend(entry.offset.to_le_bytes());
+    pattern.extend(entry.length.to_le_bytes());
+    let at = bytes
+        .windows(pattern.len())
+        .position(|w| w == pattern.as_slice())
+        .expect("the entry is in the header");
+    bytes[at + 12..at + 20].copy_from_slice(&length.to_le_bytes());
+    // The last section's cut-off bytes would be trailing bytes: they go.
+    if entry.offset + entry.length == bytes.len() as u64 {
+        bytes.truncate((entry.offset + length) as usize);
+    }
+    bytes
+}
+
+fn refused(bytes: &[u8]) -> String {
+    let error = Asset::decode(bytes).expect_err("refused");
+    error.to_string()
+}
+
+#[test]
+fn compact_files_that_were_not_damaged_decode() {
+    let (bytes, _) = hostile_seed();
+    Asset::decode(&bytes).expect("the seed decodes");
+}
+
+#[test]
+fn a_declared_count_beyond_what_the_triangles_allow_is_refused_before_allocating() {
+    for kind in [
+        SectionKind::TopologyPositionsCoded,
+        SectionKind::RenderNormalsCoded,
+        SectionKind::EdgeAttributesCoded,
+        SectionKind::EdgeCorners,
+        SectionKind::RenderVertexCountsCoded,
+        SectionKind::EdgeClustersCoded,
+    ] {
+        let error = refused(&patched(kind, 0, &u32::MAX.to_le_bytes()));
+        assert!(
+            error.contains(kind.name()) && error.contains("declares 4294967295 elements"),
+            "{}: {error}",
+            kind.name()
+        );
+    }
+    // The triangle count is held to a code byte per triangle.
+    let error = refused(&patched(
+        SectionKind::MeshIndicesCoded,
+        0,
+        &u32::MAX.to_le_bytes(),
+    ));
+    assert!(
+        error.contains("mesh_indices_coded") && error.contains("ends early"),
+        "{error}"
+    );
+}
+
+#[test]
+fn a_stream_that_is_not_a_codec_stream_is_refused_by_name() {
+    let error = refused(&patched(SectionKind::EdgeAttributesCoded, 4, &[0x00]));
+    assert!(
+        error.contains("edge_attributes_coded") && error.contains("not a meshopt stream"),
+        "{error}"
+    );
+    let error = refused(&patched(SectionKind::MeshIndicesCoded, 4, &[0x00]));
+    assert!(error.contains("not a meshopt stream"), "{error}");
+}
+
+#[test]
+fn a_truncated_section_is_refused_by_name() {
+    for kind in [
+        SectionKind::MeshIndicesCoded,
+        SectionKind::TopologyPositionsCoded,
+        SectionKind::RenderNormalsCoded,
+        SectionKind::EdgeCorners,
+        SectionKind::EdgeAttributesCoded,
+        SectionKind::RingOrders,
+        SectionKind::RenderVertexCountsCoded,
+        SectionKind::EdgeClustersCoded,
+    ] {
+        for length in [2, 7, 40] {
+            let error = refused(&shortened(kind, length));
+            assert!(
+                error.contains(kind.name()),
+                "{} cut to {length}: {error}",
+                kind.name()
+            );
+        }
+    }
+    // Every truncation of the whole file is an error too, never a panic.
+    let (bytes, _) = hostile_seed();
+    for length in (0..bytes.len()).step_by(97) {
+        assert!(Asset::decode(&bytes[..length]).is_err(), "cut at {length}");
+    }
+}
+
+#[test]
+fn grid_points_and_octahedral_codes_beyond_their_bits_are_refused() {
+    // The grid's bits read as 4: fandisk's 16-bit grid points are past 15.
+    let error = refused(&patched(
+        SectionKind::TopologyPositionsCoded,
+        4,
+        &4u32.to_le_bytes(),
+    ));
+    assert!(error.contains("grid point beyond 4 bits"), "{error}");
+    let error = refused(&patched(
+        SectionKind::TopologyPositionsCoded,
+        4,
+        &20u32.to_le_bytes(),
+    ));
+    assert!(error.contains("20 bits per axis"), "{error}");
+    let error = refused(&patched(
+        SectionKind::RenderNormalsCoded,
+        4,
+        &3u32.to_le_bytes(),
+    ));
+    assert!(error.contains("octahedral code beyond 3 bits"), "{error}");
+}
+
+#[test]
+fn a_grid_or_cluster_unit_that_is_not_finite_is_refused() {
+    let nan = f32::NAN.to_le_bytes();
+    let error = refused(&patched(SectionKind::TopologyPositionsCoded, 8, &nan));
+    assert!(error.contains("grid origin or step not finite"), "{error}");
+    let error = refused(&patched(
+        SectionKind::TopologyPositionsCoded,
+        20,
+        &(-1.0f32).to_le_bytes(),
+    ));
+    assert!(error.contains("a step negative"), "{error}");
+    // The clusters' radius unit (after count, origin and step).
+    let error = refused(&patched(SectionKind::EdgeClustersCoded, 28, &nan));
+    assert!(
+        error.contains("edge_clusters_coded") && error.contains("not finite"),
+        "{error}"
+    );
+}
+
+#[test]
+fn corner_bits_that_disagree_with_the_edges_are_refused() {
+    // One corner more or less than the edges declared.
+    let (bytes, sections) = hostile_seed();
+    let range = section_range(&sections, SectionKind::EdgeCorners);
+    let mut flipped = bytes.clone();
+    flipped[range.start + 4] ^= 1;
+    let error = refused(&flipped);
+    assert!(error.contains("corners set for 9865 edges"), "{error}");
+    // A bit past the last corner (fandisk has 3 × 12 946 = 38 838 corners: two spare bits).
+    let mut spare = bytes;
+    spare[range.end - 1] |= 0x80;
+    let error = refused(&spare);
+    assert!(error.contains("past the last corner"), "{error}");
+}
+
+#[test]
+fn ring_codes_that_do_not_fit_their_rings_are_refused() {
+    // The code's bit count one more than its rings use.
+    let (bytes, sections) = hostile_seed();
+    let range = section_range(&sections, SectionKind::RingOrders);
+    let bits = u64::from_le_bytes(bytes[range.start..range.start + 8].try_into().expect("8"));
+    let mut longer = bytes.clone();
+    longer[range.start..range.start + 8].copy_from_slice(&(bits + 1).to_le_bytes());
+    let error = refused(&longer);
+    assert!(error.contains("ring_orders"), "{error}");
+    // All ones: ranks past the ends left at a vertex.
+    let mut ones = bytes;
+    ones[range.start + 8..range.end].fill(0xff);
+    let error = refused(&ones);
+    assert!(error.contains("ring_orders"), "{error}");
+    // Ring orders without the corner bits they are coded over.
+    let error = refused(&shortened(SectionKind::EdgeCorners, 0));
+    assert!(
+        error.contains("ring_orders") || error.contains("edge"),
+        "{error}"
+    );
+}
+
+#[test]
+fn cluster_bounds_for_another_number_of_edges_are_refused() {
+    let error = refused(&patched(
+        SectionKind::EdgeClustersCoded,
+        0,
+        &3u32.to_le_bytes(),
+    ));
+    assert!(error.contains("3 clusters for 9865 edges"), "{error}");
+}
+
+#[test]
+fn every_byte_of_the_coded_sections_damaged_decodes_or_is_refused_never_panics() {
+    let (bytes, sections) = hostile_seed();
+    let coded: Vec<_> = sections
+        .iter()
+        .filter(|s| s.kind >= SectionKind::MeshIndicesCoded as u32 && s.length > 0)
+        .collect();
+    let mut checked = 0;
+    for entry in coded {
+        let step = (entry.length as usize / 300).max(1);
+        for at in (entry.offset as usize..(entry.offset + entry.length) as usize).step_by(step) {
+            for mask in [0x01u8, 0x80, 0xff] {
+                let mut bad = bytes.clone();
+                bad[at] ^= mask;
+                // Either result is fine; what must not happen is a panic or a hang.
+                let _ = Asset::decode(&bad);
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 1000, "{checked} damaged files");
+}
+
+#[test]
+fn a_mesh_of_subnormal_size_keeps_exact_bounds() {
+    // Found by the fuzz harness: a box so small that its radius unit is a subnormal f32, where
+    // rounding the radius up one unit at a time never reached it. Such bounds stay raw, computed
+    // from the positions the file decodes to.
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("tiny.obj");
+    std::fs::write(
+        &path,
+        "v 0 0 0\nv 4e-39 0 0\nv 0 4e-39 0\nv 0 0 4e-39\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n",
+    )
+    .expect("write");
+    let asset = bake_file(&path, &BakeOptions::DEFAULT)
+        .expect("bakes")
+        .asset;
+    let bytes = compact(&asset, &CompactOptions::default());
+    let decoded = Asset::decode(&bytes).expect("decodes");
+    assert_eq!(stored(&bytes, SectionKind::EdgeClustersCoded), 0);
+    assert!(stored(&bytes, SectionKind::EdgeClusters) > 0);
+    check_clusters_hold_their_edges("tiny", &decoded);
+}

@@ -21,9 +21,10 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use chamfer_preprocess::annotate::{GltfEdges, annotate_with};
+use chamfer_preprocess::compact::Meshopt;
 use chamfer_preprocess::draw::{Camera, DrawOptions, hidden_lines};
 use chamfer_preprocess::{BakeOptions, Limits, bake, bake_bytes, input, load};
-use chamfer_runtime::asset::Asset;
+use chamfer_runtime::asset::{Asset, CompactOptions, SectionKind};
 use glam::camera::rh::{proj::directx, view::look_at_mat4};
 use serde_json::Value;
 
@@ -633,6 +634,19 @@ fn load_and_bake(path: &Path, bytes: &[u8]) -> bool {
     if let Err(e) = Asset::decode(&encoded) {
         panic!("a baked asset does not decode: {e}");
     }
+    // The compact file of every baked asset decodes too, to the same indices.
+    let compact = baked
+        .asset
+        .encode_compact_to_vec(&CompactOptions::default(), &Meshopt)
+        .expect("compact encoding into memory");
+    match Asset::decode(&compact) {
+        Ok(decoded) => assert!(
+            decoded.edge_vertices == baked.asset.edge_vertices
+                && decoded.mesh_indices == baked.asset.mesh_indices,
+            "a compact asset decodes to other indices"
+        ),
+        Err(e) => panic!("a baked asset's compact file does not decode: {e}"),
+    }
     true
 }
 
@@ -860,6 +874,75 @@ fn fuzz_asset_decode() {
     })
     .collect();
     run("asset", 5, seeds, mutate_asset, decode_round_trip);
+}
+
+/// Damages a compact asset inside one of its coded sections (found through its own section table
+/// while it still decodes): their counts, bit fields and codec streams, where byte-level damage
+/// to the whole file mostly breaks the header first.
+fn mutate_compact(bytes: &mut Vec<u8>, rng: &mut Rng) {
+    let coded: Vec<(usize, usize)> = Asset::decode(bytes)
+        .map(|a| {
+            a.header
+                .sections
+                .iter()
+                .filter(|s| s.kind >= SectionKind::MeshIndicesCoded as u32 && s.length >= 4)
+                .map(|s| (s.offset as usize, s.length as usize))
+                .collect()
+        })
+        .unwrap_or_default();
+    if coded.is_empty() || rng.below(8) == 0 {
+        return mutate_asset(bytes, rng);
+    }
+    let (start, length) = *rng.pick(&coded);
+    match rng.below(4) {
+        // The declared count or bit field at the section's start.
+        0 => {
+            let at = start + 4 * rng.below(2.min(length / 4));
+            let word = rng.pick(WORDS).to_le_bytes();
+            bytes[at..at + 4].copy_from_slice(&word);
+        }
+        1 => {
+            let at = start + rng.below(length);
+            bytes[at] ^= 1 << rng.below(8);
+        }
+        2 => {
+            let at = start + rng.below(length);
+            bytes[at] = rng.next() as u8;
+        }
+        _ => {
+            let at = start + rng.below(length.saturating_sub(3).max(1));
+            let end = (at + 4).min(start + length);
+            let word = rng.pick(WORDS).to_le_bytes();
+            bytes[at..end].copy_from_slice(&word[..end - at]);
+        }
+    }
+}
+
+#[test]
+fn fuzz_compact_decode() {
+    let seeds: Vec<Seed> = [
+        "shapes/cube-marked-le.ply",
+        "shapes/two-materials.glb",
+        "meshes/suzanne.obj",
+        "shapes/nonmanifold-fan.obj",
+    ]
+    .iter()
+    .flat_map(|name| {
+        let options = BakeOptions::DEFAULT.with_radius(chamfer_preprocess::Radius::Relative(0.01));
+        let path = fixture(name);
+        let bytes = std::fs::read(&path).expect("read");
+        let asset = bake_bytes(&path, &bytes, &options)
+            .expect("seed bakes")
+            .asset;
+        [CompactOptions::default(), CompactOptions::LOSSLESS].map(|compact| Seed {
+            name: format!("{name}-{}.chamfer", compact.position_bits).replace('/', "-"),
+            bytes: asset
+                .encode_compact_to_vec(&compact, &Meshopt)
+                .expect("encodes"),
+        })
+    })
+    .collect();
+    run("compact", 11, seeds, mutate_compact, decode_round_trip);
 }
 
 /// Mutates a mesh of any format, told apart by its first bytes as its own target would be.
@@ -1192,6 +1275,68 @@ fn declared_counts_stay_within_a_memory_bound() {
                 baseline >> 20
             );
         }
+    }
+}
+
+/// Compact assets whose coded sections declare more than they hold: `chamfer inspect` refuses
+/// them within the same memory as it reads the good file in.
+#[cfg(unix)]
+#[test]
+fn compact_declared_counts_stay_within_a_memory_bound() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = fixture("meshes/stanford-bunny.obj");
+    let bytes = std::fs::read(&path).expect("read");
+    let asset = bake_bytes(&path, &bytes, &BakeOptions::DEFAULT)
+        .expect("bakes")
+        .asset;
+    let good = asset
+        .encode_compact_to_vec(&CompactOptions::default(), &Meshopt)
+        .expect("encodes");
+    let sections = Asset::decode(&good).expect("decodes").header.sections;
+    let start = |kind: SectionKind| {
+        sections
+            .iter()
+            .find(|s| s.kind == kind as u32)
+            .map(|s| s.offset as usize)
+            .expect("listed")
+    };
+    let put = |name: &str, bytes: &[u8]| {
+        let path = dir.path().join(name);
+        std::fs::write(&path, bytes).expect("write");
+        path
+    };
+    let inspect = |path: &Path| {
+        peak_of(
+            std::process::Command::new(env!("CARGO_BIN_EXE_chamfer"))
+                .arg("inspect")
+                .arg(path),
+        )
+    };
+    let (baseline, status) = inspect(&put("good.chamfer", &good));
+    assert!(status.success());
+    // Each count as large as the limit allows (three per triangle the index stream can hold), or
+    // as large as a u32 goes.
+    let limit = 3 * (start(SectionKind::MeshIndicesCoded) as u32);
+    for (kind, value) in [
+        (SectionKind::MeshIndicesCoded, u32::MAX),
+        (SectionKind::TopologyPositionsCoded, limit),
+        (SectionKind::RenderNormalsCoded, u32::MAX),
+        (SectionKind::EdgeAttributesCoded, limit),
+        (SectionKind::EdgeCorners, limit),
+        (SectionKind::EdgeClustersCoded, u32::MAX),
+    ] {
+        let mut bad = good.clone();
+        let at = start(kind);
+        bad[at..at + 4].copy_from_slice(&value.to_le_bytes());
+        let (peak, status) = inspect(&put(&format!("{}.chamfer", kind.name()), &bad));
+        assert_eq!(status.code(), Some(1), "{}: {status:?}", kind.name());
+        assert!(
+            peak <= baseline + MEMORY_MARGIN,
+            "{} declaring {value}: peak RSS {} MiB against {} MiB for the good file",
+            kind.name(),
+            peak >> 20,
+            baseline >> 20
+        );
     }
 }
 

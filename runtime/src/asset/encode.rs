@@ -115,6 +115,20 @@ impl Asset {
         self.write_as(FORMAT_VERSION, &SectionKind::ALL, &derived, out)
     }
 
+    /// Writes the asset with `sections` in place of (or beside) what it would write: a coded
+    /// section and its raw twin together, say (tests of the decoder's checks).
+    #[cfg(test)]
+    pub(super) fn encode_with_sections(
+        &self,
+        sections: Vec<(SectionKind, Vec<u8>)>,
+        out: &mut impl Write,
+    ) -> io::Result<()> {
+        let clusters = self.clusters();
+        let mut derived = Derived::of(self, &SectionKind::ALL, &clusters);
+        derived.coded = sections;
+        self.write_as(FORMAT_VERSION, &SectionKind::ALL, &derived, out)
+    }
+
     fn encode_as(
         &self,
         version: u32,

@@ -717,3 +717,48 @@ fn broken_render_vertex_counts_are_refused() {
         let _ = Asset::decode(&bad);
     }
 }
+
+#[test]
+fn a_coded_section_beside_its_raw_twin_is_refused() {
+    let asset = tetrahedron();
+    let raw = asset.section_bytes(SectionKind::EdgeAttributes).to_vec();
+    let mut bytes = Vec::new();
+    asset
+        .encode_with_sections(
+            vec![
+                (SectionKind::EdgeAttributes, raw),
+                (SectionKind::EdgeAttributesCoded, vec![0; 8]),
+            ],
+            &mut bytes,
+        )
+        .expect("encodes");
+    let error = Asset::decode(&bytes).expect_err("both twins");
+    assert!(
+        matches!(
+            error,
+            DecodeError::BadSectionLength {
+                kind: SectionKind::EdgeAttributesCoded,
+                ..
+            }
+        ),
+        "{error}"
+    );
+    assert!(
+        error.to_string().contains("beside edge_attributes"),
+        "{error}"
+    );
+}
+
+#[test]
+fn ring_orders_without_corner_coded_edges_are_refused() {
+    let asset = tetrahedron();
+    let mut bytes = Vec::new();
+    asset
+        .encode_with_sections(vec![(SectionKind::RingOrders, vec![0; 16])], &mut bytes)
+        .expect("encodes");
+    let error = Asset::decode(&bytes).expect_err("no corners");
+    assert!(
+        error.to_string().contains("without edge corners"),
+        "{error}"
+    );
+}

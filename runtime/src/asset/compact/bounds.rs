@@ -62,11 +62,14 @@ fn record(c: &EdgeCluster, grid: &Grid, unit: f32) -> Option<[u16; 8]> {
     let center = DVec3::from(c.center.map(f64::from));
     let moved = DVec3::from(grid.position(q).map(f64::from)).distance(center);
     let needed = f64::from(c.radius) + moved;
-    let mut radius = (needed / f64::from(unit)).ceil().max(0.0) as u32;
-    while f64::from(radius as f32 * unit) < needed {
-        radius += 1;
+    // Whole units, rounded up so that the f32 product the loader computes still holds `needed`.
+    let units = (needed / f64::from(unit)).ceil();
+    if !(0.0..=f64::from(u16::MAX)).contains(&units) {
+        return None;
     }
-    let radius = u16::try_from(radius).ok()?;
+    let radius = [units as u16, (units as u16).saturating_add(1)]
+        .into_iter()
+        .find(|&r| f64::from(f32::from(r) * unit) >= needed)?;
     let (axis, angle) = if c.cos_angle <= -1.0 {
         ([0, 0], OPEN)
     } else {

@@ -42,9 +42,7 @@ pub(crate) fn encode(
     ]);
     // Lossless files keep the exact clusters (raw), so that they decode to the asset itself.
     if *options != CompactOptions::LOSSLESS {
-        if let Some(bytes) = encode_clusters(asset, seen, codecs) {
-            coded.push((SectionKind::EdgeClustersCoded, bytes));
-        }
+        coded.push(encode_clusters(asset, seen, codecs));
     }
     coded
 }
@@ -112,20 +110,12 @@ fn count_prefix(count: usize) -> Vec<u8> {
     (count as u32).to_le_bytes().to_vec()
 }
 
-/// The coded positions, and the positions the loader will decode from them.
+/// The coded positions, and the positions the loader will decode from them. Positions whose box
+/// is too wide for a grid of finite steps (beyond `f32`'s range) are kept exact.
 fn encode_positions(asset: &Asset, bits: u32, codecs: &dyn Codecs) -> (Vec<u8>, Vec<[f32; 3]>) {
     let positions = &asset.topology_positions;
-    let mut bytes = count_prefix(positions.len());
-    bytes.extend(bits.to_le_bytes());
-    if bits == LOSSLESS_BITS {
-        bytes.extend(codecs.encode_vertices(bytemuck::cast_slice(positions), 12));
-        return (bytes, positions.clone());
-    }
     let (min, max) = extent(positions);
-    let grid = Grid::spanning(bits, min, max);
-    for v in grid.origin.iter().chain(&grid.step) {
-        bytes.extend(v.to_le_bytes());
-    }
+    let grid = Grid::spanning(bits.min(16), min, max);
     let points: Vec<[u16; 4]> = positions
         .iter()
         .map(|&p| {
@@ -133,11 +123,24 @@ fn encode_positions(asset: &Asset, bits: u32, codecs: &dyn Codecs) -> (Vec<u8>, 
             [x, y, z, 0]
         })
         .collect();
-    bytes.extend(codecs.encode_vertices(bytemuck::cast_slice(&points), 8));
-    let seen = points
+    let seen: Vec<[f32; 3]> = points
         .iter()
         .map(|&[x, y, z, _]| grid.position([x, y, z]))
         .collect();
+    let gridded = bits != LOSSLESS_BITS
+        && grid.step.iter().all(|s| s.is_finite())
+        && seen.iter().flatten().all(|v| v.is_finite());
+    let mut bytes = count_prefix(positions.len());
+    if !gridded {
+        bytes.extend(LOSSLESS_BITS.to_le_bytes());
+        bytes.extend(codecs.encode_vertices(bytemuck::cast_slice(positions), 12));
+        return (bytes, positions.clone());
+    }
+    bytes.extend(bits.to_le_bytes());
+    for v in grid.origin.iter().chain(&grid.step) {
+        bytes.extend(v.to_le_bytes());
+    }
+    bytes.extend(codecs.encode_vertices(bytemuck::cast_slice(&points), 8));
     (bytes, seen)
 }
 
@@ -162,8 +165,13 @@ fn encode_words(words: &[u32], codecs: &dyn Codecs) -> Vec<u8> {
     bytes
 }
 
-/// The bounds of the clusters of `asset` with its positions as the loader decodes them (`seen`).
-fn encode_clusters(asset: &Asset, seen: Vec<[f32; 3]>, codecs: &dyn Codecs) -> Option<Vec<u8>> {
+/// The clusters of `asset` with its positions as the loader decodes them (`seen`): their bounds
+/// coded, or raw when a bound cannot be coded (a box too small or too large for 16-bit units).
+fn encode_clusters(
+    asset: &Asset,
+    seen: Vec<[f32; 3]>,
+    codecs: &dyn Codecs,
+) -> (SectionKind, Vec<u8>) {
     let (min, max) = extent(&seen);
     let view = Asset {
         topology_positions: seen,
@@ -173,11 +181,16 @@ fn encode_clusters(asset: &Asset, seen: Vec<[f32; 3]>, codecs: &dyn Codecs) -> O
     };
     let clusters = clusters::edge_clusters(&view);
     debug_assert_eq!(clusters.len(), cluster_count(asset.edge_count()));
-    let (mut bytes, records) = bounds::encode(&clusters, min, max)?;
+    let Some((mut bytes, records)) = bounds::encode(&clusters, min, max) else {
+        return (
+            SectionKind::EdgeClusters,
+            bytemuck::cast_slice(&clusters).to_vec(),
+        );
+    };
     let mut section = count_prefix(records.len());
     section.append(&mut bytes);
     section.extend(codecs.encode_vertices(bytemuck::cast_slice(&records), bounds::RECORD_BYTES));
-    Some(section)
+    (SectionKind::EdgeClustersCoded, section)
 }
 
 /// The smallest box that holds `positions` (the origin's when there are none).

@@ -29,11 +29,6 @@ fn split_u32(kind: SectionKind, bytes: &[u8]) -> Result<(u32, &[u8]), DecodeErro
     Ok((u32::from_le_bytes(*head), rest))
 }
 
-/// The number of elements a coded section (other than [`SectionKind::RingOrders`]) declares.
-pub(crate) fn declared(kind: SectionKind, bytes: &[u8]) -> Result<usize, DecodeError> {
-    Ok(split_u32(kind, bytes)?.0 as usize)
-}
-
 /// The most triangles a coded index section of this length can hold (a code byte each, after a
 /// header byte and before a 16-byte table).
 pub(crate) fn triangle_capacity(bytes: &[u8]) -> usize {
@@ -52,6 +47,12 @@ impl Reader {
         Self {
             limit: triangles.saturating_mul(3).max(1 << 16),
         }
+    }
+
+    /// The number of elements a coded section (other than [`SectionKind::RingOrders`] and
+    /// [`SectionKind::MeshIndicesCoded`]) declares, within the limit.
+    pub(crate) fn declared(&self, kind: SectionKind, bytes: &[u8]) -> Result<usize, DecodeError> {
+        Ok(self.count(kind, bytes)?.0)
     }
 
     fn count<'a>(

@@ -152,10 +152,10 @@ struct Shape {
 }
 
 impl Shape {
-    fn of(sections: &Sections) -> Result<Self, DecodeError> {
+    fn of(sections: &Sections, reader: &Reader) -> Result<Self, DecodeError> {
         let count =
             |raw: SectionKind, coded: SectionKind, element: usize| match sections.coded(coded) {
-                Some(bytes) => read::declared(coded, bytes),
+                Some(bytes) => reader.declared(coded, bytes),
                 None => Ok(sections.get(raw).len() / element),
             };
         Ok(Self {
@@ -203,15 +203,24 @@ fn decode(
 ) -> Result<Asset, DecodeError> {
     let (header, kinds) = read_header(bytes)?;
     let sections = Sections::new(bytes, &header, kinds)?;
-    let shape = Shape::of(&sections)?;
     let triangles = match sections.coded(SectionKind::MeshIndicesCoded) {
         Some(coded) => read::triangle_capacity(coded),
         None => sections.get(SectionKind::MeshIndices).len() / 6,
     };
     let reader = Reader::for_triangles(triangles);
+    let shape = Shape::of(&sections, &reader)?;
     let step = |kind: SectionKind| observer(sections.stored(kind));
     let parallel = parallel && triangles >= PARALLEL_TRIANGLES;
 
+    for kind in [
+        SectionKind::RenderVertexCountsCoded,
+        SectionKind::EdgeCorners,
+        SectionKind::EdgeClustersCoded,
+    ] {
+        if let Some(coded) = sections.coded(kind) {
+            reader.declared(kind, coded)?;
+        }
+    }
     let counts = match sections.coded(SectionKind::RenderVertexCountsCoded) {
         Some(coded) => reader.counts(coded)?,
         None => sections.get(SectionKind::RenderVertexCounts).to_vec(),
