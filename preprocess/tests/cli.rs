@@ -104,6 +104,84 @@ fn bake_then_inspect_json_has_the_documented_keys() {
 }
 
 #[test]
+fn compact_bakes_state_their_precision_and_decode_to_the_same_edges() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let fandisk = fixture("meshes/fandisk.obj");
+    let (raw, compact, lossless) = (
+        dir.path().join("raw.chamfer"),
+        dir.path().join("compact.chamfer"),
+        dir.path().join("lossless.chamfer"),
+    );
+    for (out, flags) in [
+        (&raw, &[][..]),
+        (&compact, &["--compact"][..]),
+        (
+            &lossless,
+            &["--compact", "--position-bits", "32", "--normal-bits", "32"][..],
+        ),
+    ] {
+        let mut args = vec!["bake", path_str(&fandisk), "-o", path_str(out)];
+        args.extend(flags);
+        let run = chamfer(&args);
+        assert!(run.status.success(), "{}", text(&run.stderr));
+        // The report gives the file's own size.
+        let size = std::fs::metadata(out).expect("written").len();
+        assert!(
+            text(&run.stdout).contains(&format!("{size} bytes")),
+            "{}",
+            text(&run.stdout)
+        );
+    }
+    let json = |path: &Path| -> serde_json::Value {
+        let run = chamfer(&["inspect", path_str(path), "--json"]);
+        assert!(run.status.success(), "{}", text(&run.stderr));
+        serde_json::from_slice(&run.stdout).expect("JSON")
+    };
+    let (raw, compact_json, lossless) = (json(&raw), json(&compact), json(&lossless));
+    assert_eq!(compact_json["edges"], raw["edges"]);
+    assert_eq!(
+        compact_json["bytes"]["decoded_total"],
+        raw["bytes"]["decoded_total"]
+    );
+    assert!(compact_json["bytes"]["total"].as_u64() < raw["bytes"]["total"].as_u64());
+    assert_eq!(compact_json["precision"]["position_bits"], 16);
+    assert_eq!(compact_json["precision"]["normal_bits"], 12);
+    assert!(
+        compact_json["precision"]["position_error"]
+            .as_f64()
+            .is_some_and(|e| e > 0.0)
+    );
+    assert_eq!(raw["precision"]["position_error"], 0.0);
+    assert_eq!(lossless["precision"]["position_bits"], 32);
+    assert!(
+        compact_json["bytes"]["per_section"]["edge_corners"]
+            .as_u64()
+            .is_some_and(|b| b > 0)
+    );
+    // The table says it too, and --timings adds what each section took.
+    let table = chamfer(&["inspect", path_str(&compact), "--timings"]);
+    assert!(table.status.success(), "{}", text(&table.stderr));
+    let table = text(&table.stdout);
+    assert!(
+        table.contains("16-bit grid") && table.contains("decode ms"),
+        "{table}"
+    );
+    // Bits out of range, and bits without --compact, are refused before anything is baked.
+    let out = dir.path().join("never.chamfer");
+    for flags in [
+        &["--compact", "--position-bits", "17"][..],
+        &["--compact", "--normal-bits", "1"][..],
+        &["--position-bits", "12"][..],
+    ] {
+        let mut args = vec!["bake", path_str(&fandisk), "-o", path_str(&out)];
+        args.extend(flags);
+        let run = chamfer(&args);
+        assert!(!run.status.success(), "{flags:?} accepted");
+        assert!(!out.exists());
+    }
+}
+
+#[test]
 fn radius_flags_mark_chamfer_edges() {
     let dir = tempfile::tempdir().expect("tempdir");
     let out = dir.path().join("cube.chamfer");

@@ -194,3 +194,27 @@ def test_the_stubs_name_what_the_module_has():
     keys = [s.target.id for s in options.body if isinstance(s, ast.AnnAssign)]
     assert keys == [name for name, _, _ in chamfer.OPTIONS]
     assert (Path(chamfer.__file__).parent / "py.typed").is_file()
+
+
+def test_compact_files_are_the_cli_compact_bakes_and_state_their_precision(cli, tmp_path):
+    mesh = MESHES / "fandisk.obj"
+    expected = cli.bake(mesh, tmp_path / "cli.chamfer", "--compact")
+    asset = chamfer.bake(mesh)
+    assert asset.encode(compact=True) == expected
+    asset.save(tmp_path / "py.chamfer", compact=True)
+    assert (tmp_path / "py.chamfer").read_bytes() == expected
+    loaded = chamfer.load(tmp_path / "py.chamfer")
+    assert loaded.stats == cli.inspect(tmp_path / "cli.chamfer")
+    assert loaded.stats["precision"]["position_bits"] == 16
+    assert loaded.stats["bytes"]["total"] == len(expected) < len(asset.encode())
+    # Same indices and edges; positions within the stated bound.
+    assert np.array_equal(loaded.edge_vertices, asset.edge_vertices)
+    error = loaded.stats["precision"]["position_error"]
+    assert np.abs(loaded.topology_positions - asset.topology_positions).max() <= error
+    lossless = chamfer.decode(asset.encode(compact=True, position_bits=32, normal_bits=32))
+    assert np.array_equal(lossless.topology_positions, asset.topology_positions)
+    with pytest.raises(chamfer.OptionsError, match="compact=True"):
+        asset.encode(position_bits=12)
+    with pytest.raises(chamfer.OptionsError, match="position bits"):
+        asset.save(tmp_path / "never.chamfer", compact=True, position_bits=20)
+    assert not (tmp_path / "never.chamfer").exists()
