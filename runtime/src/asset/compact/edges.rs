@@ -83,17 +83,38 @@ fn edge_at(c: usize, triangles: &[u32], corners: &VertexCorners) -> [u32; 4] {
 }
 
 /// One bit per corner of `triangles` (three indices each), or `None` if `edges` (four vertices
-/// each) are not the mesh's edges in the order of their face-a triangles and `v0`.
+/// each) are not the mesh's edges in the order of their face-a triangles and `v0`: each edge must be
+/// the one [`edge_at`] rebuilds from its corner.
 pub(crate) fn encode(edges: &[u32], triangles: &[u32], corners: &VertexCorners) -> Option<Vec<u8>> {
     let mut bits = vec![0u8; triangles.len().div_ceil(8)];
     let mut previous = None;
+    let next_of = |c: usize| triangles[c / 3 * 3 + (c + 1) % 3];
     for edge in edges.chunks_exact(4) {
-        let (v0, v1, v2) = (edge[0], edge[1], edge[2]);
-        let c = corners.of(v0).iter().map(|&c| c as usize).find(|&c| {
-            triangles[c / 3 * 3 + (c + 1) % 3] == v1 && triangles[corner_before(c)] == v2
+        let [v0, v1, v2, v3] = [edge[0], edge[1], edge[2], edge[3]];
+        // One pass over v0's fan: the face-a corner `(v0, v1, v2)`, then, as `edge_at` searches
+        // after it, the first triangle that holds `v1`.
+        let fan = corners.of(v0);
+        let at = fan.iter().position(|&c| {
+            let c = c as usize;
+            next_of(c) == v1 && triangles[corner_before(c)] == v2
         })?;
+        let c = fan[at] as usize;
+        let opposite = fan[at + 1..]
+            .iter()
+            .map(|&other| other as usize)
+            .find_map(|other| {
+                let (next, before) = (next_of(other), triangles[corner_before(other)]);
+                if next == v1 {
+                    Some(before)
+                } else if before == v1 {
+                    Some(next)
+                } else {
+                    None
+                }
+            })
+            .unwrap_or(v0);
         let key = (c / 3, v0);
-        if previous.is_some_and(|p| p >= key) || edge_at(c, triangles, corners) != *edge {
+        if previous.is_some_and(|p| p >= key) || opposite != v3 {
             return None;
         }
         previous = Some(key);

@@ -23,27 +23,30 @@ pub(crate) fn encode(
     codecs: &(dyn Codecs + Sync),
 ) -> Vec<(SectionKind, Vec<u8>)> {
     let parallel = asset.triangle_count() >= PARALLEL_TRIANGLES;
-    let (mesh, vertices) = join(
+    let (mut coded, vertices) = join(
         parallel,
         || encode_mesh(asset, render_counts, codecs),
         || {
             let (positions, seen) = encode_positions(asset, options.position_bits, codecs);
-            let normals = encode_normals(&asset.render_normals, options.normal_bits, codecs);
-            let attributes = encode_words(&asset.edge_attributes, codecs);
-            (positions, seen, normals, attributes)
+            let mut coded = vec![
+                (SectionKind::TopologyPositionsCoded, positions),
+                (
+                    SectionKind::RenderNormalsCoded,
+                    encode_normals(&asset.render_normals, options.normal_bits, codecs),
+                ),
+                (
+                    SectionKind::EdgeAttributesCoded,
+                    encode_words(&asset.edge_attributes, codecs),
+                ),
+            ];
+            // Lossless files keep the exact clusters (raw): they decode to the asset itself.
+            if *options != CompactOptions::LOSSLESS {
+                coded.push(encode_clusters(asset, seen, codecs));
+            }
+            coded
         },
     );
-    let (positions, seen, normals, attributes) = vertices;
-    let mut coded = mesh;
-    coded.extend([
-        (SectionKind::TopologyPositionsCoded, positions),
-        (SectionKind::RenderNormalsCoded, normals),
-        (SectionKind::EdgeAttributesCoded, attributes),
-    ]);
-    // Lossless files keep the exact clusters (raw), so that they decode to the asset itself.
-    if *options != CompactOptions::LOSSLESS {
-        coded.push(encode_clusters(asset, seen, codecs));
-    }
+    coded.extend(vertices);
     coded
 }
 
