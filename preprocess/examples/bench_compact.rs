@@ -143,6 +143,20 @@ fn measure(mesh: &Path, out: &Path, runs: usize) -> Result<(), Box<dyn std::erro
             mb_s(load)
         );
     }
+    // The floor under any decoder on this machine: fresh memory of the decoded size, allocated
+    // and touched once per page (the kernel zeroes each page on its first touch).
+    let (_, floor) = timed(runs, || {
+        let mut fresh = vec![0u8; gpu_bytes];
+        for at in (0..gpu_bytes).step_by(4096) {
+            fresh[at] = 1;
+        }
+        fresh
+    });
+    println!(
+        "| floor: {gpu_bytes} bytes of fresh memory, each page touched | — | — | — | {:.1} | {:.2}× | — |",
+        ms(floor),
+        ratio(floor, read_raw)
+    );
     println!("\nGPU-ready bytes after a load: {gpu_bytes}\n");
 
     // Each section: stored, decoded, and what its decode steps take (median of their sums).

@@ -1,6 +1,6 @@
 //! The `.chamfer` edge asset: what the bake writes and the runtime uploads.
 //!
-//! # Layout (format version 4)
+//! # Layout (format version 5)
 //!
 //! All numbers are little-endian.
 //!
@@ -29,6 +29,7 @@
 //! | [`SectionKind::IntersectionPolylines`] | `u32` segment index < S | P polylines, or empty (since version 2) |
 //! | [`SectionKind::EdgeClusters`] | [`EdgeCluster`] (48 bytes) | ⌈E / 64⌉ (since version 3) |
 //! | [`SectionKind::RenderVertexCounts`] | `u8` | V, or empty (since version 4) |
+//! | the coded twins of the sections above ([`compact`]) | coded bytes | empty, or in place of their raw twin (since version 5) |
 //!
 //! An *index* section is `u16` when its values are bounded by 65 536 and `u32` otherwise
 //! ([`IndexWidth::for_bound`]); the width is implied by the counts, so it is never stored.
@@ -56,11 +57,17 @@
 //! that runs are spatially coherent. A wrong cluster can only make a renderer skip edges it should
 //! draw: the decoder checks the section's length and numbers, not the bounds themselves.
 //!
+//! A *compact* file ([`Asset::encode_compact`]) stores sections coded instead of raw: quantized and
+//! through meshoptimizer's codecs, edges relative to the mesh's corners, rings as each vertex's
+//! order ([`compact`] has the table). [`Asset::decode`] turns them back into the same raw arrays, so a
+//! renderer never sees the difference; a file holds each section raw or coded, never both.
+//!
 //! # Compatibility
 //!
 //! The version is bumped on any change to the header or to a section's meaning. Version 2 added the
-//! two intersection sections, version 3 the edge clusters, version 4 the render vertex counts (the
-//! header is unchanged). A reader of version 4 also reads versions 1 to 3: a version-1 file has no
+//! two intersection sections, version 3 the edge clusters, version 4 the render vertex counts, version
+//! 5 the coded sections of compact files (the header is unchanged). A reader of version 5 also reads
+//! versions 1 to 4: a version-1 file has no
 //! intersection edges, the clusters of a version-1 or 2 file are computed when it is decoded (over
 //! its edge order, which was not made for them: they cull less), and files before version 4 store
 //! every render position. Any other version is reported as

@@ -645,7 +645,14 @@ fn render_positions_the_topology_repeats_are_not_stored() {
         section_length(&old, SectionKind::RenderPositions),
         Some(12 * 12)
     );
-    assert_eq!(old.encode_to_vec(), bytes, "re-encoded as version 4");
+    assert_eq!(old.encode_to_vec(), bytes, "re-encoded as today's version");
+
+    // A version-4 file (no coded sections) still reads, and re-encodes the same.
+    let mut v4 = Vec::new();
+    asset.encode_version(4, &mut v4).expect("a v4 layout");
+    assert_eq!(v4[8..12], 4u32.to_le_bytes());
+    let old = Asset::decode(&v4).expect("version 4 is still read");
+    assert_eq!(old.encode_to_vec(), bytes, "re-encoded as today's version");
 
     // More than 255 render vertices at one topology vertex: stored, not counted.
     let mut crowded = tetrahedron_split_by_vertex();
