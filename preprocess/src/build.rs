@@ -280,8 +280,8 @@ fn companions(input: &Path, options: &BakeOptions) -> Result<Vec<Vec<u8>>, Error
 }
 
 /// FNV-1a over the input, its companions, the options, this crate's version and the asset format
-/// version (which changes between releases while the crate's version may not): stable across runs
-/// and toolchains.
+/// version and kinds (which change between releases while the crate's version may not): stable
+/// across runs and toolchains.
 fn content_key(bytes: &[u8], companions: &[Vec<u8>], options: &BakeOptions) -> u64 {
     let mut hash = 0xcbf2_9ce4_8422_2325u64;
     let mut feed = |data: &[u8]| {
@@ -296,6 +296,8 @@ fn content_key(bytes: &[u8], companions: &[Vec<u8>], options: &BakeOptions) -> u
     }
     feed(env!("CARGO_PKG_VERSION").as_bytes());
     feed(&chamfer_runtime::asset::FORMAT_VERSION.to_le_bytes());
+    // The section kinds the format knows: they grow within a format version while it is developed.
+    feed(&(chamfer_runtime::asset::SectionKind::ALL.len() as u64).to_le_bytes());
     for (name, value) in options.describe() {
         feed(name.as_bytes());
         feed(value.as_bytes());

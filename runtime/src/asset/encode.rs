@@ -26,7 +26,7 @@ impl Asset {
     /// Writes the asset as a compact file (format 5, see [`compact`](super::compact)): coded
     /// sections where they apply, raw ones elsewhere.
     ///
-    /// With [`CompactOptions::LOSSLESS`] the file decodes to an asset equal to this one, provided
+    /// With [`CompactOptions::LOSSLESS`](super::CompactOptions::LOSSLESS) the file decodes to an asset equal to this one, provided
     /// its triangles start at the corners meshoptimizer's index codec starts them at (the bake's
     /// do; otherwise a triangle may start at another of its corners, its winding kept). Lossy
     /// options move each topology position by at most

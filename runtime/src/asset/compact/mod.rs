@@ -6,19 +6,19 @@
 //! | [`MeshIndicesCoded`](super::SectionKind::MeshIndicesCoded) | mesh indices | `u32` triangles, then meshoptimizer's index codec |
 //! | [`TopologyPositionsCoded`](super::SectionKind::TopologyPositionsCoded) | topology positions | `u32` count, `u32` bits; for 1–16 bits a [`Grid`] (origin, step: 6 × `f32`) and `[u16; 4]` grid points, for 32 the `[f32; 3]` themselves; meshoptimizer's vertex codec |
 //! | [`RenderNormalsCoded`](super::SectionKind::RenderNormalsCoded) | render normals | `u32` count, `u32` bits; for 2–16 bits `[i16; 2]` octahedral codes, for 32 the `[f32; 3]`; vertex codec |
-//! | [`EdgeCorners`](super::SectionKind::EdgeCorners) | edge vertices | `u32` edges, then one bit per mesh corner ([`edges`]) |
+//! | [`EdgeCorners`](super::SectionKind::EdgeCorners) | edge vertices | `u32` edges, then one bit per mesh corner (`edges.rs`) |
 //! | [`EdgeAttributesCoded`](super::SectionKind::EdgeAttributesCoded) | edge attributes | `u32` count; vertex codec of the words |
-//! | [`RingOrders`](super::SectionKind::RingOrders) | next ends and cap heads | `u64` bits of code, then the ring codes in whole `u64` words ([`rings`]) |
+//! | [`RingOrders`](super::SectionKind::RingOrders) | next ends and cap heads | `u64` bits of code, then the ring codes in whole `u64` words (`rings.rs`) |
 //! | [`RenderVertexCountsCoded`](super::SectionKind::RenderVertexCountsCoded) | render vertex counts | `u32` count; vertex codec of the bytes, four per element |
-//! | [`EdgeClustersCoded`](super::SectionKind::EdgeClustersCoded) | edge clusters | `u32` count, grid and radius unit; vertex codec of 16-byte bounds ([`bounds`]) |
+//! | [`EdgeClustersCoded`](super::SectionKind::EdgeClustersCoded) | edge clusters | `u32` count, grid and radius unit; vertex codec of 16-byte bounds (`bounds.rs`) |
 //!
 //! Corner-relative edges need the mesh's topology triangles, which the render vertex counts give;
 //! ring orders need corner-relative edges. A section the encoder cannot code (edges that do not
 //! follow the bake's order, say) stays raw, so any asset can be written compact.
 //!
 //! The codecs are meshoptimizer's (zeux), whose reference encoder the bake calls through the
-//! [`Codecs`] it is given; the decoders here are safe Rust ([`vertex_codec`], [`index_codec`]).
-//! [`read`] decodes each section; `decode` puts them together, on two threads where it can.
+//! [`Codecs`] it is given; the decoders here are safe Rust (`vertex_codec.rs`, `index_codec.rs`).
+//! `read.rs` decodes each section; `decode` puts them together, on two threads where it can.
 
 mod bounds;
 pub(crate) mod edges;
@@ -35,7 +35,7 @@ pub use quantize::Grid;
 /// The stored value of `bits` that keeps the `f32` numbers themselves (lossless).
 pub const LOSSLESS_BITS: u32 = 32;
 
-/// How [`Asset::encode_compact`] stores the lossy sections.
+/// How [`Asset::encode_compact`](super::Asset::encode_compact) stores the lossy sections.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct CompactOptions {
     /// Bits per axis of the topology positions' grid (1 to 16), or [`LOSSLESS_BITS`].
