@@ -191,7 +191,8 @@ fn round_up(value: f64) -> f32 {
     }
 }
 
-fn round_down(value: f64) -> f32 {
+/// `value` as the largest `f32` not above it.
+pub(crate) fn round_down(value: f64) -> f32 {
     let rounded = value as f32;
     if f64::from(rounded) > value {
         rounded.next_down()

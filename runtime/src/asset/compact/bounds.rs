@@ -17,7 +17,7 @@
 
 use glam::DVec3;
 
-use super::super::clusters::{CLUSTER_EDGES, EdgeCluster};
+use super::super::clusters::{CLUSTER_EDGES, EdgeCluster, round_down};
 use super::super::{EdgeFlags, attribute_flags};
 use super::quantize::{Grid, decode_octahedral, encode_octahedral};
 
@@ -46,10 +46,8 @@ pub(crate) fn encode(
         u if u > 0.0 && u.is_finite() => u,
         _ => 1.0,
     };
-    let mut prefix = Vec::with_capacity(PREFIX_BYTES);
-    for v in grid.origin.iter().chain(&grid.step).chain([&unit]) {
-        prefix.extend(v.to_le_bytes());
-    }
+    let mut prefix = grid.to_bytes().to_vec();
+    prefix.extend(unit.to_le_bytes());
     let records = clusters
         .iter()
         .map(|c| record(c, &grid, unit))
@@ -104,15 +102,6 @@ fn half_angle(steps: u16) -> f64 {
     f64::from(steps) * std::f64::consts::PI / ANGLE_STEPS
 }
 
-fn round_down(value: f64) -> f32 {
-    let rounded = value as f32;
-    if f64::from(rounded) > value {
-        rounded.next_down()
-    } else {
-        rounded
-    }
-}
-
 /// The clusters of `prefix` ([`PREFIX_BYTES`]) and `records` (decoded, [`RECORD_BYTES`] each),
 /// their flags from `edge_attributes` (one cluster per [`CLUSTER_EDGES`] of them). `Err` says what
 /// is wrong.
@@ -121,27 +110,17 @@ pub(crate) fn decode(
     records: &[u8],
     edge_attributes: &[u32],
 ) -> Result<Vec<EdgeCluster>, String> {
-    let number = |k: usize| {
-        f32::from_le_bytes([
-            prefix[4 * k],
-            prefix[4 * k + 1],
-            prefix[4 * k + 2],
-            prefix[4 * k + 3],
-        ])
-    };
-    let grid = Grid {
-        bits: GRID_BITS,
-        origin: std::array::from_fn(number),
-        step: std::array::from_fn(|k| number(3 + k)),
-    };
-    let unit = number(6);
-    let numbers = grid.origin.iter().chain(&grid.step).chain([&unit]);
-    if !numbers.into_iter().all(|v| v.is_finite())
-        || grid.step.iter().any(|&s| s < 0.0)
-        || unit <= 0.0
-    {
+    let (grid, unit) = prefix
+        .split_first_chunk::<24>()
+        .map_or((None, 0.0), |(grid, unit)| {
+            (
+                Grid::from_bytes(GRID_BITS, grid),
+                f32::from_le_bytes([unit[0], unit[1], unit[2], unit[3]]),
+            )
+        });
+    let Some(grid) = grid.filter(|_| unit.is_finite() && unit > 0.0) else {
         return Err("grid or radius unit not finite, or negative".into());
-    }
+    };
     let limit = (1i32 << (AXIS_BITS - 1)) - 1;
     let mut clusters = Vec::with_capacity(records.len() / RECORD_BYTES);
     for (index, (r, edges)) in records

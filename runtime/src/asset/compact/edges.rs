@@ -55,6 +55,24 @@ fn corner_before(c: usize) -> usize {
     if c.is_multiple_of(3) { c + 2 } else { c - 1 }
 }
 
+/// The vertex opposite `v1` in the first of `corners` (corners at `v0`) whose triangle holds `v1`.
+fn opposite(corners: &[u32], v1: u32, triangles: &[u32]) -> Option<u32> {
+    corners
+        .iter()
+        .map(|&other| other as usize)
+        .find_map(|other| {
+            let next = triangles[other / 3 * 3 + (other + 1) % 3];
+            let before = triangles[corner_before(other)];
+            if next == v1 {
+                Some(before)
+            } else if before == v1 {
+                Some(next)
+            } else {
+                None
+            }
+        })
+}
+
 /// The edge whose face a has corner `c`: `v3` is the vertex opposite it in the lowest other
 /// triangle at `v0` that holds `v1`. (Face a is the lowest triangle that holds the edge, so the
 /// search starts after `c` in `v0`'s corners, which are in increasing order.)
@@ -64,21 +82,7 @@ fn edge_at(c: usize, triangles: &[u32], corners: &VertexCorners) -> [u32; 4] {
     let (a, b) = (at(0), at(1));
     let fan = corners.of(a);
     let after = fan.partition_point(|&other| other as usize <= c);
-    let v3 = fan[after..]
-        .iter()
-        .map(|&other| other as usize)
-        .find_map(|other| {
-            let next = triangles[other / 3 * 3 + (other + 1) % 3];
-            let before = triangles[corner_before(other)];
-            if next == b {
-                Some(before)
-            } else if before == b {
-                Some(next)
-            } else {
-                None
-            }
-        })
-        .unwrap_or(a);
+    let v3 = opposite(&fan[after..], b, triangles).unwrap_or(a);
     [a, b, at(2), v3]
 }
 
@@ -99,22 +103,9 @@ pub(crate) fn encode(edges: &[u32], triangles: &[u32], corners: &VertexCorners) 
             next_of(c) == v1 && triangles[corner_before(c)] == v2
         })?;
         let c = fan[at] as usize;
-        let opposite = fan[at + 1..]
-            .iter()
-            .map(|&other| other as usize)
-            .find_map(|other| {
-                let (next, before) = (next_of(other), triangles[corner_before(other)]);
-                if next == v1 {
-                    Some(before)
-                } else if before == v1 {
-                    Some(next)
-                } else {
-                    None
-                }
-            })
-            .unwrap_or(v0);
+        let v3_found = opposite(&fan[at + 1..], v1, triangles).unwrap_or(v0);
         let key = (c / 3, v0);
-        if previous.is_some_and(|p| p >= key) || opposite != v3 {
+        if previous.is_some_and(|p| p >= key) || v3_found != v3 {
             return None;
         }
         previous = Some(key);

@@ -140,9 +140,7 @@ fn encode_positions(asset: &Asset, bits: u32, codecs: &dyn Codecs) -> (Vec<u8>, 
         return (bytes, positions.clone());
     }
     bytes.extend(bits.to_le_bytes());
-    for v in grid.origin.iter().chain(&grid.step) {
-        bytes.extend(v.to_le_bytes());
-    }
+    bytes.extend(grid.to_bytes());
     bytes.extend(codecs.encode_vertices(bytemuck::cast_slice(&points), 8));
     (bytes, seen)
 }

@@ -48,6 +48,35 @@ impl Grid {
         })
     }
 
+    /// The grid as stored: origin and step, six little-endian `f32`.
+    pub fn to_bytes(&self) -> [u8; 24] {
+        let mut bytes = [0u8; 24];
+        for (k, v) in self.origin.iter().chain(&self.step).enumerate() {
+            bytes[4 * k..4 * k + 4].copy_from_slice(&v.to_le_bytes());
+        }
+        bytes
+    }
+
+    /// The grid of `bits` stored as `bytes` ([`to_bytes`](Self::to_bytes)), if its numbers are
+    /// finite and its steps not negative.
+    pub fn from_bytes(bits: u32, bytes: &[u8; 24]) -> Option<Self> {
+        let number = |k: usize| {
+            f32::from_le_bytes([
+                bytes[4 * k],
+                bytes[4 * k + 1],
+                bytes[4 * k + 2],
+                bytes[4 * k + 3],
+            ])
+        };
+        let grid = Self {
+            bits,
+            origin: std::array::from_fn(number),
+            step: std::array::from_fn(|k| number(3 + k)),
+        };
+        let finite = grid.origin.iter().chain(&grid.step).all(|v| v.is_finite());
+        (finite && grid.step.iter().all(|&s| s >= 0.0)).then_some(grid)
+    }
+
     /// The position of grid point `q`.
     pub fn position(&self, q: [u16; 3]) -> [f32; 3] {
         std::array::from_fn(|k| self.origin[k] + f32::from(q[k]) * self.step[k])

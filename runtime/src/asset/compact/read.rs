@@ -256,27 +256,8 @@ fn read_grid(bits: u32, bytes: &[u8]) -> Result<(Grid, &[u8]), DecodeError> {
     let (numbers, rest) = bytes
         .split_first_chunk::<24>()
         .ok_or_else(|| coding_error(kind, "shorter than its grid"))?;
-    let number = |k: usize| {
-        f32::from_le_bytes([
-            numbers[4 * k],
-            numbers[4 * k + 1],
-            numbers[4 * k + 2],
-            numbers[4 * k + 3],
-        ])
-    };
-    let grid = Grid {
-        bits,
-        origin: std::array::from_fn(number),
-        step: std::array::from_fn(|k| number(3 + k)),
-    };
-    if !grid.origin.iter().chain(&grid.step).all(|v| v.is_finite())
-        || grid.step.iter().any(|&s| s < 0.0)
-    {
-        return Err(coding_error(
-            kind,
-            "grid origin or step not finite, or a step negative",
-        ));
-    }
+    let grid = Grid::from_bytes(bits, numbers)
+        .ok_or_else(|| coding_error(kind, "grid origin or step not finite, or a step negative"))?;
     Ok((grid, rest))
 }
 
