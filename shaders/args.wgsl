@@ -1,5 +1,5 @@
-// The frame's bookkeeping passes over the draw lists: `reset` before the first instance, `args` after
-// each instance's classification (the workgroup counts of its join pass: one thread per drawn edge
+// The frame's bookkeeping passes over the draw lists: `reset` before the first batch, `args` after
+// each batch's classification (the workgroup counts of its join pass: one thread per drawn edge
 // end, WORKGROUP per workgroup, at most MAX_GROUPS per dimension), `finish` after the last (the
 // lists' counts clamped to their capacity, and what was wanted). Included after common.wgsl, for the
 // frame uniform, and lists.wgsl.
@@ -10,6 +10,7 @@
 
 @compute @workgroup_size(1)
 fn reset() {
+    enter_batch();
     out.edges.vertex_count = 6u;
     atomicStore(&out.edges.instance_count, 0u);
     out.edges.first_vertex = 0u;
@@ -19,11 +20,14 @@ fn reset() {
     out.caps.first_vertex = 0u;
     out.caps.first_instance = 0u;
     out.kept_clusters = 0u;
+    atomicStore(&out.survivors_wanted, 0u);
+    atomicStore(&out.instances_in_view, 0u);
 }
 
 @compute @workgroup_size(1)
 fn args() {
-    let filled = min(atomicLoad(&out.edges.instance_count), frame.capacity) - starts[frame.instance];
+    enter_batch();
+    let filled = min(atomicLoad(&out.edges.instance_count), frame.capacity) - starts[frame.batch];
     let groups = (2u * filled + WORKGROUP - 1u) / WORKGROUP;
     let x = min(groups, MAX_GROUPS);
     dispatch[0] = x;
@@ -34,6 +38,7 @@ fn args() {
 // The lists are bounded; never let the draws read past them, and say how much was wanted.
 @compute @workgroup_size(1)
 fn finish() {
+    enter_batch();
     let wanted = atomicLoad(&out.edges.instance_count);
     out.needed = wanted;
     atomicStore(&out.edges.instance_count, min(wanted, frame.capacity));

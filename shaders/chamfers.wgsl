@@ -3,6 +3,7 @@
 
 @compute @workgroup_size(WORKGROUP)
 fn chamfer_records(@builtin(global_invocation_id) id: vec3<u32>) {
+    enter_batch();
     let first = first_slot();
     let slot = first + thread_index(id);
     if slot >= slots_filled() {
@@ -17,6 +18,7 @@ fn chamfer_records(@builtin(global_invocation_id) id: vec3<u32>) {
     if e < frame.first_edge || e - frame.first_edge >= frame.edge_count {
         return;
     }
+    enter_instance(item.y >> INSTANCE_SHIFT);
     let p0 = position(edge_vertex(4u * e));
     let p1 = position(edge_vertex(4u * e + 1u));
     let normals = face_normals(

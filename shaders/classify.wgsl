@@ -1,22 +1,32 @@
-// Per frame, one thread per edge: which edges to draw (thesis §6.1, §10.4), appended to a compact
+// Per frame, one thread per edge of each instance: which edges to draw (thesis §6.1, §10.4), appended to a compact
 // list whose length is the instance count of the indirect draw. `classify` runs over every edge of
 // the dispatch; `classify_clusters` over the edges of the clusters cull.wgsl kept, one workgroup per
 // cluster. Both draw exactly the same edges: a cluster is dropped only when none of its edges would
 // pass `classify_edge`.
 
-// Before an instance's classification: its slots start at the count so far, and no cluster is kept.
+// Before a batch's classification: its slots start at the count so far, and no cluster is kept.
 @compute @workgroup_size(1)
 fn mark() {
-    starts[frame.instance] = slots_filled();
+    enter_batch();
+    starts[frame.batch] = slots_filled();
     atomicStore(&survivors.count, 0u);
 }
 
+// One thread per (instance of the batch, edge of the chunk).
 @compute @workgroup_size(WORKGROUP)
 fn classify(@builtin(global_invocation_id) id: vec3<u32>) {
-    let i = thread_index(id);
-    if i < frame.edge_count {
-        classify_edge(frame.first_edge + i);
+    enter_batch();
+    let t = thread_index(id);
+    let n = frame.edge_count;
+    if n == 0u || t >= n * frame.batch_instances {
+        return;
     }
+    let instance = frame.instance + t / n;
+    if !instance_visible(instance) {
+        return;
+    }
+    enter_instance(instance);
+    classify_edge(frame.first_edge + t % n);
 }
 
 @compute @workgroup_size(CLUSTER_EDGES)
@@ -24,11 +34,14 @@ fn classify_clusters(
     @builtin(workgroup_id) group: vec3<u32>,
     @builtin(local_invocation_index) k: u32,
 ) {
+    enter_batch();
     let g = group.y * MAX_GROUPS + group.x;
     if g >= survivors.kept {
         return;
     }
-    let i = survivors.clusters[g] * CLUSTER_EDGES + k;
+    let kept = survivors.clusters[g];
+    enter_instance(kept.x);
+    let i = kept.y * CLUSTER_EDGES + k;
     if i < frame.edge_count {
         classify_edge(frame.first_edge + i);
     }
@@ -44,7 +57,6 @@ fn classify_edge(e: u32) {
         word = drawn_word(flags, front.x, front.y);
     }
     if word == NOT_DRAWN || edge_off_screen(e) {
-        // No store: `state` may keep a stale slot from an earlier frame; readers check it (joins.wgsl).
         return;
     }
     let s = edge_screen(e, word);
@@ -57,5 +69,5 @@ fn classify_edge(e: u32) {
     }
     drawn[slot] = vec2<u32>(e, word);
     screen[slot] = to_record(s);
-    state[e] = slot + 1u;
+    remember(frame.instance, e, slot);
 }

@@ -42,13 +42,34 @@ struct Frame {
     // The mesh's index width and triangle count, for the techniques that pull triangles.
     indices_u16: u32,
     triangle_count: u32,
-    // This instance's number among the frame's drawn instances.
+    // This instance's number among the frame's drawn instances (batch.wgsl: in a batch's block, its
+    // first instance).
     instance: u32,
     // Slots of the frame's drawn-edge lists (joined technique).
     capacity: u32,
+    // The joined technique's batches (batch.wgsl): this block's batch, the instances in it (in the
+    // place pass's block: every instance of the frame), the mask of the slot table (its size - 1) and
+    // the slots of the kept-cluster list.
+    batch: u32,
+    batch_instances: u32,
+    table_mask: u32,
+    survivor_capacity: u32,
 }
 
-@group(0) @binding(0) var<uniform> frame: Frame;
+// One instance's camera in its model space (the joined technique, batch.wgsl), written by the host
+// each frame; the place pass (instances.wgsl) sets `visible`.
+struct InstanceFrame {
+    mvp: mat4x4<f32>,
+    eye: vec4<f32>,
+    frustum: array<vec4<f32>, 4>,
+    // The asset's bounds in model space; `lo.w` is the instance's depth_ref.
+    lo: vec4<f32>,
+    hi: vec4<f32>,
+    visible: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+}
 @group(0) @binding(1) var<storage, read> topology: array<f32>;
 @group(0) @binding(2) var<storage, read> edge_vertices: array<u32>;
 

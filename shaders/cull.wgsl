@@ -13,12 +13,13 @@ struct EdgeCluster {
     flags: u32,
 }
 
+// The clusters a cull pass kept, each with its instance: (instance, cluster of the chunk).
 struct Survivors {
     count: atomic<u32>,
-    // The count once every cluster is tested (what classify_clusters reads).
+    // The count once every cluster is tested, at most the capacity (what classify_clusters reads).
     kept: u32,
     _pad: array<u32, 2>,
-    clusters: array<u32>,
+    clusters: array<vec2<u32>>,
 }
 
 @group(0) @binding(27) var<storage, read_write> survivors: Survivors;
@@ -27,23 +28,38 @@ struct Survivors {
 // that dispatch reads the list, and a buffer cannot be both there.)
 @group(0) @binding(28) var<storage, read_write> cull_dispatch: array<u32, 4>;
 
+// One thread per (instance of the batch, cluster of the chunk): the instances out of view stop here.
 @compute @workgroup_size(WORKGROUP)
 fn cull(@builtin(global_invocation_id) id: vec3<u32>) {
-    let i = thread_index(id);
+    enter_batch();
+    let t = thread_index(id);
     // This dispatch's clusters: those of its edges (a chunk starts on a cluster boundary).
-    if i * CLUSTER_EDGES >= frame.edge_count {
+    let per_instance = (frame.edge_count + CLUSTER_EDGES - 1u) / CLUSTER_EDGES;
+    if t >= per_instance * frame.batch_instances {
         return;
     }
+    let instance = frame.instance + t / per_instance;
+    if !instance_visible(instance) {
+        return;
+    }
+    let i = t % per_instance;
+    enter_instance(instance);
     if may_draw(clusters[frame.first_edge / CLUSTER_EDGES + i]) {
-        survivors.clusters[atomicAdd(&survivors.count, 1u)] = i;
+        let k = atomicAdd(&survivors.count, 1u);
+        if k < frame.survivor_capacity {
+            survivors.clusters[k] = vec2<u32>(instance, i);
+        }
     }
 }
 
 // The workgroups of classify_clusters, at most MAX_GROUPS per dimension; the count starts again at 0
-// for the next dispatch.
+// for the next dispatch. Clusters past the list's capacity are not drawn this frame; the host grows
+// the list for the next.
 @compute @workgroup_size(1)
 fn cull_args() {
-    let kept = atomicLoad(&survivors.count);
+    enter_batch();
+    let wanted = atomicLoad(&survivors.count);
+    let kept = min(wanted, frame.survivor_capacity);
     let x = min(kept, MAX_GROUPS);
     cull_dispatch[0] = x;
     cull_dispatch[1] = select(0u, (kept + x - 1u) / max(x, 1u), x > 0u);
@@ -51,6 +67,7 @@ fn cull_args() {
     survivors.kept = kept;
     atomicStore(&survivors.count, 0u);
     out.kept_clusters += kept;
+    atomicMax(&out.survivors_wanted, wanted);
 }
 
 // False only if no edge of `c` can be drawn this frame.

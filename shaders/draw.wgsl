@@ -21,7 +21,8 @@ struct Out {
     caps: array<u32, 4>,
     needed: u32,
     kept_clusters: u32,
-    _pad: array<u32, 2>,
+    survivors_wanted: u32,
+    instances_in_view: u32,
     cap_list: array<Cap>,
 }
 

@@ -7,6 +7,8 @@
 //   joins_next:  one thread per drawn edge end, walking the next-index ring around its vertex;
 //   joins_heads: one thread per capped vertex, walking its ring from the cap buffer's head.
 
+// Ends are looked up per instance in the slot table (compute.wgsl): a batch joins every instance of
+// its asset in one dispatch.
 // Walks never need more than MAX_RING steps: the decoder refuses longer rings and checked every ring
 // is a closed cycle. joins_heads gathers MAX_GATHER ends per vertex; further drawn edges get no join.
 
@@ -19,26 +21,19 @@ struct End {
     g: EdgeEnd,
 }
 
-fn end_at(index: u32) -> End {
+// Edge end `index` of instance `instance`, if that instance draws its edge this frame.
+fn end_at(instance: u32, index: u32) -> End {
     var end: End;
     end.ok = false;
     end.index = index;
     let e = index >> 1u;
     let k = index & 1u;
-    // Classify writes `state` only for the edges it draws, so an entry may be left from an earlier
-    // frame: it counts only if its slot is in this frame's list and holds this edge.
-    // Instances of one asset run one after another over the asset's one `state`, so the slot must
-    // also be this instance's.
-    let state_word = state[e];
-    if state_word == 0u || state_word - 1u < first_slot() || state_word > slots_filled() {
+    let entry = slot_of(instance, e);
+    if entry == 0u {
         return end;
     }
-    end.slot = state_word - 1u;
-    let item = drawn[end.slot];
-    if item.x != e {
-        return end;
-    }
-    let word = item.y;
+    end.slot = entry - 1u;
+    let word = drawn[end.slot].y;
     if (word & DRAWN_HIGHLIGHT) != 0u {
         return end;
     }
@@ -149,14 +144,17 @@ fn resolve(me: End, n: Neighbours) {
 fn joins_next(
     @builtin(global_invocation_id) id: vec3<u32>,
 ) {
+    enter_batch();
     let t = thread_index(id);
     let first = first_slot();
     if t >= 2u * (slots_filled() - first) {
         return;
     }
     let index = 2u * first + t;
-    let start = 2u * drawn[index >> 1u].x + (index & 1u);
-    let me = end_at(start);
+    let item = drawn[index >> 1u];
+    let instance = item.y >> INSTANCE_SHIFT;
+    let start = 2u * item.x + (index & 1u);
+    let me = end_at(instance, start);
     if !me.ok {
         joins[index] = vec2<u32>(0u);
         return;
@@ -164,7 +162,7 @@ fn joins_next(
     var found = no_neighbours();
     var f = ring(start);
     for (var steps = 0u; f != start && steps < MAX_RING; steps += 1u) {
-        found = nearer(found, me.g.a, end_at(f));
+        found = nearer(found, me.g.a, end_at(instance, f));
         f = ring(f);
     }
     resolve(me, found);
@@ -175,6 +173,7 @@ fn joins_next(
 fn clear_joins(
     @builtin(global_invocation_id) id: vec3<u32>,
 ) {
+    enter_batch();
     let t = thread_index(id);
     let first = first_slot();
     if t < 2u * (slots_filled() - first) {
@@ -186,16 +185,23 @@ fn clear_joins(
 fn joins_heads(
     @builtin(global_invocation_id) id: vec3<u32>,
 ) {
+    enter_batch();
+    // One thread per (instance of the batch, capped vertex).
     let t = thread_index(id);
-    if t >= frame.head_count {
+    let heads = frame.head_count;
+    if heads == 0u || t >= heads * frame.batch_instances {
         return;
     }
-    let head = cap_head(t);
+    let instance = frame.instance + t / heads;
+    if !instance_visible(instance) {
+        return;
+    }
+    let head = cap_head(t % heads);
     var ends: array<End, MAX_GATHER>;
     var count = 0u;
     var f = head;
     for (var steps = 0u; steps < MAX_RING; steps += 1u) {
-        let end = end_at(f);
+        let end = end_at(instance, f);
         if end.ok && count < MAX_GATHER {
             ends[count] = end;
             count += 1u;

@@ -26,6 +26,9 @@ struct Out {
     needed: u32,
     // Clusters the cull passes kept this frame (cull.wgsl).
     kept_clusters: u32,
-    _pad: array<u32, 2>,
+    // The most clusters one cull pass wanted to keep, past the list's capacity or not (the host
+    // grows the list), and the instances the place pass found in view (instances.wgsl).
+    survivors_wanted: atomic<u32>,
+    instances_in_view: atomic<u32>,
     cap_list: array<Cap>,
 }

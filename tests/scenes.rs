@@ -159,9 +159,15 @@ fn an_instance_outside_the_view_costs_no_edge_work() {
         Instance::new(&uploaded),
         Instance::new(&uploaded).with_transform(far_away),
     ]);
+    // The joined technique culls whole instances on the GPU: the host hands it both.
     assert_eq!((alone_stats.instances, alone_stats.culled), (1, 0));
-    assert_eq!((far_stats.instances, far_stats.culled), (2, 1));
-    // Not one edge classified or drawn for the instance out of view.
+    assert_eq!((far_stats.instances, far_stats.culled), (2, 0));
+    assert_eq!(
+        (alone.instances_in_view, with_far.instances_in_view),
+        (1, 1)
+    );
+    // Not one cluster kept, edge classified or drawn for the instance out of view.
+    assert_eq!(with_far.clusters_kept, alone.clusters_kept);
     assert_eq!(with_far.wanted, alone.wanted);
     assert_eq!(with_far.edges, alone.edges);
     // And the counter counts: a second instance in view doubles the edges.
@@ -170,8 +176,9 @@ fn an_instance_outside_the_view_costs_no_edge_work() {
         Instance::new(&uploaded),
         Instance::new(&uploaded).with_transform(beside),
     ]);
-    assert_eq!(two_stats.culled, 0);
+    assert_eq!((two_stats.culled, two.instances_in_view), (0, 2));
     assert!(two.wanted > alone.wanted, "{two:?} vs {alone:?}");
+    assert!(two.clusters_kept > alone.clusters_kept);
 }
 
 #[test]

@@ -132,6 +132,27 @@ pub(crate) struct Frame {
     pub(crate) triangle_count: u32,
     pub(crate) instance: u32,
     pub(crate) capacity: u32,
+    pub(crate) batch: u32,
+    pub(crate) batch_instances: u32,
+    pub(crate) table_mask: u32,
+    pub(crate) survivor_capacity: u32,
+}
+
+/// `InstanceFrame` in `shaders/common.wgsl`: one instance's camera in its model space, for the
+/// joined technique's batches (`shaders/batch.wgsl`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct InstanceFrame {
+    pub(crate) mvp: [[f32; 4]; 4],
+    pub(crate) eye: [f32; 4],
+    pub(crate) frustum: [[f32; 4]; 4],
+    /// The asset's bounds; `lo[3]` is the instance's depth reference.
+    pub(crate) lo: [f32; 4],
+    pub(crate) hi: [f32; 4],
+    pub(crate) visible: u32,
+    pub(crate) _pad0: u32,
+    pub(crate) _pad1: u32,
+    pub(crate) _pad2: u32,
 }
 
 /// `Post` in `shaders/post.wgsl`: the uniform of the post-processes.
@@ -187,7 +208,8 @@ pub(crate) struct Out {
     pub(crate) caps: DrawArgs,
     pub(crate) needed: u32,
     pub(crate) kept_clusters: u32,
-    pub(crate) _pad: [u32; 2],
+    pub(crate) survivors_wanted: u32,
+    pub(crate) instances_in_view: u32,
 }
 
 /// `Cap` in `shaders/compute.wgsl`: a round join.
@@ -296,7 +318,16 @@ pub(crate) fn layouts() -> Vec<Layout> {
                 triangle_count,
                 instance,
                 capacity,
+                batch,
+                batch_instances,
+                table_mask,
+                survivor_capacity,
             ]
+        ),
+        layout!(
+            "InstanceFrame",
+            InstanceFrame,
+            [mvp, eye, frustum, lo, hi, visible, _pad0, _pad1, _pad2]
         ),
         layout!("Lighting", Lighting, [light, color, material]),
         layout!(
@@ -315,7 +346,18 @@ pub(crate) fn layouts() -> Vec<Layout> {
             [vertex_count, instance_count, first_vertex, first_instance]
         ),
         layout!("Cap", Cap, [end, color, radius, from_dir, to_dir]),
-        layout!("Out", Out, [edges, caps, needed, kept_clusters, _pad]),
+        layout!(
+            "Out",
+            Out,
+            [
+                edges,
+                caps,
+                needed,
+                kept_clusters,
+                survivors_wanted,
+                instances_in_view
+            ]
+        ),
         layout!("ScreenRecord", ScreenRecord, [ends, depth_w, extents]),
         layout!(
             "EdgeCluster",

@@ -82,7 +82,8 @@ impl<'a> Instance<'a> {
 pub struct SceneStats {
     /// Instances given.
     pub instances: u32,
-    /// Instances outside the view, skipped before any edge work.
+    /// Instances outside the view, skipped on the host before any edge work. The joined technique
+    /// culls instances on the GPU instead (0 here; see [`DrawCounts::instances_in_view`]).
     pub culled: u32,
 }
 
@@ -99,6 +100,9 @@ pub struct DrawCounts {
     /// Edge clusters the cull pass kept for classification, all instances together (0 with
     /// [`EdgeStyle::cluster_culling`] off).
     pub clusters_kept: u32,
+    /// Instances the GPU found in view, for the techniques that cull instances there
+    /// ([`Technique::Joined`]; 0 for the others, which cull on the host: see [`SceneStats`]).
+    pub instances_in_view: u32,
 }
 
 /// The application's finished attachments, for the techniques that work after its pass
@@ -180,9 +184,10 @@ impl SceneRenderer {
         // made or kept: a frame kept from another technique of the module proves nothing.
         techniques::check_target(module, &style.technique, self.pipelines.target())?;
         let view_projection = camera.view_projection();
+        let on_gpu = module.culls_on_gpu();
         let drawn: Vec<Drawn<'_>> = instances
             .iter()
-            .filter(|i| in_view(view_projection * i.transform, i.asset.bounds()))
+            .filter(|i| on_gpu || in_view(view_projection * i.transform, i.asset.bounds()))
             .map(|i| Drawn {
                 asset: i.asset,
                 camera: Camera {

@@ -50,6 +50,7 @@ impl Pull for Alternate {
         "alternate.wgsl",
         &[
             wgsl::COMMON,
+            wgsl::FRAME,
             wgsl::FLAT,
             wgsl::VERTEX_EDGES,
             wgsl::ALTERNATE,

@@ -41,8 +41,10 @@ impl Pull for Fins {
             asset::FIN_CORNERS,
         ],
     );
-    const SHADER: (&'static str, &'static [&'static str]) =
-        ("fins.wgsl", &[wgsl::COMMON, wgsl::FLAT, wgsl::FINS]);
+    const SHADER: (&'static str, &'static [&'static str]) = (
+        "fins.wgsl",
+        &[wgsl::COMMON, wgsl::FRAME, wgsl::FLAT, wgsl::FINS],
+    );
     const DRAWS: Draws = Draws::PerEdge(12);
     const PROGRAMS: &'static [Program] =
         &[Program::draw("fin_vertex", "flat_fragment", Self::BINDINGS)];

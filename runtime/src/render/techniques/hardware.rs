@@ -59,7 +59,13 @@ fn shader() -> Shader {
     let stencil = |vertex| Program::draw(vertex, "stencil_only", &BINDINGS);
     Shader::new(
         "hardware.wgsl",
-        &[wgsl::COMMON, wgsl::FLAT, wgsl::TRIANGLES, wgsl::HARDWARE],
+        &[
+            wgsl::COMMON,
+            wgsl::FRAME,
+            wgsl::FLAT,
+            wgsl::TRIANGLES,
+            wgsl::HARDWARE,
+        ],
         vec![
             stencil("hw_depth_vertex"),
             Program::depth_only("hw_depth_vertex", &BINDINGS),

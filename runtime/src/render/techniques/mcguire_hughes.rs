@@ -41,6 +41,7 @@ impl Pull for McGuireHughes {
         "mcguire_hughes.wgsl",
         &[
             wgsl::COMMON,
+            wgsl::FRAME,
             wgsl::FLAT,
             wgsl::VERTEX_EDGES,
             wgsl::MCGUIRE_HUGHES,

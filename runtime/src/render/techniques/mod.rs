@@ -95,6 +95,12 @@ pub(crate) trait Module: Sync + 'static {
         false
     }
 
+    /// True if the technique's frame culls whole instances out of view on the GPU: the renderer
+    /// then hands it every instance instead of culling on the host.
+    fn culls_on_gpu(&self) -> bool {
+        false
+    }
+
     /// Fresh per-frame state (compiling the technique's pipelines if they are not yet).
     fn new_frame(
         &self,
@@ -232,6 +238,10 @@ pub(crate) fn frame_uniform(cx: &FrameContext<'_>, drawn: &Drawn<'_>, index: usi
         triangle_count: asset.index_count / 3,
         instance: index as u32,
         capacity: 0,
+        batch: 0,
+        batch_instances: 0,
+        table_mask: 0,
+        survivor_capacity: 0,
     }
 }
 
@@ -363,10 +373,6 @@ impl<T> PerAsset<T> {
     pub(crate) fn get(&self, i: usize) -> (&GpuAsset, &T) {
         let (_, asset, state) = &self.entries[i];
         (asset, state)
-    }
-
-    pub(crate) fn iter(&self) -> impl Iterator<Item = &T> {
-        self.entries.iter().map(|(_, _, t)| t)
     }
 }
 

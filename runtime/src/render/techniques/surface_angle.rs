@@ -29,8 +29,10 @@ impl Pull for SurfaceAngle {
     type Params = AngleParams;
     type Draw = ();
     const BINDINGS: &'static Bindings = &Bindings::draw("surface angle", &[FRAME, PARAMS]);
-    const SHADER: (&'static str, &'static [&'static str]) =
-        ("surface_angle.wgsl", &[wgsl::COMMON, wgsl::SURFACE_ANGLE]);
+    const SHADER: (&'static str, &'static [&'static str]) = (
+        "surface_angle.wgsl",
+        &[wgsl::COMMON, wgsl::FRAME, wgsl::SURFACE_ANGLE],
+    );
     const DRAWS: Draws = Draws::Mesh;
     const PROGRAMS: &'static [Program] = &[Program::draw(
         "angle_vertex",

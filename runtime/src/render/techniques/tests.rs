@@ -54,7 +54,11 @@ impl Pull for Silhouette {
     const BINDINGS: &'static Bindings = &Bindings::draw("silhouette", &[FRAME, PARAMS]);
     const SHADER: (&'static str, &'static [&'static str]) = (
         "silhouette (test)",
-        &[chamfer_shaders::COMMON, SILHOUETTE_WGSL],
+        &[
+            chamfer_shaders::COMMON,
+            chamfer_shaders::FRAME,
+            SILHOUETTE_WGSL,
+        ],
     );
     const DRAWS: Draws = Draws::Mesh;
     const PROGRAMS: &'static [Program] = &[Program::draw(

@@ -1,13 +1,18 @@
-//! The joined technique's bindings: the asset sections its passes read and the frame's lists (the
-//! numbers `shaders/compute.wgsl`, `draw.wgsl`, `args.wgsl` and `cull.wgsl` use). Each pass binds only
+//! The joined technique's bindings: the asset sections its passes read, the frame's lists and its
+//! instances (the numbers `shaders/compute.wgsl`, `draw.wgsl`, `args.wgsl`, `cull.wgsl`,
+//! `batch.wgsl` and `instances.wgsl` use). Each pass binds only
 //! what its entry points use, which keeps every stage within wgpu's default limit of 8 storage
 //! buffers.
 
-use crate::render::bindings::Kind::{Read, ReadWrite, Uniform};
+use crate::render::bindings::Kind::{Block, Read, ReadWrite, Uniform};
 use crate::render::bindings::{Binding, Bindings, FRAME, asset};
 
-/// Per edge, its slot + 1 this frame (0: not drawn), written by classify, read by the joins.
-pub(crate) const STATE: Binding = Binding::new(16, "state", ReadWrite);
+/// The compute passes' uniform block: their batch's (`shaders/batch.wgsl`), where the other passes
+/// read one instance's [`FRAME`].
+pub(crate) const BATCH: Binding = Binding::new(FRAME.index, "batch", Block);
+
+/// The slot table: per (instance, edge) drawn, its slot + 1, written by classify, read by the joins.
+pub(crate) const TABLE: Binding = Binding::new(16, "table", ReadWrite);
 /// The drawn edges: (edge, drawn word) per slot.
 pub(crate) const DRAWN: Binding = Binding::new(17, "drawn", ReadWrite);
 /// Per drawn end, its split directions (the joins).
@@ -32,6 +37,10 @@ pub(crate) const DISPATCH: Binding = Binding::new(26, "dispatch", ReadWrite);
 pub(crate) const SURVIVORS: Binding = Binding::new(27, "survivors", ReadWrite);
 /// The indirect dispatch over the kept clusters.
 pub(crate) const CULL_DISPATCH: Binding = Binding::new(28, "cull_dispatch", ReadWrite);
+/// Per instance of the frame, its camera in its model space and whether it is in view.
+pub(crate) const INSTANCE_FRAMES: Binding = Binding::new(29, "instance_frames", Read);
+/// The place pass writes whether each instance is in view.
+const PLACED_FRAMES: Binding = Binding::new(29, "instance_frames", ReadWrite);
 
 /// What the draw passes read of the lists the compute passes wrote.
 const fn read_only(binding: Binding) -> Binding {
@@ -41,40 +50,50 @@ const fn read_only(binding: Binding) -> Binding {
 pub(crate) const CLASSIFY: Bindings = Bindings::compute(
     "classify",
     &[
-        FRAME,
+        BATCH,
         STARTS,
         asset::TOPOLOGY,
         asset::EDGE_VERTICES,
         asset::ATTRIBUTES,
-        STATE,
+        TABLE,
         DRAWN,
         OUT,
         SCREEN,
         SURVIVORS,
+        INSTANCE_FRAMES,
     ],
 );
 pub(crate) const CULL: Bindings = Bindings::compute(
     "cull",
-    &[FRAME, OUT, SURVIVORS, asset::CLUSTERS, CULL_DISPATCH],
+    &[
+        BATCH,
+        OUT,
+        SURVIVORS,
+        asset::CLUSTERS,
+        CULL_DISPATCH,
+        INSTANCE_FRAMES,
+    ],
 );
+pub(crate) const PLACE: Bindings = Bindings::compute("place", &[FRAME, OUT, PLACED_FRAMES]);
 pub(crate) const JOIN: Bindings = Bindings::compute(
     "joins",
     &[
-        FRAME,
+        BATCH,
         STARTS,
         asset::RINGS,
-        STATE,
+        TABLE,
         DRAWN,
         JOINS,
         OUT,
         SCREEN,
         asset::CAP_HEADS,
+        INSTANCE_FRAMES,
     ],
 );
 pub(crate) const RECORDS: Bindings = Bindings::compute(
     "chamfer records",
     &[
-        FRAME,
+        BATCH,
         asset::TOPOLOGY,
         asset::EDGE_VERTICES,
         asset::ATTRIBUTES,
@@ -83,9 +102,10 @@ pub(crate) const RECORDS: Bindings = Bindings::compute(
         SCREEN,
         CHAMFERS,
         STARTS,
+        INSTANCE_FRAMES,
     ],
 );
-pub(crate) const ARGS: Bindings = Bindings::compute("edge lists", &[FRAME, OUT, STARTS, DISPATCH]);
+pub(crate) const ARGS: Bindings = Bindings::compute("edge lists", &[BATCH, OUT, STARTS, DISPATCH]);
 pub(crate) const DRAW: Bindings = Bindings::draw(
     "edge draw",
     &[

@@ -2,14 +2,18 @@
 //! gap-free joins (thesis §10 non-duplicate detection, §13 next-index capping, §8.3 half quads, §9.1
 //! depth-scaled widths) and the chamfer highlight of seed 000.
 //!
-//! Per frame on the GPU (`shaders/classify.wgsl`, `args.wgsl`, `joins.wgsl`, `chamfers.wgsl`, then
-//! `edges.wgsl` and `caps.wgsl` in the application's pass): a cull pass (`cull.wgsl`) keeps the
-//! asset's edge clusters that may hold a drawn edge (facing cone and sphere, frustum), classify tests
-//! the edges of those clusters only and appends the drawn ones to a compact list that is the instance
-//! count of an indirect draw, projecting each drawn edge once into a screen record; an args pass sizes
-//! the indirect join dispatch; joins find each drawn end's nearest drawn neighbours by screen angle
-//! (next-index walk or cap-buffer head), cut overlapping quads apart and emit round caps for outer
-//! gaps, so no pixel is covered twice and translucent colours blend once.
+//! Per frame on the GPU (`shaders/instances.wgsl`, `classify.wgsl`, `args.wgsl`, `joins.wgsl`,
+//! `chamfers.wgsl`, then `edges.wgsl` and `caps.wgsl` in the application's pass): a place pass marks
+//! the instances in view; then, per asset, for all its instances at once (a *batch*, issue 28): a cull
+//! pass (`cull.wgsl`) keeps the (instance, edge cluster) pairs that may hold a drawn edge (facing cone
+//! and sphere, frustum, with the camera in each instance's model space), classify tests the edges of
+//! those clusters only and appends the drawn ones to a compact list that is the instance count of an
+//! indirect draw, projecting each drawn edge once into a screen record and noting its slot in a
+//! table keyed by (instance, edge); an args pass sizes the indirect join dispatch; joins find each
+//! drawn end's nearest drawn neighbours of the same instance by screen angle (next-index walk or
+//! cap-buffer head), cut overlapping quads apart and emit round caps for outer gaps, so no pixel is
+//! covered twice and translucent colours blend once. The work per frame is a few passes per asset,
+//! whatever the number of its instances; the host writes each instance's camera and colours.
 //!
 //! The folder is split by concern: [`bindings`] (what each pass binds), [`pipelines`], [`lists`]
 //! (the frame's lists), [`readback`] (how many slots frames want, read without waiting),
@@ -28,15 +32,14 @@ use std::sync::Arc;
 
 use self::bindings::*;
 use self::highlight::HighlightUniforms;
-use self::lists::{FIRST_SLOTS, Lists};
+use self::lists::{FIRST_SLOTS, Instances, Lists};
 use self::pipelines::JoinedPipelines;
 use self::readback::Needed;
-use self::record::{AssetGroups, Run, Work};
+use self::record::{AssetGroups, Batch, Work};
 use super::{Blocks, FrameContext, FrameOptions, Module, PerAsset, TechniqueFrame};
 use crate::render::bindings::{Binding, asset as section};
-use crate::render::layout::{self, ChamferRecord, ScreenRecord};
+use crate::render::layout::{self, ChamferRecord, InstanceFrame, ScreenRecord};
 use crate::render::modules::Shader;
-use crate::render::target::checked;
 use crate::render::{CapMethod, DrawCounts, GpuAsset, Pipelines as Cache, RenderError, Target};
 
 pub(crate) static MODULE: Joined = Joined;
@@ -56,25 +59,45 @@ impl Module for Joined {
     ) -> Result<Box<dyn TechniqueFrame>, RenderError> {
         Ok(Box::new(Frame::new(cache, options)?))
     }
+
+    fn culls_on_gpu(&self) -> bool {
+        true
+    }
 }
 
 /// Offset of the cap draw's arguments in the `out` buffer.
 const CAP_DRAW_OFFSET: u64 = std::mem::size_of::<layout::DrawArgs>() as u64;
 
-/// A frame's state: the lists, one block per instance, per-asset groups, and what each instance runs.
+/// The kept-cluster list a frame starts with, at most (it grows from what frames want).
+const FIRST_SURVIVORS: u64 = 1 << 18;
+
+/// Threads one dispatch of a batch may run: its instances are split into batches below it.
+const MAX_THREADS: u64 = 1 << 31;
+
+/// A frame's state: the lists, the instances, one uniform block per chunk of each batch, per-asset
+/// groups, and what each batch runs.
 #[derive(Debug)]
 struct Frame {
     pipelines: Arc<JoinedPipelines>,
     cache: Cache,
+    /// Block 0 is the place pass's (every instance); then one per chunk of each batch.
     blocks: Blocks,
+    /// One per instance of an asset with intersection edges: they are drawn instance by instance.
+    segment_blocks: Blocks,
     lists: Option<Lists>,
+    instances: Option<Instances>,
     assets: PerAsset<AssetGroups>,
     args_group: Option<wgpu::BindGroup>,
+    place_group: Option<wgpu::BindGroup>,
     draw_group: Option<wgpu::BindGroup>,
     highlight: HighlightUniforms,
     needed: Needed,
-    /// Per drawn instance, what its passes run over.
-    runs: Vec<Run>,
+    /// Per batch, what its passes run over.
+    batches: Vec<Batch>,
+    /// Per instance with intersection edges: its asset's groups and its segment block.
+    segment_runs: Vec<(usize, u32)>,
+    /// The frame's instances.
+    instance_count: u32,
     /// Cull clusters before classifying edges.
     culling: bool,
     /// This frame draws chamfer edges as highlight strips.
@@ -82,23 +105,26 @@ struct Frame {
     caps: CapMethod,
     /// The slots the next lists must have, at least.
     wanted_slots: u64,
+    /// The kept clusters the next list must hold, at least.
+    wanted_survivors: u64,
 }
 
 /// Where each binding of the technique's sets comes from in this frame: the blocks, the lists, the
-/// highlight's uniforms, and for an asset's groups its sections, edge state and cull lists.
+/// instances, the highlight's uniforms, and for an asset's groups its sections.
 struct Resources<'r> {
     blocks: &'r Blocks,
     lists: &'r Lists,
+    instances: &'r Instances,
     highlight: &'r HighlightUniforms,
-    asset: Option<(&'r GpuAsset, [&'r wgpu::Buffer; 3])>,
+    asset: Option<&'r GpuAsset>,
     /// The edge section's window of the chunk a group is for.
     window: Option<wgpu::BufferBinding<'r>>,
 }
 
 impl<'r> Resources<'r> {
     fn get(&self, binding: Binding) -> Result<wgpu::BindingResource<'r>, RenderError> {
-        let lists = self.lists;
-        let buffers: [(Binding, &wgpu::Buffer); 10] = [
+        let (lists, instances) = (self.lists, self.instances);
+        let buffers: [(Binding, &wgpu::Buffer); 14] = [
             (DRAWN, &lists.drawn),
             (JOINS, &lists.joins),
             (OUT, &lists.out),
@@ -107,23 +133,25 @@ impl<'r> Resources<'r> {
             (STARTS, &lists.starts),
             (COLORS, &lists.colors),
             (DISPATCH, &lists.dispatch),
+            (TABLE, &lists.table),
+            (INSTANCE_FRAMES, &instances.frames),
+            (SURVIVORS, &instances.survivors),
+            (CULL_DISPATCH, &instances.cull_dispatch),
             (COS_POWER, &self.highlight.cos_power),
             (LIGHTING, &self.highlight.lighting),
         ];
-        if binding == crate::render::bindings::FRAME {
+        if binding.index == crate::render::bindings::FRAME.index {
             return Ok(self.blocks.binding());
         }
-        // The draw passes bind the lists read-only: the same buffers.
+        // The draw passes bind the lists read-only, the place pass the instances read-write: the
+        // same buffers.
         if let Some((_, buffer)) = buffers.iter().find(|(b, _)| b.index == binding.index) {
             return Ok(buffer.as_entire_binding());
         }
         let missing =
             || RenderError::Internal(format!("the joined technique binds no {}", binding.name));
-        let (asset, [state, survivors, cull_dispatch]) = self.asset.ok_or_else(missing)?;
+        let asset = self.asset.ok_or_else(missing)?;
         Ok(match binding {
-            STATE => state.as_entire_binding(),
-            SURVIVORS => survivors.as_entire_binding(),
-            CULL_DISPATCH => cull_dispatch.as_entire_binding(),
             section::EDGE_VERTICES => match &self.window {
                 Some(window) => wgpu::BindingResource::Buffer(window.clone()),
                 None => return Err(missing()),
@@ -135,22 +163,37 @@ impl<'r> Resources<'r> {
 
 impl Frame {
     fn new(cache: &Cache, options: &FrameOptions) -> Result<Self, RenderError> {
+        let block = std::mem::size_of::<layout::Frame>();
         Ok(Self {
             pipelines: cache.get::<JoinedPipelines>()?,
             cache: cache.clone(),
-            blocks: Blocks::new(cache, "edge frame", std::mem::size_of::<layout::Frame>()),
+            blocks: Blocks::new(cache, "edge batches", block),
+            segment_blocks: Blocks::new(cache, "intersection instances", block),
             lists: None,
+            instances: None,
             assets: PerAsset::default(),
             args_group: None,
+            place_group: None,
             draw_group: None,
             highlight: HighlightUniforms::new(cache),
             needed: Needed::new(cache),
-            runs: Vec::new(),
+            batches: Vec::new(),
+            segment_runs: Vec::new(),
+            instance_count: 0,
             culling: true,
             highlighted: false,
             caps: CapMethod::NextIndex,
             wanted_slots: options.first_slots,
+            wanted_survivors: 0,
         })
+    }
+
+    /// Forgets every group (what they bind was remade).
+    fn forget_groups(&mut self) {
+        self.assets.clear();
+        self.args_group = None;
+        self.place_group = None;
+        self.draw_group = None;
     }
 
     /// The lists for this frame, made or remade when they are too small.
@@ -171,107 +214,202 @@ impl Frame {
             upper.min(FIRST_SLOTS.max(upper / 16))
         };
         let wanted = self.wanted_slots.max(first).max(64);
-        // The largest per-slot list must fit one storage binding.
+        // The largest per-slot list must fit one storage binding (the slot table, at up to four
+        // entries a slot, too).
         let per_slot = if chamfers {
             std::mem::size_of::<ChamferRecord>()
         } else {
             std::mem::size_of::<ScreenRecord>()
         } as u64;
-        let limit = self.cache.device().limits().max_storage_buffer_binding_size / per_slot;
+        let limit = self.cache.device().limits().max_storage_buffer_binding_size / per_slot.max(16);
         let enough = self.lists.as_ref().is_some_and(|l| {
             u64::from(l.capacity) >= wanted.min(limit)
                 && l.instances >= instances
                 && (l.chamfers || !chamfers)
         });
-        if enough {
-            return Ok(());
+        if !enough {
+            let capacity = wanted.min(limit) as u32;
+            self.lists = None;
+            self.lists = Some(Lists::new(
+                &self.cache,
+                capacity,
+                instances.next_power_of_two(),
+                chamfers,
+            )?);
+            self.forget_groups();
         }
-        let capacity = wanted.min(limit) as u32;
-        let instances = instances.next_power_of_two();
-        self.lists = None;
-        self.lists = Some(Lists::new(&self.cache, capacity, instances, chamfers)?);
-        self.assets.clear();
-        self.args_group = None;
-        self.draw_group = None;
+        // The kept clusters: every (instance, cluster) of a chunk up to FIRST_SURVIVORS, grown from
+        // what frames want.
+        let clusters = |d: &super::Drawn<'_>| {
+            u64::from(d.asset.chunk_edges.min(d.asset.edge_count)).div_ceil(64)
+        };
+        let survivors = self
+            .wanted_survivors
+            .max(
+                cx.instances
+                    .iter()
+                    .map(clusters)
+                    .sum::<u64>()
+                    .min(FIRST_SURVIVORS),
+            )
+            .max(64);
+        let limit = self.cache.device().limits().max_storage_buffer_binding_size / 8 - 2;
+        let count = cx.instances.len() as u32;
+        let enough = self.instances.as_ref().is_some_and(|i| {
+            i.capacity >= count && u64::from(i.survivor_capacity) >= survivors.min(limit)
+        });
+        if !enough {
+            let capacity = count.max(1).next_power_of_two();
+            self.instances = None;
+            self.instances = Some(Instances::new(
+                &self.cache,
+                capacity,
+                survivors.min(limit) as u32,
+            )?);
+            self.forget_groups();
+        }
         Ok(())
     }
 
-    /// One block per chunk of each instance's edges (the first is the instance's own), and per
-    /// instance its blocks' indices and edges.
-    fn blocks(
+    /// The frame's instances grouped by asset (each group a batch, split where its dispatches
+    /// would run too many threads), each instance's camera, and the uniform blocks: the place
+    /// pass's, then one per chunk of each batch.
+    fn plan(
         &self,
         cx: &FrameContext<'_>,
         lists: &Lists,
-    ) -> (Vec<layout::Frame>, Vec<Vec<(usize, u32)>>) {
-        let mut frames: Vec<layout::Frame> = Vec::new();
-        let mut chunk_blocks = Vec::with_capacity(cx.instances.len());
-        for (i, d) in cx.instances.iter().enumerate() {
-            let mut uniform = super::frame_uniform(cx, d, i);
+        instances: &Instances,
+    ) -> (
+        Vec<usize>,
+        Vec<InstanceFrame>,
+        Vec<layout::Frame>,
+        Vec<PlannedBatch>,
+    ) {
+        // Instances of one asset next to each other, assets in the order they first appear.
+        let mut keys: Vec<&Arc<()>> = Vec::new();
+        let asset_of: Vec<usize> = cx
+            .instances
+            .iter()
+            .map(
+                |d| match keys.iter().position(|k| Arc::ptr_eq(k, &d.asset.key)) {
+                    Some(k) => k,
+                    None => {
+                        keys.push(&d.asset.key);
+                        keys.len() - 1
+                    }
+                },
+            )
+            .collect();
+        let mut order: Vec<usize> = (0..cx.instances.len()).collect();
+        order.sort_by_key(|&i| (asset_of[i], i));
+        let reach = |u: &layout::Frame| u.width.max(u.min_width) + 2.0;
+        let mut frames = Vec::with_capacity(order.len());
+        for (i, &d) in order.iter().enumerate() {
+            let drawn = &cx.instances[d];
+            let uniform = super::frame_uniform(cx, drawn, i);
+            // Off-screen edges are left out only while an edge's reach on screen is bounded: not
+            // with depth-scaled widths (unbounded near the camera) or highlight strips.
+            let frustum = if !self.highlighted && uniform.depth_ref == 0.0 {
+                planes::side_planes(
+                    drawn.camera.view_projection(),
+                    uniform.viewport,
+                    reach(&uniform),
+                )
+            } else {
+                [[0.0; 4]; 4]
+            };
+            let [lo, hi] = drawn.asset.bounds();
+            frames.push(InstanceFrame {
+                mvp: uniform.mvp,
+                eye: uniform.eye,
+                frustum,
+                lo: [lo[0], lo[1], lo[2], uniform.depth_ref],
+                hi: [hi[0], hi[1], hi[2], 0.0],
+                visible: 0,
+                _pad0: 0,
+                _pad1: 0,
+                _pad2: 0,
+            });
+        }
+        let block = |drawn: &super::Drawn<'_>, first: usize| {
+            let mut uniform = super::frame_uniform(cx, drawn, first);
             uniform.capacity = lists.capacity;
             uniform.cap_capacity = lists.capacity + 64;
             uniform.highlight = u32::from(self.highlighted);
-            // Off-screen edges are left out only while an edge's reach on screen is bounded: not
-            // with depth-scaled widths (unbounded near the camera) or highlight strips.
-            if !self.highlighted && uniform.depth_ref == 0.0 {
-                let reach = uniform.width.max(uniform.min_width) + 2.0;
-                uniform.frustum =
-                    planes::side_planes(d.camera.view_projection(), uniform.viewport, reach);
+            uniform.table_mask = lists.table_mask;
+            uniform.survivor_capacity = instances.survivor_capacity;
+            uniform
+        };
+        let mut blocks = Vec::new();
+        let mut batches = Vec::new();
+        // The place pass's block: every instance.
+        let mut place = match cx.instances.first() {
+            Some(drawn) => block(drawn, 0),
+            None => {
+                let mut empty: layout::Frame = bytemuck::Zeroable::zeroed();
+                empty.capacity = lists.capacity;
+                empty.cap_capacity = lists.capacity + 64;
+                empty.table_mask = lists.table_mask;
+                empty
             }
-            let mut blocks = Vec::new();
-            for (first, edges) in d.asset.edge_chunks() {
-                let mut chunk = uniform;
-                chunk.first_edge = first;
-                chunk.edge_count = edges;
-                blocks.push((frames.len(), edges));
-                frames.push(chunk);
+        };
+        place.batch_instances = order.len() as u32;
+        blocks.push(place);
+        let mut start = 0;
+        while start < order.len() {
+            let drawn = &cx.instances[order[start]];
+            let asset = drawn.asset;
+            let same = order[start..]
+                .iter()
+                .take_while(|&&d| Arc::ptr_eq(&cx.instances[d].asset.key, &asset.key))
+                .count();
+            // Threads a dispatch runs per instance: the most of its edges (without culling), its
+            // clusters and its capped vertices.
+            let per_instance = u64::from(asset.chunk_edges.min(asset.edge_count))
+                .max(u64::from(asset.head_count))
+                .max(1);
+            let most = (MAX_THREADS / per_instance).max(1) as usize;
+            let count = same.min(most);
+            let index = batches.len() as u32;
+            let mut chunks = Vec::new();
+            for (first_edge, edges) in asset.edge_chunks() {
+                let mut uniform = block(drawn, start);
+                uniform.first_edge = first_edge;
+                uniform.edge_count = edges;
+                uniform.batch = index;
+                uniform.batch_instances = count as u32;
+                chunks.push((blocks.len(), edges));
+                blocks.push(uniform);
             }
-            chunk_blocks.push(blocks);
+            batches.push(PlannedBatch {
+                first: start,
+                count,
+                chunks,
+            });
+            start += count;
         }
-        if frames.is_empty() {
-            // The bookkeeping passes still run (the draws must find empty lists).
-            let mut uniform: layout::Frame = bytemuck::Zeroable::zeroed();
-            uniform.capacity = lists.capacity;
-            uniform.cap_capacity = lists.capacity + 64;
-            frames.push(uniform);
-        }
-        (frames, chunk_blocks)
+        (order, frames, blocks, batches)
     }
 }
 
-/// The per-asset state of `asset`: its edge state and cull lists, and its groups.
+/// A batch as planned: its first instance and instances (in the frame's order), and per chunk its
+/// block and edges.
+struct PlannedBatch {
+    first: usize,
+    count: usize,
+    chunks: Vec<(usize, u32)>,
+}
+
+/// The per-asset state of `asset`: its groups.
 fn asset_groups(
     cache: &Cache,
     asset: &GpuAsset,
     shared: &Resources<'_>,
+    segment_blocks: &Blocks,
 ) -> Result<AssetGroups, RenderError> {
     let device = cache.device();
-    let buffer = |label: &'static str, size: u64, usage: wgpu::BufferUsages| {
-        checked(device, label, || {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: size.max(64),
-                usage: wgpu::BufferUsages::STORAGE | usage,
-                mapped_at_creation: false,
-            })
-        })
-    };
-    let state = buffer(
-        "edge state",
-        4 * u64::from(asset.edge_count),
-        wgpu::BufferUsages::empty(),
-    )?;
-    let chunk_clusters = asset
-        .chunk_edges
-        .min(asset.edge_count)
-        .div_ceil(layout::CLUSTER_EDGES);
-    let survivors = buffer(
-        "kept clusters",
-        std::mem::size_of::<layout::Survivors>() as u64 + 4 * u64::from(chunk_clusters),
-        wgpu::BufferUsages::empty(),
-    )?;
-    let cull_dispatch = buffer("cluster dispatch", 16, wgpu::BufferUsages::INDIRECT)?;
     let own = Resources {
-        asset: Some((asset, [&state, &survivors, &cull_dispatch])),
+        asset: Some(asset),
         window: None,
         ..*shared
     };
@@ -291,19 +429,25 @@ fn asset_groups(
             })
             .collect::<Result<Vec<_>, RenderError>>()
     };
+    let classify = per_chunk(&CLASSIFY)?;
+    let cull = group(&CULL, &own)?;
+    let joins = group(&JOIN, &own)?;
+    let records = per_chunk(&RECORDS)?;
+    let segments = if asset.intersection_count > 0 {
+        let drawn = Resources {
+            blocks: segment_blocks,
+            ..own
+        };
+        Some(group(&SEGMENTS, &drawn)?)
+    } else {
+        None
+    };
     Ok(AssetGroups {
-        segments: if asset.intersection_count > 0 {
-            Some(group(&SEGMENTS, &own)?)
-        } else {
-            None
-        },
-        classify: per_chunk(&CLASSIFY)?,
-        cull: group(&CULL, &own)?,
-        joins: group(&JOIN, &own)?,
-        records: per_chunk(&RECORDS)?,
-        state,
-        survivors,
-        cull_dispatch,
+        segments,
+        classify,
+        cull,
+        joins,
+        records,
     })
 }
 
@@ -314,26 +458,54 @@ impl TechniqueFrame for Frame {
         encoder: &mut wgpu::CommandEncoder,
     ) -> Result<(), RenderError> {
         let device = cx.pipelines.device().clone();
-        if let Some(needed) = self.needed.poll(&device)
-            && let Some(lists) = &self.lists
-            && needed > lists.capacity
-        {
-            // An earlier frame wanted more slots than the lists have: a quarter more next time.
-            self.wanted_slots = u64::from(needed) + u64::from(needed) / 4;
+        if let Some((needed, survivors)) = self.needed.poll(&device) {
+            // An earlier frame wanted more than the lists hold: a quarter more next time.
+            if self.lists.as_ref().is_some_and(|l| needed > l.capacity) {
+                self.wanted_slots = u64::from(needed) + u64::from(needed) / 4;
+            }
+            if self
+                .instances
+                .as_ref()
+                .is_some_and(|i| survivors > i.survivor_capacity)
+            {
+                self.wanted_survivors = u64::from(survivors) + u64::from(survivors) / 4;
+            }
         }
         self.highlighted = self.highlight.prepare(cx);
         self.ensure_lists(cx)?;
-        let Some(lists) = &self.lists else {
+        let (Some(lists), Some(instances)) = (&self.lists, &self.instances) else {
             return Err(super::mismatch(cx));
         };
         self.culling = cx.style.cluster_culling;
-        let (frames, chunk_blocks) = self.blocks(cx, lists);
-        if self.blocks.write(cx.pipelines, cx.queue, &frames) {
-            self.assets.clear();
-            self.args_group = None;
-            self.draw_group = None;
+        // (The starts list holds one entry per instance, so any split of the batches fits it.)
+        let (order, frames, blocks, planned) = self.plan(cx, lists, instances);
+        let grown = self.blocks.write(cx.pipelines, cx.queue, &blocks);
+        // Intersection edges are drawn instance by instance, each with its own block.
+        let segment_frames: Vec<(usize, layout::Frame)> = order
+            .iter()
+            .enumerate()
+            .filter(|(_, d)| cx.instances[**d].asset.intersection_count > 0)
+            .map(|(i, &d)| (i, super::frame_uniform(cx, &cx.instances[d], i)))
+            .collect();
+        let segment_uniforms: Vec<layout::Frame> = segment_frames.iter().map(|(_, f)| *f).collect();
+        let segments_grown = !segment_uniforms.is_empty()
+            && self
+                .segment_blocks
+                .write(cx.pipelines, cx.queue, &segment_uniforms);
+        if grown || segments_grown {
+            self.forget_groups();
         }
-        let colors: Vec<[f32; 4]> = cx.instances.iter().flat_map(|d| d.colors.array()).collect();
+        let (Some(lists), Some(instances)) = (&self.lists, &self.instances) else {
+            return Err(super::mismatch(cx));
+        };
+        if !frames.is_empty() {
+            cx.queue
+                .write_buffer(&instances.frames, 0, bytemuck::cast_slice(&frames));
+        }
+        let colors: Vec<[f32; 4]> = order
+            .iter()
+            .flat_map(|&d| cx.instances[d].colors.array())
+            .collect();
         if !colors.is_empty() {
             cx.queue
                 .write_buffer(&lists.colors, 0, bytemuck::cast_slice(&colors));
@@ -341,6 +513,7 @@ impl TechniqueFrame for Frame {
         let shared = Resources {
             blocks: &self.blocks,
             lists,
+            instances,
             highlight: &self.highlight,
             asset: None,
             window: None,
@@ -351,23 +524,40 @@ impl TechniqueFrame for Frame {
         if self.args_group.is_none() {
             self.args_group = Some(group(&ARGS)?);
         }
+        if self.place_group.is_none() {
+            self.place_group = Some(group(&PLACE)?);
+        }
         if self.draw_group.is_none() {
             self.draw_group = Some(group(&DRAW)?);
         }
-        self.assets.retain(cx.instances);
-        self.runs.clear();
-        for (drawn, chunks) in cx.instances.iter().zip(chunk_blocks) {
+        let kept: Vec<super::Drawn<'_>> = order.iter().map(|&d| cx.instances[d].clone()).collect();
+        self.assets.retain(&kept);
+        self.batches.clear();
+        for batch in &planned {
+            let drawn = &cx.instances[order[batch.first]];
             let made = self.assets.index(drawn.asset, |asset| {
-                asset_groups(cx.pipelines, asset, &shared)
+                asset_groups(cx.pipelines, asset, &shared, &self.segment_blocks)
             })?;
-            self.runs.push(Run {
+            self.batches.push(Batch {
                 asset: made,
-                chunks: chunks
-                    .into_iter()
-                    .map(|(block, edges)| (self.blocks.offset(block), edges))
+                chunks: batch
+                    .chunks
+                    .iter()
+                    .map(|&(block, edges)| (self.blocks.offset(block), edges))
                     .collect(),
+                instances: batch.count as u32,
                 head_count: drawn.asset.head_count,
             });
+        }
+        self.segment_runs.clear();
+        for (k, &(i, _)) in segment_frames.iter().enumerate() {
+            let made = self.assets.index(cx.instances[order[i]].asset, |_| {
+                Err(RenderError::Internal(
+                    "an instance's asset has no groups".into(),
+                ))
+            })?;
+            self.segment_runs
+                .push((made, self.segment_blocks.offset(k)));
         }
         // Without rings there is nothing to join by.
         self.caps = if cx.instances.iter().all(|d| d.asset.has_rings) {
@@ -375,13 +565,19 @@ impl TechniqueFrame for Frame {
         } else {
             CapMethod::None
         };
-        if let Some(args_group) = &self.args_group {
+        self.instance_count = frames.len() as u32;
+        // The slot table starts every frame empty.
+        encoder.clear_buffer(&lists.table, 0, None);
+        if let (Some(args_group), Some(place_group)) = (&self.args_group, &self.place_group) {
             Work {
                 pipelines: &self.pipelines,
                 assets: &self.assets,
-                runs: &self.runs,
+                batches: &self.batches,
                 args_group,
+                place_group,
+                instances: self.instance_count,
                 dispatch: &lists.dispatch,
+                cull_dispatch: &instances.cull_dispatch,
                 culling: self.culling,
                 highlight: self.highlighted,
                 caps: self.caps,
@@ -404,10 +600,10 @@ impl TechniqueFrame for Frame {
             pass.set_pipeline(&pipelines.caps);
             pass.draw_indirect(&lists.out, CAP_DRAW_OFFSET);
         }
-        for run in &self.runs {
-            let (gpu, groups) = self.assets.get(run.asset);
+        for &(asset, block) in &self.segment_runs {
+            let (gpu, groups) = self.assets.get(asset);
             if let Some(segments) = &groups.segments {
-                pass.set_bind_group(0, segments, &[run.block()]);
+                pass.set_bind_group(0, segments, &[block]);
                 pass.set_pipeline(&pipelines.segments);
                 pass.draw(0..18, 0..gpu.intersection_count);
             }
@@ -434,6 +630,7 @@ impl TechniqueFrame for Frame {
                 },
                 wanted: out.needed,
                 clusters_kept: out.kept_clusters,
+                instances_in_view: out.instances_in_view,
             })
         };
         Some(read())
@@ -441,7 +638,11 @@ impl TechniqueFrame for Frame {
 
     fn gpu_bytes(&self) -> u64 {
         let lists = self.lists.as_ref().map_or(0, |l| l.bytes);
-        let state: u64 = self.assets.iter().map(AssetGroups::gpu_bytes).sum();
-        lists + state + self.blocks.gpu_bytes() + self.highlight.gpu_bytes()
+        let instances = self.instances.as_ref().map_or(0, Instances::gpu_bytes);
+        lists
+            + instances
+            + self.blocks.gpu_bytes()
+            + self.segment_blocks.gpu_bytes()
+            + self.highlight.gpu_bytes()
     }
 }

@@ -2,19 +2,26 @@
 
 use chamfer_shaders as wgsl;
 
-use super::bindings::{ARGS, CLASSIFY, CULL, DRAW, JOIN, RECORDS, SEGMENTS};
+use super::bindings::{ARGS, CLASSIFY, CULL, DRAW, JOIN, PLACE, RECORDS, SEGMENTS};
 use crate::render::modules::{Program, Shader};
 use crate::render::pipelines::{PipelineSet, Raster};
 use crate::render::{Pipelines as Cache, RenderError};
 
 /// Every module the technique compiles: its name, its parts after the shared constants, its
 /// programs.
-const SHADERS: [(&str, &[&str], &[Program]); 7] = [
-    // Cluster culling and edge classification.
+const SHADERS: [(&str, &[&str], &[Program]); 8] = [
+    // Which instances are in view.
+    (
+        "instances.wgsl",
+        &[wgsl::COMMON, wgsl::FRAME, wgsl::LISTS, wgsl::INSTANCES],
+        &[Program::compute("place", &PLACE)],
+    ),
+    // Cluster culling and edge classification, every instance of an asset at once.
     (
         "classify.wgsl",
         &[
             wgsl::COMMON,
+            wgsl::BATCH,
             wgsl::HIGHLIGHT,
             wgsl::LISTS,
             wgsl::COMPUTE,
@@ -32,7 +39,7 @@ const SHADERS: [(&str, &[&str], &[Program]); 7] = [
     // The frame's bookkeeping over the lists.
     (
         "args.wgsl",
-        &[wgsl::COMMON, wgsl::LISTS, wgsl::ARGS],
+        &[wgsl::COMMON, wgsl::BATCH, wgsl::LISTS, wgsl::ARGS],
         &[
             Program::compute("reset", &ARGS),
             Program::compute("args", &ARGS),
@@ -44,6 +51,7 @@ const SHADERS: [(&str, &[&str], &[Program]); 7] = [
         "joins.wgsl",
         &[
             wgsl::COMMON,
+            wgsl::BATCH,
             wgsl::HIGHLIGHT,
             wgsl::LISTS,
             wgsl::COMPUTE,
@@ -60,6 +68,7 @@ const SHADERS: [(&str, &[&str], &[Program]); 7] = [
         "chamfers.wgsl",
         &[
             wgsl::COMMON,
+            wgsl::BATCH,
             wgsl::HIGHLIGHT,
             wgsl::LISTS,
             wgsl::COMPUTE,
@@ -70,19 +79,31 @@ const SHADERS: [(&str, &[&str], &[Program]); 7] = [
     // Compacted edge quads.
     (
         "edges.wgsl",
-        &[wgsl::COMMON, wgsl::HIGHLIGHT, wgsl::DRAW, wgsl::EDGES],
+        &[
+            wgsl::COMMON,
+            wgsl::FRAME,
+            wgsl::HIGHLIGHT,
+            wgsl::DRAW,
+            wgsl::EDGES,
+        ],
         &[Program::draw("edge_vertex_main", "edge_fragment", &DRAW)],
     ),
     // Round caps.
     (
         "caps.wgsl",
-        &[wgsl::COMMON, wgsl::HIGHLIGHT, wgsl::DRAW, wgsl::CAPS],
+        &[
+            wgsl::COMMON,
+            wgsl::FRAME,
+            wgsl::HIGHLIGHT,
+            wgsl::DRAW,
+            wgsl::CAPS,
+        ],
         &[Program::draw("cap_vertex_main", "cap_fragment", &DRAW)],
     ),
     // Baked intersection edges.
     (
         "intersections.wgsl",
-        &[wgsl::COMMON, wgsl::INTERSECTIONS],
+        &[wgsl::COMMON, wgsl::FRAME, wgsl::INTERSECTIONS],
         &[Program::draw(
             "segment_vertex",
             "segment_fragment",
@@ -102,6 +123,7 @@ pub(crate) fn shaders() -> Vec<Shader> {
 /// The technique's pipelines.
 #[derive(Debug)]
 pub(crate) struct JoinedPipelines {
+    pub(crate) place: wgpu::ComputePipeline,
     pub(crate) reset: wgpu::ComputePipeline,
     pub(crate) mark: wgpu::ComputePipeline,
     pub(crate) classify: wgpu::ComputePipeline,
@@ -121,7 +143,16 @@ pub(crate) struct JoinedPipelines {
 
 impl PipelineSet for JoinedPipelines {
     fn new(cache: &Cache) -> Result<Self, RenderError> {
-        let [classify, args, joins, chamfers, edges, caps, intersections] = shaders()
+        let [
+            instances,
+            classify,
+            args,
+            joins,
+            chamfers,
+            edges,
+            caps,
+            intersections,
+        ] = shaders()
             .try_into()
             .map_err(|_| RenderError::Internal("the joined technique's shaders".into()))?;
         let classify = cache.compile(&classify)?;
@@ -130,6 +161,7 @@ impl PipelineSet for JoinedPipelines {
         let chamfers = cache.compile(&chamfers)?;
         let over_mesh = || Raster::over_mesh(cache.target());
         Ok(Self {
+            place: cache.compile(&instances)?.compute("place")?,
             reset: args.compute("reset")?,
             mark: classify.compute("mark")?,
             classify: classify.compute("classify")?,

@@ -1,4 +1,4 @@
-//! How many slots a frame wanted, read back without ever waiting: copied at the end of one frame's
+//! How many slots (and kept clusters) a frame wanted, read back without ever waiting: copied at the end of one frame's
 //! compute, mapped at the next prepare, read at a later one.
 
 use std::sync::Arc;
@@ -31,8 +31,9 @@ impl Needed {
         }
     }
 
-    /// Moves the readback along; returns the slots an earlier frame wanted, once known.
-    pub(super) fn poll(&self, device: &wgpu::Device) -> Option<u32> {
+    /// Moves the readback along; returns the slots and the kept clusters an earlier frame wanted,
+    /// once known.
+    pub(super) fn poll(&self, device: &wgpu::Device) -> Option<(u32, u32)> {
         use std::sync::atomic::Ordering;
         match self.state.load(Ordering::Acquire) {
             COPIED => {
@@ -57,7 +58,7 @@ impl Needed {
                 let needed = self.staging.get_mapped_range(..).ok().and_then(|bytes| {
                     bytemuck::try_from_bytes::<layout::Out>(&bytes)
                         .ok()
-                        .map(|out| out.needed)
+                        .map(|out| (out.needed, out.survivors_wanted))
                 });
                 self.staging.unmap();
                 self.state.store(IDLE, Ordering::Release);

@@ -1,6 +1,6 @@
-//! What a frame records: per asset the groups its passes run over, per instance the chunks of its
-//! edge section, and the compute pass of the frame (cull, classify and joins, instance after
-//! instance, then the clamp of the lists).
+//! What a frame records: per asset the groups its passes run over, per batch (instances of one
+//! asset) the chunks of its edge section, and the compute pass of the frame (place, then cull,
+//! classify and joins batch after batch, then the clamp of the lists).
 
 use super::pipelines::JoinedPipelines;
 use crate::render::CapMethod;
@@ -8,43 +8,33 @@ use crate::render::layout::CLUSTER_EDGES;
 use crate::render::pipelines::workgroups;
 use crate::render::techniques::PerAsset;
 
-/// Per asset: the edge state (slot + 1 per edge, shared by the asset's instances in turn), the
-/// clusters a chunk's cull pass kept, and the compute groups over them, the asset's sections and the
-/// lists; classification and chamfer records have a group per chunk of the edge section.
+/// Per asset: the compute groups over its sections, the lists and the instances; classification
+/// and chamfer records have a group per chunk of the edge section.
 #[derive(Debug)]
 pub(super) struct AssetGroups {
-    pub(super) state: wgpu::Buffer,
-    pub(super) survivors: wgpu::Buffer,
-    /// The indirect dispatch over the kept clusters.
-    pub(super) cull_dispatch: wgpu::Buffer,
     pub(super) classify: Vec<wgpu::BindGroup>,
     pub(super) cull: wgpu::BindGroup,
     pub(super) joins: wgpu::BindGroup,
     pub(super) records: Vec<wgpu::BindGroup>,
-    /// Over the asset's intersection segments, if it has any.
+    /// Over the asset's intersection segments, if it has any (drawn instance by instance).
     pub(super) segments: Option<wgpu::BindGroup>,
 }
 
-impl AssetGroups {
-    pub(super) fn gpu_bytes(&self) -> u64 {
-        self.state.size() + self.survivors.size() + self.cull_dispatch.size()
-    }
-}
-
-/// What one drawn instance's passes run over.
+/// What one batch's passes run over.
 #[derive(Debug)]
-pub(super) struct Run {
+pub(super) struct Batch {
     /// Its asset's groups.
     pub(super) asset: usize,
-    /// Per chunk of the asset's edge section: its uniform block's offset and its edges. The first
-    /// block is the instance's.
+    /// Per chunk of the asset's edge section: its uniform block's offset and its edges.
     pub(super) chunks: Vec<(u32, u32)>,
+    /// The instances in the batch.
+    pub(super) instances: u32,
     /// The asset's capped vertices.
     pub(super) head_count: u32,
 }
 
-impl Run {
-    /// The instance's uniform block.
+impl Batch {
+    /// The batch's first uniform block.
     pub(super) fn block(&self) -> u32 {
         self.chunks.first().map_or(0, |&(block, _)| block)
     }
@@ -54,17 +44,23 @@ impl Run {
 pub(super) struct Work<'a> {
     pub(super) pipelines: &'a JoinedPipelines,
     pub(super) assets: &'a PerAsset<AssetGroups>,
-    pub(super) runs: &'a [Run],
+    pub(super) batches: &'a [Batch],
     pub(super) args_group: &'a wgpu::BindGroup,
+    pub(super) place_group: &'a wgpu::BindGroup,
+    /// The frame's instances.
+    pub(super) instances: u32,
     /// The join pass's indirect dispatch.
     pub(super) dispatch: &'a wgpu::Buffer,
+    /// The indirect dispatch over the kept clusters.
+    pub(super) cull_dispatch: &'a wgpu::Buffer,
     pub(super) culling: bool,
     pub(super) highlight: bool,
     pub(super) caps: CapMethod,
 }
 
 impl Work<'_> {
-    /// Records the frame's classification and joins: instance after instance, then the clamp.
+    /// Records the frame: which instances are in view, then each batch's classification and
+    /// joins, then the clamp.
     pub(super) fn record(&self, encoder: &mut wgpu::CommandEncoder) {
         let pipelines = self.pipelines;
         let joins = self.caps != CapMethod::None || self.highlight;
@@ -75,42 +71,48 @@ impl Work<'_> {
         pass.set_bind_group(0, self.args_group, &[0]);
         pass.set_pipeline(&pipelines.reset);
         pass.dispatch_workgroups(1, 1, 1);
-        for run in self.runs {
-            let (_, groups) = self.assets.get(run.asset);
-            let offset = run.block();
+        if self.instances > 0 {
+            pass.set_bind_group(0, self.place_group, &[0]);
+            pass.set_pipeline(&pipelines.place);
+            let [x, y] = workgroups(self.instances);
+            pass.dispatch_workgroups(x, y, 1);
+        }
+        for batch in self.batches {
+            let (_, groups) = self.assets.get(batch.asset);
+            let offset = batch.block();
             pass.set_bind_group(0, &groups.classify[0], &[offset]);
             pass.set_pipeline(&pipelines.mark);
             pass.dispatch_workgroups(1, 1, 1);
-            for (classify, &(block, edges)) in groups.classify.iter().zip(&run.chunks) {
+            for (classify, &(block, edges)) in groups.classify.iter().zip(&batch.chunks) {
                 if self.culling {
                     pass.set_bind_group(0, &groups.cull, &[block]);
                     pass.set_pipeline(&pipelines.cull);
-                    let [x, y] = workgroups(edges.div_ceil(CLUSTER_EDGES));
+                    let [x, y] = workgroups(edges.div_ceil(CLUSTER_EDGES) * batch.instances);
                     pass.dispatch_workgroups(x, y, 1);
                     pass.set_pipeline(&pipelines.cull_args);
                     pass.dispatch_workgroups(1, 1, 1);
                     pass.set_bind_group(0, classify, &[block]);
                     pass.set_pipeline(&pipelines.classify_clusters);
-                    pass.dispatch_workgroups_indirect(&groups.cull_dispatch, 0);
+                    pass.dispatch_workgroups_indirect(self.cull_dispatch, 0);
                 } else {
                     pass.set_bind_group(0, classify, &[block]);
                     pass.set_pipeline(&pipelines.classify);
-                    let [x, y] = workgroups(edges);
+                    let [x, y] = workgroups(edges * batch.instances);
                     pass.dispatch_workgroups(x, y, 1);
                 }
             }
             if !joins {
                 continue;
             }
-            // The join dispatch is sized by what this instance drew (each dispatch is its own
-            // usage scope, so the arguments written here are read as indirect ones below).
+            // The join dispatch is sized by what this batch drew (each dispatch is its own usage
+            // scope, so the arguments written here are read as indirect ones below).
             pass.set_bind_group(0, self.args_group, &[offset]);
             pass.set_pipeline(&pipelines.args);
             pass.dispatch_workgroups(1, 1, 1);
             if self.highlight {
                 // One thread per drawn edge end: twice as many as records need; the rest return.
                 // Each chunk records its own edges.
-                for (records, &(block, _)) in groups.records.iter().zip(&run.chunks) {
+                for (records, &(block, _)) in groups.records.iter().zip(&batch.chunks) {
                     pass.set_bind_group(0, records, &[block]);
                     pass.set_pipeline(&pipelines.chamfer_records);
                     pass.dispatch_workgroups_indirect(self.dispatch, 0);
@@ -126,7 +128,7 @@ impl Work<'_> {
                     pass.set_pipeline(&pipelines.clear_joins);
                     pass.dispatch_workgroups_indirect(self.dispatch, 0);
                     pass.set_pipeline(&pipelines.joins_heads);
-                    let [x, y] = workgroups(run.head_count);
+                    let [x, y] = workgroups(batch.head_count * batch.instances);
                     pass.dispatch_workgroups(x, y, 1);
                 }
                 CapMethod::None => {}
