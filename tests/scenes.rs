@@ -208,3 +208,121 @@ fn lists_that_overflow_grow_for_the_next_frames() {
     assert_eq!(last.edges, last.wanted, "later frames draw every edge");
     assert_eq!(last.wanted, first.wanted);
 }
+
+/// One frame of `instances` drawn by one renderer per instance: each prepared, then all drawn in
+/// one pass (what a scene did before batches), and the renderers' summed counts.
+fn picture_instance_by_instance(
+    camera: &Camera,
+    instances: &[Instance<'_>],
+    style: &chamfer_runtime::render::EdgeStyle,
+) -> (Image, u32, u32) {
+    let gpu = gpu();
+    let [w, h] = camera.viewport;
+    let target = gpu.target(w, h, 1).expect("target");
+    let pipelines = chamfer_tests::pipelines(target.formats());
+    let mut mesh = MeshRenderer::for_scenes(&pipelines).expect("mesh");
+    mesh.prepare_scene(&gpu.queue, camera, instances, &grey_mesh());
+    let mut renderers: Vec<SceneRenderer> = instances
+        .iter()
+        .map(|_| SceneRenderer::new(&pipelines))
+        .collect();
+    let mut encoder = gpu.encoder();
+    {
+        let prepared: Vec<_> = renderers
+            .iter_mut()
+            .zip(instances)
+            .map(|(renderer, instance)| {
+                renderer
+                    .prepare(
+                        &gpu.queue,
+                        &mut encoder,
+                        camera,
+                        std::slice::from_ref(instance),
+                        style,
+                    )
+                    .expect("prepare")
+            })
+            .collect();
+        let mut pass = target.begin_pass(&mut encoder, BLUE_BACKGROUND);
+        mesh.render(&mut pass);
+        for frame in &prepared {
+            frame.render(&mut pass);
+        }
+    }
+    gpu.submit(encoder).expect("submit");
+    let image = target.read(gpu).expect("read");
+    let (mut edges, mut caps) = (0, 0);
+    for renderer in &renderers {
+        let counts = renderer
+            .read_counts(&gpu.device, &gpu.queue)
+            .expect("counts");
+        edges += counts.edges;
+        caps += counts.caps;
+    }
+    (image, edges, caps)
+}
+
+#[test]
+fn a_scene_drawn_in_batches_equals_it_drawn_instance_by_instance() {
+    let gpu = gpu();
+    let assets: Vec<GpuAsset> = ["shapes/cube.obj", "meshes/fandisk.obj", "shapes/cone-16.obj"]
+        .iter()
+        .map(|name| GpuAsset::new(&gpu.device, &bake_fixture(name)).expect("upload"))
+        .collect();
+    // 27 instances on a lattice, turned, some mirrored and stretched, a few outside every view.
+    let mut instances = Vec::new();
+    for i in 0..27u32 {
+        let (x, y, z) = (i % 3, (i / 3) % 3, i / 9);
+        let asset = &assets[(i % 3) as usize];
+        let [lo, hi] = asset.bounds().map(Vec3::from);
+        let fit = Mat4::from_scale(Vec3::splat(0.7 / (hi - lo).max_element()))
+            * Mat4::from_translation(-(lo + hi) * 0.5);
+        let shape = match i % 4 {
+            0 => Mat4::from_scale(Vec3::new(-1.0, 1.0, 1.0)),
+            1 => Mat4::from_scale(Vec3::new(1.0, 1.6, 0.8)),
+            _ => Mat4::IDENTITY,
+        };
+        let turn = Mat4::from_rotation_y(i as f32 * 0.9) * Mat4::from_rotation_x(i as f32 * 0.4);
+        let place = Mat4::from_translation(Vec3::new(x as f32, y as f32, z as f32));
+        instances.push(Instance::new(asset).with_transform(place * turn * shape * fit));
+    }
+    for far in [-40.0, 60.0] {
+        instances.push(
+            Instance::new(&assets[1])
+                .with_transform(Mat4::from_translation(Vec3::new(far, 0.0, 0.0))),
+        );
+    }
+    let style = edges_in(RED, 2.0, chamfer_runtime::render::CapMethod::NextIndex);
+    let bounds = [[-0.5; 3], [2.5; 3]];
+    let mut compared = 0;
+    for (k, azimuth) in [20.0f32, 110.0, 200.0, 290.0].into_iter().enumerate() {
+        let camera = Camera::orbit(
+            bounds,
+            &Orbit {
+                azimuth_deg: azimuth,
+                elevation_deg: 15.0 + 10.0 * k as f32,
+                ..Orbit::default()
+            },
+            [240, 180],
+        );
+        let mut scene = SceneRenderer::new(&chamfer_tests::pipelines(gpu.formats(1)));
+        let batched = scene_picture(&camera, &instances, &mut scene);
+        let counts = scene.read_counts(&gpu.device, &gpu.queue).expect("counts");
+        let (separate, edges, caps) = picture_instance_by_instance(&camera, &instances, &style);
+        assert_eq!(counts.instances_in_view, 27, "azimuth {azimuth}");
+        assert_eq!((counts.edges, counts.caps), (edges, caps), "azimuth {azimuth}");
+        assert!(counts.edges > 500, "azimuth {azimuth}: {counts:?}");
+        assert_eq!(
+            differing(&batched, &separate),
+            0,
+            "azimuth {azimuth}: batched and instance by instance differ"
+        );
+        // The control: leave the lattice's first layer out of the separate drawing and the
+        // pictures differ.
+        let (fewer, _, _) = picture_instance_by_instance(&camera, &instances[9..], &style);
+        let control = differing(&batched, &fewer);
+        assert!(control > 100, "azimuth {azimuth}: control {control}");
+        compared += 1;
+    }
+    assert_eq!(compared, 4);
+}
