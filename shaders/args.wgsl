@@ -10,7 +10,6 @@
 
 @compute @workgroup_size(1)
 fn reset() {
-    enter_batch();
     out.edges.vertex_count = 6u;
     atomicStore(&out.edges.instance_count, 0u);
     out.edges.first_vertex = 0u;
@@ -26,7 +25,6 @@ fn reset() {
 
 @compute @workgroup_size(1)
 fn args() {
-    enter_batch();
     let filled = min(atomicLoad(&out.edges.instance_count), frame.capacity) - starts[frame.batch];
     let groups = (2u * filled + WORKGROUP - 1u) / WORKGROUP;
     let x = min(groups, MAX_GROUPS);
@@ -38,7 +36,6 @@ fn args() {
 // The lists are bounded; never let the draws read past them, and say how much was wanted.
 @compute @workgroup_size(1)
 fn finish() {
-    enter_batch();
     let wanted = atomicLoad(&out.edges.instance_count);
     out.needed = wanted;
     atomicStore(&out.edges.instance_count, min(wanted, frame.capacity));

@@ -3,7 +3,6 @@
 
 @compute @workgroup_size(WORKGROUP)
 fn chamfer_records(@builtin(global_invocation_id) id: vec3<u32>) {
-    enter_batch();
     let first = first_slot();
     let slot = first + thread_index(id);
     if slot >= slots_filled() {
@@ -34,15 +33,17 @@ fn chamfer_records(@builtin(global_invocation_id) id: vec3<u32>) {
     let to_viewer = to_viewer_at(middle);
     var across = normalize(cross(to_viewer, normalize(p1 - p0)));
     let s = from_record(screen[slot], item.y);
-    let c = frame.mvp * vec4<f32>(middle, 1.0);
+    let mvp = view_mvp();
+    let c = mvp * vec4<f32>(middle, 1.0);
     let pixel = frame.pixel_scale * c.w;
     // P must point along the quad's left normal on screen.
-    let nudged = frame.mvp * vec4<f32>(middle + across * pixel, 1.0);
+    let nudged = mvp * vec4<f32>(middle + across * pixel, 1.0);
     if dot(to_pixels(nudged) - to_pixels(c), perp(s.d)) < 0.0 {
         across = -across;
     }
     let radius = unpack2x16float(attributes[e] >> 16u).x * frame.radius_scale;
-    let distance = select(0.0, length(frame.eye.xyz - middle), frame.eye.w > 0.0);
+    let eye = view_eye();
+    let distance = select(0.0, length(eye.xyz - middle), eye.w > 0.0);
     let record = ChamferRecord(
         vec4<f32>(n1, radius / pixel),
         vec4<f32>(n2, dot(across, n1 + n2) / (1.0 + dot(n1, n2))),
@@ -66,8 +67,8 @@ fn chamfer_records(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     var r = screen[slot];
     r.extents = vec4<f32>(left, left, right, right);
-    let c0 = frame.mvp * vec4<f32>(p0, 1.0);
-    let c1 = frame.mvp * vec4<f32>(p1, 1.0);
+    let c0 = mvp * vec4<f32>(p0, 1.0);
+    let c1 = mvp * vec4<f32>(p1, 1.0);
     let bias = frame.bias_px + max(left, right);
     if (s.clipped & 1u) == 0u {
         r.depth_w.x = biased_depth_by(c0, bias);

@@ -7,7 +7,6 @@
 // Before a batch's classification: its slots start at the count so far, and no cluster is kept.
 @compute @workgroup_size(1)
 fn mark() {
-    enter_batch();
     starts[frame.batch] = slots_filled();
     atomicStore(&survivors.count, 0u);
 }
@@ -15,7 +14,6 @@ fn mark() {
 // One thread per (instance of the batch, edge of the chunk).
 @compute @workgroup_size(WORKGROUP)
 fn classify(@builtin(global_invocation_id) id: vec3<u32>) {
-    enter_batch();
     let t = thread_index(id);
     let n = frame.edge_count;
     if n == 0u || t >= n * frame.batch_instances {
@@ -34,7 +32,6 @@ fn classify_clusters(
     @builtin(workgroup_id) group: vec3<u32>,
     @builtin(local_invocation_index) k: u32,
 ) {
-    enter_batch();
     let g = group.y * MAX_GROUPS + group.x;
     if g >= survivors.kept {
         return;
@@ -61,7 +58,7 @@ fn classify_edge(e: u32) {
     }
     let s = edge_screen(e, word);
     word |= select(0u, ON_SCREEN, s.visible) | (s.clipped << CLIPPED_SHIFT)
-        | (frame.instance << INSTANCE_SHIFT);
+        | (view_instance() << INSTANCE_SHIFT);
     let slot = atomicAdd(&out.edges.instance_count, 1u);
     if slot >= frame.capacity {
         // Past the lists: not drawn this frame; `finish` reports how many were wanted.
@@ -69,5 +66,5 @@ fn classify_edge(e: u32) {
     }
     drawn[slot] = vec2<u32>(e, word);
     screen[slot] = to_record(s);
-    remember(frame.instance, e, slot);
+    remember(view_instance(), e, slot);
 }

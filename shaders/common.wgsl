@@ -144,7 +144,8 @@ fn face_normals(v0: vec3<f32>, v1: vec3<f32>, v2: vec3<f32>, v3: vec3<f32>, flag
 // Whether a face of normal `n` through `p` looks at the camera (thesis §6.1): the homogeneous eye is
 // on its positive side.
 fn face_front(n: vec3<f32>, p: vec3<f32>) -> bool {
-    return dot(n, frame.eye.xyz - p * frame.eye.w) > 0.0;
+    let eye = view_eye();
+    return dot(n, eye.xyz - p * eye.w) > 0.0;
 }
 
 // Whether the faces a and b of the edge (v0, v1, v2, v3) look at the camera; a boundary or
@@ -171,7 +172,7 @@ fn faces_front(e: u32, flags: u32) -> vec2<bool> {
 
 // True if the point `p` is beyond one of the frame's widened side planes.
 fn beyond_side(p: vec3<f32>, side: u32) -> bool {
-    return dot(frame.frustum[side], vec4<f32>(p, 1.0)) > 0.0;
+    return dot(view_frustum(side), vec4<f32>(p, 1.0)) > 0.0;
 }
 
 // True if edge `e` lies wholly beyond one side of the view, so far out that its quad, its caps and
@@ -234,8 +235,9 @@ fn near_depth() -> f32 {
 
 fn half_width(w: f32) -> f32 {
     var px = frame.width;
-    if frame.depth_ref > 0.0 {
-        px = px * frame.depth_ref / w;
+    let depth_ref = view_depth_ref();
+    if depth_ref > 0.0 {
+        px = px * depth_ref / w;
     }
     return 0.5 * max(px, frame.min_width);
 }
@@ -258,8 +260,9 @@ struct EdgeScreen {
 fn edge_screen(e: u32, word: u32) -> EdgeScreen {
     var out: EdgeScreen;
     out.visible = false;
-    var c0 = frame.mvp * vec4<f32>(position(edge_vertex(4u * e)), 1.0);
-    var c1 = frame.mvp * vec4<f32>(position(edge_vertex(4u * e + 1u)), 1.0);
+    let mvp = view_mvp();
+    var c0 = mvp * vec4<f32>(position(edge_vertex(4u * e)), 1.0);
+    var c1 = mvp * vec4<f32>(position(edge_vertex(4u * e + 1u)), 1.0);
     let f0 = in_front(c0);
     let f1 = in_front(c1);
     if f0 < 0.0 && f1 < 0.0 {
@@ -290,7 +293,7 @@ fn edge_screen(e: u32, word: u32) -> EdgeScreen {
         // Half quad (thesis §8.3): the whole width goes outside the silhouette, away from the
         // front face's opposite vertex, so no part of the quad cuts into the surface.
         let inside = position(edge_vertex(4u * e + select(2u, 3u, (word & INSIDE_V3) != 0u)));
-        let ci = frame.mvp * vec4<f32>(inside, 1.0);
+        let ci = mvp * vec4<f32>(inside, 1.0);
         if ci.w > 0.0 {
             if dot(to_pixels(ci) - out.s0, perp(out.d)) > 0.0 {
                 out.left = vec2<f32>(0.0);

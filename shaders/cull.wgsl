@@ -31,7 +31,6 @@ struct Survivors {
 // One thread per (instance of the batch, cluster of the chunk): the instances out of view stop here.
 @compute @workgroup_size(WORKGROUP)
 fn cull(@builtin(global_invocation_id) id: vec3<u32>) {
-    enter_batch();
     let t = thread_index(id);
     // This dispatch's clusters: those of its edges (a chunk starts on a cluster boundary).
     let per_instance = (frame.edge_count + CLUSTER_EDGES - 1u) / CLUSTER_EDGES;
@@ -57,7 +56,6 @@ fn cull(@builtin(global_invocation_id) id: vec3<u32>) {
 // the list for the next.
 @compute @workgroup_size(1)
 fn cull_args() {
-    enter_batch();
     let wanted = atomicLoad(&survivors.count);
     let kept = min(wanted, frame.survivor_capacity);
     let x = min(kept, MAX_GROUPS);
@@ -74,7 +72,7 @@ fn cull_args() {
 fn may_draw(c: EdgeCluster) -> bool {
     // Off screen: the sphere wholly beyond a widened side plane (the planes are unit length).
     for (var side = 0u; side < 4u; side++) {
-        let plane = frame.frustum[side];
+        let plane = view_frustum(side);
         let distance = dot(plane.xyz, c.center) + plane.w;
         let slack = 1e-5 * (length(c.center) + c.radius + abs(plane.w));
         if distance - c.radius > slack {
@@ -101,7 +99,7 @@ fn facing_bounds(c: EdgeCluster) -> vec2<f32> {
     if c.cos_angle <= -1.0 {
         return vec2<f32>(-1.0, 1.0);
     }
-    let eye = frame.eye;
+    let eye = view_eye();
     let q = eye.xyz - c.center * eye.w;
     let l = length(q);
     let reach = c.radius * abs(eye.w);

@@ -1,4 +1,25 @@
-// The frame uniform of the passes that draw one instance per uniform block: every technique's, but
-// the joined technique's compute passes, which read their batch's block instead (batch.wgsl).
+// The frame uniform of the passes that draw one instance per uniform block: every technique's but
+// the joined technique's compute passes (batch.wgsl). Shared code reads the instance's view through
+// the `view_*` functions, which batch.wgsl defines per thread.
 
 @group(0) @binding(0) var<uniform> frame: Frame;
+
+fn view_mvp() -> mat4x4<f32> {
+    return frame.mvp;
+}
+
+fn view_eye() -> vec4<f32> {
+    return frame.eye;
+}
+
+fn view_frustum(side: u32) -> vec4<f32> {
+    return frame.frustum[side];
+}
+
+fn view_depth_ref() -> f32 {
+    return frame.depth_ref;
+}
+
+fn view_instance() -> u32 {
+    return frame.instance;
+}

@@ -122,7 +122,8 @@ fn visible_range(arc: Arc, to_viewer: vec3<f32>) -> vec2<f32> {
 }
 
 fn to_viewer_at(p: vec3<f32>) -> vec3<f32> {
-    return normalize(frame.eye.xyz - p * frame.eye.w);
+    let eye = view_eye();
+    return normalize(eye.xyz - p * eye.w);
 }
 
 fn to_light_at(p: vec3<f32>) -> vec3<f32> {

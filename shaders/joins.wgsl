@@ -144,7 +144,6 @@ fn resolve(me: End, n: Neighbours) {
 fn joins_next(
     @builtin(global_invocation_id) id: vec3<u32>,
 ) {
-    enter_batch();
     let t = thread_index(id);
     let first = first_slot();
     if t >= 2u * (slots_filled() - first) {
@@ -173,7 +172,6 @@ fn joins_next(
 fn clear_joins(
     @builtin(global_invocation_id) id: vec3<u32>,
 ) {
-    enter_batch();
     let t = thread_index(id);
     let first = first_slot();
     if t < 2u * (slots_filled() - first) {
@@ -185,7 +183,6 @@ fn clear_joins(
 fn joins_heads(
     @builtin(global_invocation_id) id: vec3<u32>,
 ) {
-    enter_batch();
     // One thread per (instance of the batch, capped vertex).
     let t = thread_index(id);
     let heads = frame.head_count;

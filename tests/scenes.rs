@@ -265,10 +265,14 @@ fn picture_instance_by_instance(
 #[test]
 fn a_scene_drawn_in_batches_equals_it_drawn_instance_by_instance() {
     let gpu = gpu();
-    let assets: Vec<GpuAsset> = ["shapes/cube.obj", "meshes/fandisk.obj", "shapes/cone-16.obj"]
-        .iter()
-        .map(|name| GpuAsset::new(&gpu.device, &bake_fixture(name)).expect("upload"))
-        .collect();
+    let assets: Vec<GpuAsset> = [
+        "shapes/cube.obj",
+        "meshes/fandisk.obj",
+        "shapes/cone-16.obj",
+    ]
+    .iter()
+    .map(|name| GpuAsset::new(&gpu.device, &bake_fixture(name)).expect("upload"))
+    .collect();
     // 27 instances on a lattice, turned, some mirrored and stretched, a few outside every view.
     let mut instances = Vec::new();
     for i in 0..27u32 {
@@ -310,7 +314,11 @@ fn a_scene_drawn_in_batches_equals_it_drawn_instance_by_instance() {
         let counts = scene.read_counts(&gpu.device, &gpu.queue).expect("counts");
         let (separate, edges, caps) = picture_instance_by_instance(&camera, &instances, &style);
         assert_eq!(counts.instances_in_view, 27, "azimuth {azimuth}");
-        assert_eq!((counts.edges, counts.caps), (edges, caps), "azimuth {azimuth}");
+        assert_eq!(
+            (counts.edges, counts.caps),
+            (edges, caps),
+            "azimuth {azimuth}"
+        );
         assert!(counts.edges > 500, "azimuth {azimuth}: {counts:?}");
         assert_eq!(
             differing(&batched, &separate),

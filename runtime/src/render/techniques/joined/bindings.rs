@@ -4,12 +4,9 @@
 //! what its entry points use, which keeps every stage within wgpu's default limit of 8 storage
 //! buffers.
 
-use crate::render::bindings::Kind::{Block, Read, ReadWrite, Uniform};
+use crate::render::bindings::Kind::{Read, ReadWrite, Uniform};
 use crate::render::bindings::{Binding, Bindings, FRAME, asset};
 
-/// The compute passes' uniform block: their batch's (`shaders/batch.wgsl`), where the other passes
-/// read one instance's [`FRAME`].
-pub(crate) const BATCH: Binding = Binding::new(FRAME.index, "batch", Block);
 
 /// The slot table: per (instance, edge) drawn, its slot + 1, written by classify, read by the joins.
 pub(crate) const TABLE: Binding = Binding::new(16, "table", ReadWrite);
@@ -50,7 +47,7 @@ const fn read_only(binding: Binding) -> Binding {
 pub(crate) const CLASSIFY: Bindings = Bindings::compute(
     "classify",
     &[
-        BATCH,
+        FRAME,
         STARTS,
         asset::TOPOLOGY,
         asset::EDGE_VERTICES,
@@ -66,7 +63,7 @@ pub(crate) const CLASSIFY: Bindings = Bindings::compute(
 pub(crate) const CULL: Bindings = Bindings::compute(
     "cull",
     &[
-        BATCH,
+        FRAME,
         OUT,
         SURVIVORS,
         asset::CLUSTERS,
@@ -78,7 +75,7 @@ pub(crate) const PLACE: Bindings = Bindings::compute("place", &[FRAME, OUT, PLAC
 pub(crate) const JOIN: Bindings = Bindings::compute(
     "joins",
     &[
-        BATCH,
+        FRAME,
         STARTS,
         asset::RINGS,
         TABLE,
@@ -93,7 +90,7 @@ pub(crate) const JOIN: Bindings = Bindings::compute(
 pub(crate) const RECORDS: Bindings = Bindings::compute(
     "chamfer records",
     &[
-        BATCH,
+        FRAME,
         asset::TOPOLOGY,
         asset::EDGE_VERTICES,
         asset::ATTRIBUTES,
@@ -105,7 +102,7 @@ pub(crate) const RECORDS: Bindings = Bindings::compute(
         INSTANCE_FRAMES,
     ],
 );
-pub(crate) const ARGS: Bindings = Bindings::compute("edge lists", &[BATCH, OUT, STARTS, DISPATCH]);
+pub(crate) const ARGS: Bindings = Bindings::compute("edge lists", &[FRAME, OUT, STARTS, DISPATCH]);
 pub(crate) const DRAW: Bindings = Bindings::draw(
     "edge draw",
     &[
