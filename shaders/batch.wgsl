@@ -39,3 +39,15 @@ fn view_depth_ref() -> f32 {
 fn view_instance() -> u32 {
     return viewing;
 }
+
+fn view_color(k: u32) -> vec4<f32> {
+    return instance_frames[viewing].colors[k];
+}
+
+// The element (edge, triangle) a batched draw's instance index names, `per_instance` of them per
+// instance of the batch; enters that instance.
+fn enter_element(index: u32, per_instance: u32) -> u32 {
+    let n = max(per_instance, 1u);
+    enter_instance(frame.instance + index / n);
+    return index % n;
+}

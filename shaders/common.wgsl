@@ -65,6 +65,8 @@ struct InstanceFrame {
     // The asset's bounds in model space; `lo.w` is the instance's depth_ref.
     lo: vec4<f32>,
     hi: vec4<f32>,
+    // The instance's class colours.
+    colors: array<vec4<f32>, COLOR_COUNT>,
     visible: u32,
     _pad0: u32,
     _pad1: u32,

@@ -29,12 +29,15 @@ fn render_normal(r: u32) -> vec3<f32> {
 }
 
 fn fin_front(n: vec3<f32>, p: vec3<f32>) -> bool {
-    return dot(n, frame.eye.xyz - p * frame.eye.w) > 0.0;
+    let eye = view_eye();
+    return dot(n, eye.xyz - p * eye.w) > 0.0;
 }
 
 // Vertex i of 12: fin of face a (0..5) or face b (6..11), two triangles each.
 @vertex
-fn fin_vertex(@builtin(vertex_index) i: u32, @builtin(instance_index) e: u32) -> FlatVarying {
+fn fin_vertex(@builtin(vertex_index) i: u32, @builtin(instance_index) index: u32) -> FlatVarying {
+    // Every instance of the asset in one draw: instance = an instance's edge.
+    let e = enter_element(index, frame.edge_count);
     let flags = attributes[e] & 0xffffu;
     let v0 = position(edge_vertex(4u * e));
     let v1 = position(edge_vertex(4u * e + 1u));
@@ -63,9 +66,9 @@ fn fin_vertex(@builtin(vertex_index) i: u32, @builtin(instance_index) e: u32) ->
     var thickness = params.thickness;
     if params.in_pixels == 1u {
         // Pixels: the world length that covers that many pixels at this vertex's depth.
-        thickness = params.thickness * frame.pixel_scale * (frame.mvp * vec4<f32>(base, 1.0)).w;
+        thickness = params.thickness * frame.pixel_scale * (view_mvp() * vec4<f32>(base, 1.0)).w;
     }
-    var clip = frame.mvp * vec4<f32>(base + select(0.0, thickness, tip) * normal, 1.0);
+    var clip = view_mvp() * vec4<f32>(base + select(0.0, thickness, tip) * normal, 1.0);
     if (word & DRAWN_CONTOUR) == 0u {
         // Listing 3: crease fins move towards the camera in view space.
         clip = clip + params.z_bias * frame.proj_z;

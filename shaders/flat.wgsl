@@ -10,7 +10,7 @@ fn flat_vertex(word: u32, position: vec4<f32>) -> FlatVarying {
     if word == NOT_DRAWN {
         return FlatVarying(NOWHERE, vec4<f32>(0.0));
     }
-    return FlatVarying(position, frame.colors[word & 0xffu]);
+    return FlatVarying(position, view_color(word & 0xffu));
 }
 
 @fragment

@@ -23,3 +23,13 @@ fn view_depth_ref() -> f32 {
 fn view_instance() -> u32 {
     return frame.instance;
 }
+
+fn view_color(k: u32) -> vec4<f32> {
+    return frame.colors[k];
+}
+
+// The element (edge, triangle) a vertex shader's instance index names: with one instance per
+// block, the index itself (batch.wgsl splits it into instance and element).
+fn enter_element(index: u32, per_instance: u32) -> u32 {
+    return index;
+}

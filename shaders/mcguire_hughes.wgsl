@@ -1,5 +1,5 @@
-// McGuire and Hughes' hardware-determined feature edges (thesis §8): every edge of the asset is drawn
-// (instance = edge, vertex = one of its four edge vertices), each of which classifies it again and either builds its corner or sends
+// McGuire and Hughes' hardware-determined feature edges (thesis §8): every edge of every instance of
+// the asset is drawn in one draw (instance = an instance's edge, vertex = one of its four edge vertices), each of which classifies it again and either builds its corner or sends
 // it nowhere. The edge pass draws a quad per edge, full or half (contours, §8.3); two cap passes draw
 // a triangle at each end that meets the neighbouring edge's cap along the projected vertex normal
 // (§8.4). The caps' known flaw (§8.5): where the projected normal does not follow the surface's bend,
@@ -8,8 +8,8 @@
 // Corner `i` (0..3) of the edge's quad, drawn indexed (0 1 2, 0 2 3) so each corner is shaded once,
 // as the thesis' four edge vertices are: 0 (s0, below), 1 (s1, below), 2 (s1, above), 3 (s0, above).
 @vertex
-fn mh_edge_vertex(@builtin(vertex_index) i: u32, @builtin(instance_index) e: u32) -> FlatVarying {
-    let edge = vertex_edge(e);
+fn mh_edge_vertex(@builtin(vertex_index) i: u32, @builtin(instance_index) index: u32) -> FlatVarying {
+    let edge = vertex_edge(enter_element(index, frame.edge_count));
     let k = select(0u, 1u, i == 1u || i == 2u);
     let above = i >= 2u;
     let s = select(edge.s0, edge.s1, k == 1u);
@@ -41,13 +41,13 @@ fn cap_corner(edge: VertexEdge, i: u32, k: u32) -> vec4<f32> {
 }
 
 @vertex
-fn mh_cap0_vertex(@builtin(vertex_index) i: u32, @builtin(instance_index) e: u32) -> FlatVarying {
-    let edge = vertex_edge(e);
+fn mh_cap0_vertex(@builtin(vertex_index) i: u32, @builtin(instance_index) index: u32) -> FlatVarying {
+    let edge = vertex_edge(enter_element(index, frame.edge_count));
     return edge_vertex_out(edge, cap_corner(edge, i, 0u));
 }
 
 @vertex
-fn mh_cap1_vertex(@builtin(vertex_index) i: u32, @builtin(instance_index) e: u32) -> FlatVarying {
-    let edge = vertex_edge(e);
+fn mh_cap1_vertex(@builtin(vertex_index) i: u32, @builtin(instance_index) index: u32) -> FlatVarying {
+    let edge = vertex_edge(enter_element(index, frame.edge_count));
     return edge_vertex_out(edge, cap_corner(edge, i, 1u));
 }

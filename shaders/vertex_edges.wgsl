@@ -52,8 +52,9 @@ fn vertex_edge(e: u32) -> VertexEdge {
     if word == NOT_DRAWN {
         return out;
     }
-    let c0 = frame.mvp * vec4<f32>(v0, 1.0);
-    let c1 = frame.mvp * vec4<f32>(v1, 1.0);
+    let mvp = view_mvp();
+    let c0 = mvp * vec4<f32>(v0, 1.0);
+    let c1 = mvp * vec4<f32>(v1, 1.0);
     // Like the thesis, no near-plane clipping: an edge that reaches behind the camera is not drawn.
     if in_front(c0) < 0.0 || in_front(c1) < 0.0 || c0.w <= 0.0 || c1.w <= 0.0 {
         return out;
@@ -66,8 +67,8 @@ fn vertex_edge(e: u32) -> VertexEdge {
     }
     out.word = word;
     out.p = perp(normalize(along));
-    out.m0 = screen_dir(out.s0, frame.mvp * vec4<f32>(v0 + vertex_normals[i0].xyz, 1.0));
-    out.m1 = screen_dir(out.s1, frame.mvp * vec4<f32>(v1 + vertex_normals[i1].xyz, 1.0));
+    out.m0 = screen_dir(out.s0, mvp * vec4<f32>(v0 + vertex_normals[i0].xyz, 1.0));
+    out.m1 = screen_dir(out.s1, mvp * vec4<f32>(v1 + vertex_normals[i1].xyz, 1.0));
     out.h = vec2<f32>(half_width(c0.w), half_width(c1.w));
     out.depth = vec2<f32>(biased_depth(c0), biased_depth(c1));
     out.w = vec2<f32>(c0.w, c1.w);

@@ -169,6 +169,9 @@ pub(crate) fn unbound(set: &Bindings, binding: Binding) -> RenderError {
 pub(crate) const FRAME: Binding = Binding::new(0, "frame", Kind::Block);
 /// A technique's parameters, a block per instance (its `#[repr(C)]` struct, named in its module).
 pub(crate) const PARAMS: Binding = Binding::new(15, "params", Kind::Block);
+/// The passes that draw every instance of an asset at once (`shaders/batch.wgsl`): each instance's
+/// view, a [`InstanceFrame`](super::layout::InstanceFrame) per instance of the frame.
+pub(crate) const INSTANCE_FRAMES: Binding = Binding::new(29, "instance_frames", Kind::Read);
 
 /// The asset's sections as [`GpuAsset`](super::GpuAsset) uploads them, one binding each in every
 /// module that reads them ([`GpuAsset::resource`](super::GpuAsset::resource) binds them).

@@ -149,6 +149,7 @@ pub(crate) struct InstanceFrame {
     /// The asset's bounds; `lo[3]` is the instance's depth reference.
     pub(crate) lo: [f32; 4],
     pub(crate) hi: [f32; 4],
+    pub(crate) colors: [[f32; 4]; drawn::COLOR_COUNT as usize],
     pub(crate) visible: u32,
     pub(crate) _pad0: u32,
     pub(crate) _pad1: u32,
@@ -327,7 +328,9 @@ pub(crate) fn layouts() -> Vec<Layout> {
         layout!(
             "InstanceFrame",
             InstanceFrame,
-            [mvp, eye, frustum, lo, hi, visible, _pad0, _pad1, _pad2]
+            [
+                mvp, eye, frustum, lo, hi, colors, visible, _pad0, _pad1, _pad2
+            ]
         ),
         layout!("Lighting", Lighting, [light, color, material]),
         layout!(

@@ -98,6 +98,7 @@ impl Pull for Alternate {
         house: bool,
         pass: &mut wgpu::RenderPass<'_>,
         asset: &GpuAsset,
+        copies: u32,
     ) {
         let ([shapes], [hex_plug, house_fan]) = (pipelines, indices) else {
             return;
@@ -105,6 +106,6 @@ impl Pull for Alternate {
         let indices = if house { house_fan } else { hex_plug };
         pass.set_pipeline(shapes);
         pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint16);
-        pass.draw_indexed(0..12, 0, 0..asset.edge_count);
+        pass.draw_indexed(0..12, 0, 0..asset.edge_count * copies);
     }
 }

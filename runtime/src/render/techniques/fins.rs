@@ -1,14 +1,15 @@
 //! [`Technique::Fins`](crate::render::Technique::Fins): seed 003's geometry-shader inking, in the
 //! vertex shader (`shaders/fins.wgsl`): per edge instance, twelve vertices, a fin per front-facing
 //! face whose edge is a silhouette or a crease, extruded along that face's corner normals, crease
-//! fins biased towards the camera (Listing 3).
+//! fins biased towards the camera (Listing 3). Every instance of an asset is drawn by one draw (a
+//! batch, issue 28): its parameters depend on the asset, not the instance.
 
 use chamfer_shaders as wgsl;
 
 use super::pulled::{Draws, Pull, PullModule};
 use super::{Drawn, FrameContext};
 use crate::render::Technique;
-use crate::render::bindings::{Bindings, FRAME, PARAMS, asset};
+use crate::render::bindings::{Bindings, FRAME, INSTANCE_FRAMES, PARAMS, asset};
 use crate::render::layout::{Layout, layout};
 use crate::render::modules::Program;
 
@@ -39,12 +40,14 @@ impl Pull for Fins {
             asset::ATTRIBUTES,
             asset::RENDER_NORMALS,
             asset::FIN_CORNERS,
+            INSTANCE_FRAMES,
         ],
     );
     const SHADER: (&'static str, &'static [&'static str]) = (
         "fins.wgsl",
-        &[wgsl::COMMON, wgsl::FRAME, wgsl::FLAT, wgsl::FINS],
+        &[wgsl::COMMON, wgsl::BATCH, wgsl::FLAT, wgsl::FINS],
     );
+    const BATCHED: bool = true;
     const DRAWS: Draws = Draws::PerEdge(12);
     const PROGRAMS: &'static [Program] =
         &[Program::draw("fin_vertex", "flat_fragment", Self::BINDINGS)];

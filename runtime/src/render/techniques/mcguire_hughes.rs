@@ -5,13 +5,14 @@
 //! vertex shader of each; wgpu lets the vertex shader pull the asset's own sections instead, so the
 //! duplication is of work, not memory: per frame every edge runs the classification at each of the
 //! quad's four vertices and each cap pass's three (§8.5 "high duplication of work"), and nothing is
-//! compacted. Per-frame memory: one uniform block per instance.
+//! compacted. Every instance of an asset is drawn by one draw sequence (a batch, issue 28). Per-frame
+//! memory: a uniform block per batch and each instance's view.
 
 use chamfer_shaders as wgsl;
 
 use super::pulled::{Draws, Pull, PullModule};
 use super::{Drawn, FrameContext};
-use crate::render::bindings::{Bindings, FRAME, asset};
+use crate::render::bindings::{Bindings, FRAME, INSTANCE_FRAMES, asset};
 use crate::render::layout::Layout;
 use crate::render::modules::Program;
 use crate::render::{CapMethod, GpuAsset, Pipelines, Technique};
@@ -29,6 +30,7 @@ const BINDINGS: Bindings = Bindings::draw(
         asset::EDGE_VERTICES,
         asset::ATTRIBUTES,
         asset::VERTEX_NORMALS,
+        INSTANCE_FRAMES,
     ],
 );
 
@@ -41,13 +43,14 @@ impl Pull for McGuireHughes {
         "mcguire_hughes.wgsl",
         &[
             wgsl::COMMON,
-            wgsl::FRAME,
+            wgsl::BATCH,
             wgsl::FLAT,
             wgsl::VERTEX_EDGES,
             wgsl::MCGUIRE_HUGHES,
         ],
     );
     /// The quad, six indexed vertices per edge (`draw` adds the caps).
+    const BATCHED: bool = true;
     const DRAWS: Draws = Draws::PerEdge(6);
     /// The edge pass and the two cap passes.
     const PROGRAMS: &'static [Program] = &[
@@ -80,11 +83,13 @@ impl Pull for McGuireHughes {
         caps: bool,
         pass: &mut wgpu::RenderPass<'_>,
         asset: &GpuAsset,
+        copies: u32,
     ) {
         let ([edges, cap0, cap1], [quad]) = (pipelines, indices) else {
             return;
         };
-        let count = asset.edge_count;
+        // Every instance of the batch: its edges one instance after another.
+        let count = asset.edge_count * copies;
         pass.set_pipeline(edges);
         pass.set_index_buffer(quad.slice(..), wgpu::IndexFormat::Uint16);
         pass.draw_indexed(0..6, 0, 0..count);

@@ -28,7 +28,7 @@ mod wireframe;
 
 use std::sync::Arc;
 
-use super::layout::{Frame, Layout};
+use super::layout::{Frame, InstanceFrame, Layout};
 use super::modules::Shader;
 use super::{
     AssetExtras, Camera, DrawCounts, EdgeColors, EdgeStyle, FrameViews, GpuAsset, Pipelines,
@@ -242,6 +242,120 @@ pub(crate) fn frame_uniform(cx: &FrameContext<'_>, drawn: &Drawn<'_>, index: usi
         batch_instances: 0,
         table_mask: 0,
         survivor_capacity: 0,
+    }
+}
+
+/// The frame's instances grouped by asset (assets in the order they first appear, instances in
+/// theirs): the order batches number them in.
+pub(crate) fn by_asset(instances: &[Drawn<'_>]) -> Vec<usize> {
+    let mut keys: Vec<&Arc<()>> = Vec::new();
+    let asset_of: Vec<usize> = instances
+        .iter()
+        .map(
+            |d| match keys.iter().position(|k| Arc::ptr_eq(k, &d.asset.key)) {
+                Some(k) => k,
+                None => {
+                    keys.push(&d.asset.key);
+                    keys.len() - 1
+                }
+            },
+        )
+        .collect();
+    let mut order: Vec<usize> = (0..instances.len()).collect();
+    order.sort_by_key(|&i| (asset_of[i], i));
+    order
+}
+
+/// The batches of `order` (from [`by_asset`]): runs of one asset's instances, each at most
+/// `most(asset)` long. Returns (first position in `order`, instances) per batch.
+pub(crate) fn batches(
+    instances: &[Drawn<'_>],
+    order: &[usize],
+    most: impl Fn(&GpuAsset) -> usize,
+) -> Vec<(usize, usize)> {
+    let mut runs = Vec::new();
+    let mut start = 0;
+    while start < order.len() {
+        let asset = instances[order[start]].asset;
+        let same = order[start..]
+            .iter()
+            .take_while(|&&d| Arc::ptr_eq(&instances[d].asset.key, &asset.key))
+            .count();
+        let count = same.min(most(asset).max(1));
+        runs.push((start, count));
+        start += count;
+    }
+    runs
+}
+
+/// Instance `drawn`'s view for the batched passes (numbered `index` in the frame), its frustum
+/// planes `frustum` (zeros: none).
+pub(crate) fn instance_view(
+    cx: &FrameContext<'_>,
+    drawn: &Drawn<'_>,
+    index: usize,
+    frustum: [[f32; 4]; 4],
+) -> InstanceFrame {
+    let uniform = frame_uniform(cx, drawn, index);
+    let [lo, hi] = drawn.asset.bounds();
+    InstanceFrame {
+        mvp: uniform.mvp,
+        eye: uniform.eye,
+        frustum,
+        lo: [lo[0], lo[1], lo[2], uniform.depth_ref],
+        hi: [hi[0], hi[1], hi[2], 0.0],
+        colors: uniform.colors,
+        visible: 1,
+        _pad0: 0,
+        _pad1: 0,
+        _pad2: 0,
+    }
+}
+
+/// A storage buffer of [`InstanceFrame`]s, regrown when a frame has more instances.
+#[derive(Debug)]
+pub(crate) struct InstanceViews {
+    pub(crate) buffer: wgpu::Buffer,
+    capacity: usize,
+}
+
+impl InstanceViews {
+    pub(crate) fn new(cache: &Pipelines) -> Self {
+        Self {
+            buffer: Self::make(cache, 1),
+            capacity: 1,
+        }
+    }
+
+    fn make(cache: &Pipelines, capacity: usize) -> wgpu::Buffer {
+        cache.device().create_buffer(&wgpu::BufferDescriptor {
+            label: Some("instance views"),
+            size: (std::mem::size_of::<InstanceFrame>() * capacity) as u64,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        })
+    }
+
+    /// Writes `views`; true if the buffer had to be remade (bind groups over it too).
+    pub(crate) fn write(
+        &mut self,
+        cache: &Pipelines,
+        queue: &wgpu::Queue,
+        views: &[InstanceFrame],
+    ) -> bool {
+        let grown = views.len() > self.capacity;
+        if grown {
+            self.capacity = views.len().next_power_of_two();
+            self.buffer = Self::make(cache, self.capacity);
+        }
+        if !views.is_empty() {
+            queue.write_buffer(&self.buffer, 0, bytemuck::cast_slice(views));
+        }
+        grown
+    }
+
+    pub(crate) fn gpu_bytes(&self) -> u64 {
+        self.buffer.size()
     }
 }
 

@@ -1,13 +1,18 @@
 //! The skeleton of the techniques that pull their geometry from the asset's sections in the vertex
 //! shader (McGuire–Hughes, the §9.3 shapes, fins, the wireframe, surface angle, the inverted hull;
-//! hardware contours use its [`Instances`]): per instance a `Frame` block and a parameters block,
-//! per asset one bind group over its sections, one draw call sequence per instance. A technique of
-//! this kind implements [`Pull`] with only what differs; [`PullModule`] makes it a [`Module`].
+//! hardware contours use its [`Instances`]): per asset one bind group over its sections; per instance
+//! a `Frame` block, a parameters block and one draw call sequence, or, for a technique that draws in
+//! batches ([`Pull::BATCHED`]: McGuire–Hughes and fins), per batch of one asset's instances a block
+//! of each and one draw sequence for them all, each instance's view a row of a storage buffer
+//! (`shaders/batch.wgsl`). A technique of this kind implements [`Pull`] with only what differs;
+//! [`PullModule`] makes it a [`Module`]. Instances out of view are culled on the host.
 
 use std::marker::PhantomData;
 use std::sync::Arc;
 
-use super::{Blocks, Drawn, FrameContext, FrameOptions, Module, PerAsset, TechniqueFrame};
+use super::{
+    Blocks, Drawn, FrameContext, FrameOptions, InstanceViews, Module, PerAsset, TechniqueFrame,
+};
 use crate::render::bindings::{self, Binding, Bindings};
 use crate::render::layout::{Frame, Layout};
 use crate::render::modules::{Program, Shader};
@@ -27,6 +32,10 @@ pub(crate) trait Pull: std::fmt::Debug + Send + Sync + 'static {
 
     /// The WGSL module's name (its pass's file) and parts, shared files first.
     const SHADER: (&'static str, &'static [&'static str]);
+    /// Draws every instance of an asset in one draw sequence: its parts include `batch.wgsl`
+    /// (instead of `frame.wgsl`), its bindings [`bindings::INSTANCE_FRAMES`], and its vertex
+    /// shaders find their element with `enter_element`.
+    const BATCHED: bool = false;
     /// Its programs (all with [`Pull::BINDINGS`]), each compiled into one pipeline, in order, drawn
     /// as [`Pull::raster`] says.
     const PROGRAMS: &'static [Program];
@@ -74,21 +83,25 @@ pub(crate) trait Pull: std::fmt::Debug + Send + Sync + 'static {
     /// What each of its pipelines draws per instance of an asset.
     const DRAWS: Draws;
 
-    /// Draws one instance of `asset` (its bind group is set) with `pipelines`, one per program of
-    /// [`Pull::PROGRAMS`] in its order, and its [`Pull::index_buffers`]: by default each pipeline
-    /// draws what [`Pull::DRAWS`] says.
+    /// Draws `copies` instances of `asset` (its bind group is set; more than one only for a
+    /// [`Pull::BATCHED`] technique) with `pipelines`, one per program of [`Pull::PROGRAMS`] in its
+    /// order, and its [`Pull::index_buffers`]: by default each pipeline draws what [`Pull::DRAWS`]
+    /// says.
     fn draw(
         pipelines: &[wgpu::RenderPipeline],
         _indices: &[wgpu::Buffer],
         _state: Self::Draw,
         pass: &mut wgpu::RenderPass<'_>,
         asset: &GpuAsset,
+        copies: u32,
     ) {
         for pipeline in pipelines {
             pass.set_pipeline(pipeline);
             match Self::DRAWS {
-                Draws::PerEdge(vertices) => pass.draw(0..vertices, 0..asset.edge_count),
-                Draws::PerTriangle(vertices) => pass.draw(0..vertices, 0..asset.index_count / 3),
+                Draws::PerEdge(vertices) => pass.draw(0..vertices, 0..asset.edge_count * copies),
+                Draws::PerTriangle(vertices) => {
+                    pass.draw(0..vertices, 0..asset.index_count / 3 * copies)
+                }
                 Draws::Mesh => super::draw_mesh(pass, asset),
             }
         }
@@ -161,7 +174,11 @@ impl<T: Pull> Module for PullModule<T> {
         Ok(Box::new(PulledFrame::<T> {
             set: pipelines.get::<PullPipelines<T>>()?,
             layout: pipelines.layout(T::BINDINGS),
-            instances: Instances::new(pipelines, T::BINDINGS.label),
+            instances: if T::BATCHED {
+                Instances::batched(pipelines, T::BINDINGS.label)
+            } else {
+                Instances::new(pipelines, T::BINDINGS.label)
+            },
             state: T::Draw::default(),
         }))
     }
@@ -195,8 +212,15 @@ impl<T: Pull> TechniqueFrame for PulledFrame<T> {
 
     fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
         let set = &self.set;
-        self.instances.each(pass, |pass, asset| {
-            T::draw(&set.pipelines, &set.indices, self.state, pass, asset)
+        self.instances.each_batch(pass, |pass, asset, copies| {
+            T::draw(
+                &set.pipelines,
+                &set.indices,
+                self.state,
+                pass,
+                asset,
+                copies,
+            )
         });
     }
 
@@ -205,16 +229,18 @@ impl<T: Pull> TechniqueFrame for PulledFrame<T> {
     }
 }
 
-/// Per frame, the instances of a technique with one layout: a `Frame` and a `P` block each, and one
-/// bind group per asset over the blocks and its sections.
+/// Per frame, the instances of a technique with one layout: a `Frame` and a `P` block each (or, in
+/// batches, each batch), and one bind group per asset over the blocks and its sections.
 #[derive(Debug)]
 pub(crate) struct Instances<P> {
     pub(crate) frames: Blocks,
     /// `None` when `P` is `()`.
     params: Option<Blocks>,
+    /// Each instance's view, when the technique draws in batches.
+    views: Option<InstanceViews>,
     groups: PerAsset<wgpu::BindGroup>,
-    /// Per instance: its asset's group and its blocks' offsets.
-    draws: Vec<(usize, [u32; 2])>,
+    /// Per instance (or batch): its asset's group, its blocks' offsets and its instances.
+    draws: Vec<(usize, [u32; 2], u32)>,
     /// The technique the groups bind for: another one may bind other resources.
     made_for: Option<Technique>,
     _params: PhantomData<fn() -> P>,
@@ -226,10 +252,20 @@ impl<P: bytemuck::Pod> Instances<P> {
         Self {
             frames: Blocks::new(cache, label, std::mem::size_of::<Frame>()),
             params: (size > 0).then(|| Blocks::new(cache, label, size)),
+            views: None,
             groups: PerAsset::default(),
             draws: Vec::new(),
             made_for: None,
             _params: PhantomData,
+        }
+    }
+
+    /// Instances drawn in batches: a block per batch of one asset's instances, each instance's
+    /// view in a storage buffer.
+    pub(crate) fn batched(cache: &Pipelines, label: &'static str) -> Self {
+        Self {
+            views: Some(InstanceViews::new(cache)),
+            ..Self::new(cache, label)
         }
     }
 
@@ -246,20 +282,48 @@ impl<P: bytemuck::Pod> Instances<P> {
             Binding,
         ) -> Result<wgpu::BindingResource<'g>, RenderError>,
     ) -> Result<(), RenderError> {
-        let frames: Vec<Frame> = cx
-            .instances
+        // One block per instance, or per batch of an asset's instances (each instance's view in
+        // `views`), with the first instance of each.
+        let (order, runs): (Vec<usize>, Vec<(usize, usize)>) = match &self.views {
+            None => (
+                (0..cx.instances.len()).collect(),
+                (0..cx.instances.len()).map(|i| (i, 1)).collect(),
+            ),
+            Some(_) => {
+                let order = super::by_asset(cx.instances);
+                // An instance index of a draw numbers one instance's elements after another's.
+                let runs = super::batches(cx.instances, &order, |asset| {
+                    let elements = asset.edge_count.max(asset.index_count / 3).max(1);
+                    (u32::MAX / elements) as usize
+                });
+                (order, runs)
+            }
+        };
+        let frames: Vec<Frame> = runs
             .iter()
-            .enumerate()
-            .map(|(i, d)| super::frame_uniform(cx, d, i))
+            .map(|&(first, count)| {
+                let mut frame = super::frame_uniform(cx, &cx.instances[order[first]], first);
+                frame.batch_instances = count as u32;
+                frame
+            })
             .collect();
-        let blocks = cx
-            .instances
+        let blocks = runs
             .iter()
-            .map(|d| params(d).ok_or_else(|| super::mismatch(cx)))
+            .map(|&(first, _)| {
+                params(&cx.instances[order[first]]).ok_or_else(|| super::mismatch(cx))
+            })
             .collect::<Result<Vec<P>, RenderError>>()?;
         let mut regrown = self.frames.write(cx.pipelines, cx.queue, &frames);
         if let Some(params) = &mut self.params {
             regrown |= params.write(cx.pipelines, cx.queue, &blocks);
+        }
+        if let Some(views) = &mut self.views {
+            let rows: Vec<_> = order
+                .iter()
+                .enumerate()
+                .map(|(i, &d)| super::instance_view(cx, &cx.instances[d], i, [[0.0; 4]; 4]))
+                .collect();
+            regrown |= views.write(cx.pipelines, cx.queue, &rows);
         }
         if regrown || self.made_for != Some(cx.style.technique) {
             self.groups.clear();
@@ -268,25 +332,28 @@ impl<P: bytemuck::Pod> Instances<P> {
         self.groups.retain(cx.instances);
         self.draws.clear();
         let device = cx.pipelines.device();
-        for (i, drawn) in cx.instances.iter().enumerate() {
-            let (frames, params) = (&self.frames, &self.params);
+        for (i, &(first, count)) in runs.iter().enumerate() {
+            let drawn = &cx.instances[order[first]];
+            let (frames, params, views) = (&self.frames, &self.params, &self.views);
             let group = self.groups.index(drawn.asset, |asset| {
                 bindings.group(device, layout, |binding| {
-                    match block(frames, params, binding) {
+                    match block(frames, params, views, binding) {
                         Some(block) => Ok(block),
                         None => resource(asset, binding),
                     }
                 })
             })?;
             let params = self.params.as_ref().map_or(0, |p| p.offset(i));
-            self.draws.push((group, [self.frames.offset(i), params]));
+            self.draws
+                .push((group, [self.frames.offset(i), params], count as u32));
         }
         Ok(())
     }
 
-    /// The resource of [`bindings::FRAME`] or [`bindings::PARAMS`] (the blocks' buffers).
+    /// The resource of [`bindings::FRAME`], [`bindings::PARAMS`] or
+    /// [`bindings::INSTANCE_FRAMES`] (the blocks' and views' buffers).
     pub(crate) fn block(&self, binding: Binding) -> Option<wgpu::BindingResource<'_>> {
-        block(&self.frames, &self.params, binding)
+        block(&self.frames, &self.params, &self.views, binding)
     }
 
     /// The dynamic offsets of an instance's blocks, in binding order.
@@ -304,34 +371,48 @@ impl<P: bytemuck::Pod> Instances<P> {
         pass: &mut wgpu::RenderPass<'_>,
         mut draw: impl FnMut(&mut wgpu::RenderPass<'_>, &GpuAsset),
     ) {
-        for (group, offsets) in &self.draws {
+        self.each_batch(pass, |pass, asset, _| draw(pass, asset));
+    }
+
+    /// For each instance, or batch: sets its group and blocks on `pass` and calls `draw` with its
+    /// asset and how many of its instances it draws.
+    pub(crate) fn each_batch(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        mut draw: impl FnMut(&mut wgpu::RenderPass<'_>, &GpuAsset, u32),
+    ) {
+        for (group, offsets, copies) in &self.draws {
             let (asset, bind_group) = self.groups.get(*group);
             pass.set_bind_group(0, bind_group, self.offsets(offsets));
-            draw(pass, asset);
+            draw(pass, asset, *copies);
         }
     }
 
     /// Per instance, its asset and its blocks' offsets (for passes with other groups).
     pub(crate) fn draws(&self) -> impl Iterator<Item = (&GpuAsset, &[u32])> + '_ {
-        self.draws.iter().map(|(group, offsets)| {
+        self.draws.iter().map(|(group, offsets, _)| {
             let (asset, _) = self.groups.get(*group);
             (asset, self.offsets(offsets))
         })
     }
 
     pub(crate) fn gpu_bytes(&self) -> u64 {
-        self.frames.gpu_bytes() + self.params.as_ref().map_or(0, Blocks::gpu_bytes)
+        self.frames.gpu_bytes()
+            + self.params.as_ref().map_or(0, Blocks::gpu_bytes)
+            + self.views.as_ref().map_or(0, InstanceViews::gpu_bytes)
     }
 }
 
 fn block<'b>(
     frames: &'b Blocks,
     params: &'b Option<Blocks>,
+    views: &'b Option<InstanceViews>,
     binding: Binding,
 ) -> Option<wgpu::BindingResource<'b>> {
     match binding {
         bindings::FRAME => Some(frames.binding()),
         bindings::PARAMS => params.as_ref().map(Blocks::binding),
+        bindings::INSTANCE_FRAMES => views.as_ref().map(|v| v.buffer.as_entire_binding()),
         _ => None,
     }
 }

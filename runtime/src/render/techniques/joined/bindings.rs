@@ -4,9 +4,9 @@
 //! what its entry points use, which keeps every stage within wgpu's default limit of 8 storage
 //! buffers.
 
+pub(crate) use crate::render::bindings::INSTANCE_FRAMES;
 use crate::render::bindings::Kind::{Read, ReadWrite, Uniform};
 use crate::render::bindings::{Binding, Bindings, FRAME, asset};
-
 
 /// The slot table: per (instance, edge) drawn, its slot + 1, written by classify, read by the joins.
 pub(crate) const TABLE: Binding = Binding::new(16, "table", ReadWrite);
@@ -34,8 +34,6 @@ pub(crate) const DISPATCH: Binding = Binding::new(26, "dispatch", ReadWrite);
 pub(crate) const SURVIVORS: Binding = Binding::new(27, "survivors", ReadWrite);
 /// The indirect dispatch over the kept clusters.
 pub(crate) const CULL_DISPATCH: Binding = Binding::new(28, "cull_dispatch", ReadWrite);
-/// Per instance of the frame, its camera in its model space and whether it is in view.
-pub(crate) const INSTANCE_FRAMES: Binding = Binding::new(29, "instance_frames", Read);
 /// The place pass writes whether each instance is in view.
 const PLACED_FRAMES: Binding = Binding::new(29, "instance_frames", ReadWrite);
 

@@ -325,6 +325,7 @@ impl Frame {
                 frustum,
                 lo: [lo[0], lo[1], lo[2], uniform.depth_ref],
                 hi: [hi[0], hi[1], hi[2], 0.0],
+                colors: drawn.colors.array(),
                 visible: 0,
                 _pad0: 0,
                 _pad1: 0,
