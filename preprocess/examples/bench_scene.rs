@@ -3,7 +3,7 @@
 //!
 //! ```text
 //! cargo run --release -p chamfer-preprocess --example bench_scene -- [--frames 7] [--size 1920x1080]
-//!     [--grid 10] [--no-separate] [--large MESH]
+//!     [--grid 10] [--no-separate] [--large MESH] [--technique NAME]
 //! ```
 //! The scene: ten assets (fixtures shapes and meshes, each scaled into a unit cell) repeated over a
 //! grid×grid×grid lattice (1,000 instances by default), each turned a little, seen from outside the
@@ -17,7 +17,7 @@ use std::time::Instant;
 
 use chamfer_runtime::render::{
     Camera, EdgeStyle, GpuAsset, Instance, MeshRenderer, MeshStyle, Offscreen, Orbit, Pipelines,
-    SceneRenderer,
+    SceneRenderer, Technique,
 };
 use glam::{Mat4, Quat, Vec3};
 
@@ -39,6 +39,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut size = [1920, 1080];
     let mut grid = 10;
     let mut separate_too = true;
+    let mut technique = Technique::Joined;
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../fixtures");
     let mut large = root.join("meshes/bunny-loop2.ply.gz");
     let mut args = std::env::args().skip(1);
@@ -47,6 +48,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "--frames" => frames = args.next().ok_or("--frames needs a number")?.parse()?,
             "--grid" => grid = args.next().ok_or("--grid needs a number")?.parse()?,
             "--no-separate" => separate_too = false,
+            "--technique" => {
+                let name = args.next().ok_or("--technique needs a name")?;
+                technique = Technique::from_name(&name).ok_or("unknown technique")?;
+            }
             "--large" => large = args.next().ok_or("--large needs a mesh")?.into(),
             "--size" => {
                 let text = args.next().ok_or("--size needs WxH")?;
@@ -69,7 +74,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             Mat4::from_scale(Vec3::splat(0.8 / (hi - lo).max_element().max(1e-6)))
                 * Mat4::from_translation(-(lo + hi) * 0.5),
         );
-        uploaded.push(GpuAsset::new(&gpu.device, &asset)?);
+        uploaded.push(GpuAsset::for_techniques(&gpu.device, &asset, &[technique])?);
     }
     let mut instances = Vec::new();
     for i in 0..grid * grid * grid {
@@ -93,17 +98,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .map(|i| u64::from(i.asset.edge_count()))
         .sum();
     println!(
-        "adapter: {} ({:?}), {}x{}, {} instances of {} assets ({triangles} triangles, {edges} edges), {frames} frames (medians)\n",
+        "adapter: {} ({:?}), {}x{}, {} instances of {} assets ({triangles} triangles, {edges} edges), {}, {frames} frames (medians)\n",
         gpu.info.name,
         gpu.info.backend,
         size[0],
         size[1],
         instances.len(),
-        ASSETS.len()
+        ASSETS.len(),
+        technique.name()
     );
     let mut mesh = MeshRenderer::for_scenes(&pipelines)?;
     mesh.prepare_scene(&gpu.queue, &camera, &instances, &MeshStyle::default());
-    let style = EdgeStyle::default();
+    let style = EdgeStyle {
+        technique,
+        ..EdgeStyle::default()
+    };
     let mut scene = SceneRenderer::new(&pipelines);
     let mut separate: Vec<SceneRenderer> = if separate_too {
         instances
@@ -167,7 +176,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
     let [m, s, p] = times.map(median);
-    let counts = scene.read_counts(&gpu.device, &gpu.queue)?;
+    let counts = scene
+        .read_counts(&gpu.device, &gpu.queue)
+        .unwrap_or_default();
     let prepare_ms = median(prepare_times);
     let separate_bytes: u64 = separate.iter().map(SceneRenderer::gpu_bytes).sum();
     let asset_bytes: u64 = uploaded.iter().map(GpuAsset::gpu_bytes).sum();
@@ -220,7 +231,7 @@ fn large_mesh(
     style: &EdgeStyle,
 ) -> Result<(), Box<dyn std::error::Error>> {
     let asset = chamfer_preprocess::bake_file(path, &Default::default())?.asset;
-    let uploaded = GpuAsset::new(&gpu.device, &asset)?;
+    let uploaded = GpuAsset::for_techniques(&gpu.device, &asset, &[style.technique])?;
     let instances = [Instance::new(&uploaded)];
     let camera = Camera::orbit(
         [asset.header.bounds_min, asset.header.bounds_max],
@@ -253,7 +264,9 @@ fn large_mesh(
         }
     }
     let [m, s] = times.map(median);
-    let counts = scene.read_counts(&gpu.device, &gpu.queue)?;
+    let counts = scene
+        .read_counts(&gpu.device, &gpu.queue)
+        .unwrap_or_default();
     let work = s - m;
     println!(
         "one large mesh ({}, {} edges): mesh only {m:.1} ms, with edges {s:.1} ms; edge work {work:.1} ms = {:.0} ns per edge, {:.0} ns per drawn edge ({} drawn)",

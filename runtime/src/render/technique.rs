@@ -13,6 +13,12 @@ use super::{AssetExtras, techniques};
 ///
 /// Every technique draws the classes, colours and width of the [`EdgeStyle`](super::EdgeStyle)
 /// where it can; each variant says what it ignores.
+///
+/// In a scene ([`SceneRenderer`](super::SceneRenderer)), [`Joined`](Self::Joined),
+/// [`McGuireHughes`](Self::McGuireHughes) and [`Fins`](Self::Fins) draw every instance of an asset
+/// at once (a batch: a few passes per asset, whatever the number of its instances; the joined
+/// technique also culls instances on the GPU). The others draw instance by instance: a uniform block
+/// and a draw sequence (or a pass) per instance, instances out of view culled on the host.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[non_exhaustive]
 pub enum Technique {
@@ -32,19 +38,22 @@ pub enum Technique {
     /// Half-hex edges (thesis §9.3): the half quad and both half caps in one pass, on the side the
     /// projected vertex normal points to. Contours only (other classes would flip sides); ignores
     /// `caps`, `half_quad_contours`, `highlight`. Needs [`AssetExtras::VERTEX_NORMALS`].
+    /// Draws instance by instance in a scene.
     HalfHex,
     /// Plug edges (thesis §9.3): the full quad plus a triangle at each end reaching to the projected
     /// vertex normal, edge and caps in one pass, for every class. Ignores `caps`,
     /// `half_quad_contours`, `highlight`. Needs [`AssetExtras::VERTEX_NORMALS`].
+    /// Draws instance by instance in a scene.
     Plug,
     /// Half-hex contours and plug edges for the other classes: the combination the thesis
     /// recommends (§9.3, "quality roughly equivalent to McGuire and Hughes' edge/caps … only two
     /// passes"). Ignores `caps`, `half_quad_contours`, `highlight`. Needs
-    /// [`AssetExtras::VERTEX_NORMALS`].
+    /// [`AssetExtras::VERTEX_NORMALS`]. Draws instance by instance in a scene.
     HalfHexPlug,
     /// House edges (thesis §9.3): a base reaching below the edge under a roof through the projected
     /// normals; kept to show the artifacts the thesis warns of at sharp joints. Ignores `caps`,
     /// `half_quad_contours`, `highlight`. Needs [`AssetExtras::VERTEX_NORMALS`].
+    /// Draws instance by instance in a scene.
     House,
     /// Fins (seed 003): silhouettes and creases found per frame, each drawn as a quad extruded from
     /// the edge along its front face's corner normals, with Listing 3's z-bias on crease fins. Shows
@@ -63,7 +72,7 @@ pub enum Technique {
     /// `width_px` whatever the triangle's shape, from per-corner edge coordinates computed in the
     /// vertex shader (no geometry shader). Drawn in the contour colour; ignores `classes` (all edges
     /// are one class), `caps`, `half_quad_contours`, `highlight`. With `feature_only` it needs
-    /// [`AssetExtras::TRIANGLE_EDGES`].
+    /// [`AssetExtras::TRIANGLE_EDGES`]. Draws instance by instance in a scene.
     Wireframe {
         /// Only the asset's feature edges (boundaries, creases, marks), not the diagonals of flat or
         /// smooth regions.
@@ -78,10 +87,11 @@ pub enum Technique {
     /// detection. See [`HardwareContour`] for each method and its limits. Draws contours (and for
     /// [`HardwareContour::Raskar`] creases) in their class colours; `width_px` where the method has
     /// a width; ignores `caps`, `half_quad_contours`, `highlight`.
+    /// Draws instance by instance in a scene.
     Hardware(HardwareContour),
     /// Surface-angle contours (§7.1): pixels whose normal is within `threshold` of perpendicular to
     /// the view, |N·V| < threshold. Width follows curvature; flat faces fail (whole face or none).
-    /// Ignores everything but the contour colour.
+    /// Ignores everything but the contour colour. Draws instance by instance in a scene.
     SurfaceAngle {
         /// |N·V| below which a pixel is inked.
         threshold: f32,
@@ -89,7 +99,7 @@ pub enum Technique {
     /// The expanded inverted hull (§7.2): the mesh pushed out along its normals by `width_px`,
     /// front faces culled, in the contour colour. With the crease-split normals the hull tears at
     /// hard edges; `smooth_normals` pushes along smooth normals. Needs
-    /// [`AssetExtras::VERTEX_NORMALS`].
+    /// [`AssetExtras::VERTEX_NORMALS`]. Draws instance by instance in a scene.
     InvertedHull {
         /// Push along each topology vertex's smooth normal instead of the render normals.
         smooth_normals: bool,
@@ -101,12 +111,14 @@ pub enum Technique {
     /// follows the resolution, not the mesh. Ignores every style field but `depth_scaled`... none:
     /// it has its own parameters. Known limits (§2, §4): a dark halo where depth jumps far
     /// (the bleach factor's reason), parameters to tune per scene.
+    /// Draws instance by instance in a scene.
     Hybrid(HybridDepth),
     /// Image-space edges (thesis §5): Sobel, Prewitt, Scharr or Roberts' cross over the depth and a
     /// normal buffer, thresholded, drawn after the application's pass in the contour colour. Line
     /// thickness is `width_px` (the kernel's reach), scaled with depth if `depth_scaled`. Known
     /// limits (§5.6): missed and false edges, thresholds to tune, no control over style. Ignores
     /// `classes` (one colour), `caps`, `half_quad_contours`, `highlight`.
+    /// Draws instance by instance in a scene.
     ImageSpace(ImageSpace),
 }
 
