@@ -89,9 +89,9 @@ fn highlight_pixel(record: ChamferRecord, across_px: f32) -> vec4<f32> {
     let ta = strip_angle(record, arc, visible, lo);
     let tb = strip_angle(record, arc, visible, hi);
     let range = vec2<f32>(min(ta, tb), max(ta, tb));
-    let intensity = arc_intensity(arc, record.across.xyz, to_light_at(middle), to_viewer, range);
+    let color = strip_radiance(arc, record.across.xyz, middle, to_viewer, range);
     // W = K r_e / (d r_max) (§3.2): r_e / r_max is the share of the pixel the strip covers.
-    let k_over_d = select(1.0, lighting.color.a / record.across.w, record.across.w > 0.0);
+    let k_over_d = select(1.0, lighting.base.w / record.across.w, record.across.w > 0.0);
     let weight = clamp(k_over_d * (hi - lo), 0.0, 1.0);
-    return vec4<f32>(lighting.color.rgb * intensity, weight);
+    return vec4<f32>(color, weight);
 }

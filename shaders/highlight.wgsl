@@ -25,12 +25,17 @@ struct ChamferRecord {
 }
 
 struct Lighting {
-    // xyz: towards the light (w = 0) or the light's position (w = 1), model space.
-    light: vec4<f32>,
-    // rgb: the light's colour; a: K of the blend weight.
-    color: vec4<f32>,
-    // R_d, R_s, shininess n, ambient share of R_d.
+    light: PunctualLight,
+    // Blinn: R_d, R_s, shininess n, ambient share of R_d. PBR: metallic, α = roughness², unused,
+    // ambient share of the diffuse colour.
     material: vec4<f32>,
+    // PBR: the base colour (linear RGB). w: K of the blend weight.
+    base: vec4<f32>,
+    // 1: glTF's metallic-roughness shading (brdf.wgsl, the GGX arc rule below); 0: Blinn (seed 000).
+    pbr: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 const SAMPLES: f32 = f32(COS_POWER_SAMPLES);
@@ -102,6 +107,59 @@ fn lobe(arc: Arc, across: vec3<f32>, v: vec3<f32>, range: vec2<f32>, m: f32, clo
     return pow(polar.y, m) * (py * (f.y - f.x) + px / (m + 1.0) * (power.y - power.x));
 }
 
+// The GGX arc rule (runtime/src/highlight/ggx.rs): ∫ D(N·H) Vis (N·L)₊ (P·T) dθ over `range`, after
+// tan u = a tan w makes D's lobe a smooth weight, by 16-point Gauss–Legendre in w.
+fn ggx_arc(arc: Arc, across: vec3<f32>, to_light: vec3<f32>, to_viewer: vec3<f32>, range: vec2<f32>, alpha: f32) -> f32 {
+    let half = normalize(to_light + to_viewer);
+    let polar = angle_in(arc, half);
+    if polar.y < 1e-6 {
+        return 0.0;
+    }
+    let lobe = clip_lobe(range, polar.x);
+    let lit = clip_lobe(lobe, angle_in(arc, to_light).x);
+    if lobe.x >= lobe.y || lit.x >= lit.y {
+        return 0.0;
+    }
+    let centre = select(polar.x, polar.x + 2.0 * PI, polar.x < -0.5 * PI);
+    let axial = dot(half, arc.ez);
+    let a2 = axial * axial + polar.y * polar.y * alpha * alpha;
+    let a = sqrt(a2);
+    let ua = lit - vec2<f32>(centre);
+    let w = atan2(sin(ua), a * max(cos(ua), vec2<f32>(0.0)));
+    let mid = 0.5 * (w.x + w.y);
+    let half_width = 0.5 * (w.y - w.x);
+    var nodes = GGX_NODES;
+    var sum = 0.0;
+    for (var k = 0u; k < 8u; k += 1u) {
+        let node = nodes[k];
+        for (var side = -1.0; side <= 1.0; side += 2.0) {
+            let wk = mid + side * half_width * node.x;
+            let theta = centre + atan2(a * sin(wk), cos(wk));
+            let normal = arc.ex * cos(theta) + arc.ey * sin(theta);
+            let tangent = arc.ey * cos(theta) - arc.ex * sin(theta);
+            let n_dot_l = max(dot(normal, to_light), 0.0);
+            let weight = cos(wk) * cos(wk) + a2 * sin(wk) * sin(wk);
+            sum += node.y * weight * smith_visibility(n_dot_l, dot(normal, to_viewer), alpha) * n_dot_l
+                * dot(tangent, across);
+        }
+    }
+    return alpha * alpha / (PI * a2 * a) * half_width * sum;
+}
+
+// Mean PBR radiance over the arc range under a light of radiance 1 (ggx.rs, `arc_radiance`).
+fn arc_radiance(arc: Arc, across: vec3<f32>, to_light: vec3<f32>, to_viewer: vec3<f32>, range: vec2<f32>) -> vec3<f32> {
+    let projected = dot(arc.ex * (cos(range.y) - cos(range.x)) + arc.ey * (sin(range.y) - sin(range.x)), across);
+    if abs(projected) < 1e-9 {
+        return vec3<f32>(0.0);
+    }
+    let m = Pbr(lighting.base.rgb, lighting.material.x, lighting.material.y);
+    let diffuse = lobe(arc, across, to_light, range, 1.0, true);
+    let specular = ggx_arc(arc, across, to_light, to_viewer, range, m.alpha);
+    let fresnel = schlick(m, dot(to_viewer, normalize(to_light + to_viewer)));
+    let lit = (vec3<f32>(1.0) - fresnel) * pbr_diffuse_color(m) / PI * diffuse + fresnel * specular;
+    return max(lit / projected, vec3<f32>(0.0));
+}
+
 // Mean Blinn intensity over the arc range (angles from n1) under one light.
 fn arc_intensity(arc: Arc, across: vec3<f32>, to_light: vec3<f32>, to_viewer: vec3<f32>, range: vec2<f32>) -> f32 {
     let projected = dot(arc.ex * (cos(range.y) - cos(range.x)) + arc.ey * (sin(range.y) - sin(range.x)), across);
@@ -127,7 +185,19 @@ fn to_viewer_at(p: vec3<f32>) -> vec3<f32> {
 }
 
 fn to_light_at(p: vec3<f32>) -> vec3<f32> {
-    return normalize(lighting.light.xyz - p * lighting.light.w);
+    return towards_light(lighting.light, p);
+}
+
+// What a pixel of the strip shows: its slice's mean radiance under the light (the seed's Blinn or PBR).
+fn strip_radiance(arc: Arc, across: vec3<f32>, middle: vec3<f32>, to_viewer: vec3<f32>, range: vec2<f32>) -> vec3<f32> {
+    let to_light = to_light_at(middle);
+    let light = light_radiance(lighting.light, middle);
+    if lighting.pbr != 0u {
+        let m = Pbr(lighting.base.rgb, lighting.material.x, lighting.material.y);
+        return light * arc_radiance(arc, across, to_light, to_viewer, range)
+            + lighting.material.w * pbr_diffuse_color(m);
+    }
+    return light * arc_intensity(arc, across, to_light, to_viewer, range);
 }
 
 // Screen offset (pixels, along the quad's left normal) of the strip's point with normal angle θ.

@@ -1,19 +1,23 @@
-// The runtime's simple lit mesh pass: crease-split normals, one light, Blinn's model plus ambient,
-// lit on both sides so open meshes read correctly from behind.
+// The runtime's simple lit mesh pass: crease-split normals, one light, Blinn's model plus ambient or
+// glTF's metallic-roughness model (brdf.wgsl), lit on both sides so open meshes read correctly from
+// behind.
 
 struct MeshFrame {
     mvp: mat4x4<f32>,
-    // Towards the light (w = 0, unit) or the light's position (w = 1), model space.
-    light: vec4<f32>,
+    light: PunctualLight,
+    // The base colour.
     color: vec4<f32>,
-    // Share of the colour lit regardless of the light.
+    // Share of the (diffuse) colour lit regardless of the light.
     ambient: f32,
     // Specular reflectance and exponent (Blinn).
     specular: f32,
     shininess: f32,
-    _pad: u32,
+    // 1: metallic-roughness shading with `surface`; 0: Blinn.
+    pbr: u32,
     // The camera in model space: a point (w = 1) or a direction towards the viewer (w = 0).
     eye: vec4<f32>,
+    // PBR: metallic, α = roughness².
+    surface: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> mesh: MeshFrame;
@@ -32,10 +36,16 @@ fn mesh_vertex(@location(0) position: vec3<f32>, @location(1) normal: vec3<f32>)
 @fragment
 fn mesh_fragment(v: MeshVarying, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
     let n = normalize(select(-v.normal, v.normal, front));
-    let to_light = normalize(mesh.light.xyz - v.model_position * mesh.light.w);
+    let to_light = towards_light(mesh.light, v.model_position);
+    let light = light_radiance(mesh.light, v.model_position);
     let to_viewer = normalize(mesh.eye.xyz - v.model_position * mesh.eye.w);
+    let ambient = mesh.ambient;
+    if mesh.pbr != 0u {
+        let m = Pbr(mesh.color.rgb, mesh.surface.x, mesh.surface.y);
+        let lit = light * pbr_radiance(m, n, to_light, to_viewer) + ambient * pbr_diffuse_color(m);
+        return vec4<f32>(lit, mesh.color.a);
+    }
     let diffuse = max(dot(n, to_light), 0.0);
     let specular = mesh.specular * pow(max(dot(n, normalize(to_light + to_viewer)), 0.0), mesh.shininess);
-    let ambient = mesh.ambient;
-    return vec4<f32>(mesh.color.rgb * (ambient + (1.0 - ambient) * diffuse) + specular, mesh.color.a);
+    return vec4<f32>(mesh.color.rgb * (ambient + (1.0 - ambient) * diffuse * light) + specular * light, mesh.color.a);
 }

@@ -543,7 +543,7 @@ fn a_highlighted_chamfer_sums_to_the_integral_of_its_rounded_strip() {
     use chamfer_preprocess::{BakeOptions, Radius};
     use chamfer_runtime::highlight::strip::{self, ArcView, Material};
     use chamfer_runtime::highlight::table::CosPowerRow;
-    use chamfer_runtime::render::{Highlight, Light};
+    use chamfer_runtime::render::{Highlight, Light, Shading};
     let radius = 0.06;
     let path = chamfer_tests::fixture("shapes/cube.obj");
     let options = BakeOptions::DEFAULT.with_radius(Radius::Absolute(radius));
@@ -570,7 +570,7 @@ fn a_highlighted_chamfer_sums_to_the_integral_of_its_rounded_strip() {
     let highlight = Highlight {
         light: Light::Directional(to_light.to_array()),
         color: [0.5; 3],
-        material,
+        shading: Shading::Blinn(material),
         ambient: 0.0,
         k: Some(eye.distance(middle)),
     };

@@ -13,9 +13,10 @@ use std::sync::Arc;
 
 use anyhow::Context;
 use chamfer_runtime::asset::Asset;
+use chamfer_runtime::highlight::strip::Material;
 use chamfer_runtime::render::{
     Camera, CapMethod, EdgeClasses, EdgeStyle, FrameViews, GpuAsset, Highlight, Instance, Light,
-    MeshLight, MeshRenderer, MeshStyle, Orbit, Pipelines, SceneRenderer, Target, Technique,
+    MeshLight, MeshRenderer, MeshStyle, Orbit, Pipelines, SceneRenderer, Shading, Target, Technique,
 };
 use glam::{Mat4, Vec3};
 use winit::application::ApplicationHandler;
@@ -382,18 +383,24 @@ impl ApplicationHandler for Viewer {
                     // The light circles the model once every eight seconds, above it.
                     let angle = self.started.elapsed().as_secs_f32() * std::f32::consts::TAU / 8.0;
                     let light = Light::Directional([angle.cos(), 0.8, angle.sin()]);
+                    let material = Material {
+                        diffuse: 0.7,
+                        specular: 0.5,
+                        shininess: 32.0,
+                    };
                     let highlight = Highlight {
                         light,
+                        shading: Shading::Blinn(material),
                         ambient: 0.2,
                         ..Highlight::default()
                     };
-                    let material = highlight.material;
                     let mesh_style = MeshStyle {
                         color: [material.diffuse, material.diffuse, material.diffuse, 1.0],
                         light: MeshLight::Model(light),
                         ambient: 0.2,
                         specular: material.specular,
                         shininess: material.shininess,
+                        ..MeshStyle::default()
                     };
                     (
                         EdgeStyle {

@@ -6,6 +6,9 @@
 //!   interpolation (the derivative, `cos^m φ`, is exact), to within 2e-6 in 1 KiB per exponent.
 //! - [`strip`]: the integral of §3.1 over a piece of the arc, the CPU twin of the shader, and a brute-force
 //!   reference it is tested against.
+//! - [`ggx`]: the same integral under glTF's metallic-roughness shading (GGX, Smith, Schlick, Lambert;
+//!   issue 29), by a substitution that makes the GGX lobe smooth and a 16-point rule.
 
+pub mod ggx;
 pub mod strip;
 pub mod table;

@@ -49,16 +49,16 @@ pub struct ArcView {
 pub type ArcRange = (f32, f32);
 
 /// The frame of the arc: `ez` along `n1 × n2`, angles measured from `n1`.
-struct ArcFrame {
-    ex: Vec3,
-    ey: Vec3,
-    ez: Vec3,
+pub(super) struct ArcFrame {
+    pub(super) ex: Vec3,
+    pub(super) ey: Vec3,
+    pub(super) ez: Vec3,
     /// The angle from `n1` to `n2`.
-    span: f32,
+    pub(super) span: f32,
 }
 
 impl ArcFrame {
-    fn new(n1: Vec3, n2: Vec3) -> Option<Self> {
+    pub(super) fn new(n1: Vec3, n2: Vec3) -> Option<Self> {
         let ez = n1.cross(n2).try_normalize()?;
         Some(Self {
             ex: n1,
@@ -69,14 +69,14 @@ impl ArcFrame {
     }
 
     /// Angle of `v` projected on the arc's plane, in (−π, π], and the projection's length.
-    fn angle_of(&self, v: Vec3) -> (f32, f32) {
+    pub(super) fn angle_of(&self, v: Vec3) -> (f32, f32) {
         let (x, y) = (v.dot(self.ex), v.dot(self.ey));
         (y.atan2(x), x.hypot(y))
     }
 }
 
 /// Intersects `[a, b]` (inside [0, π)) with the half-turn lobe centred on angle `c`.
-fn clip_to_lobe((a, b): ArcRange, c: f32) -> Option<ArcRange> {
+pub(super) fn clip_to_lobe((a, b): ArcRange, c: f32) -> Option<ArcRange> {
     use std::f32::consts::{FRAC_PI_2, TAU};
     // Of the lobe's copies, only one can meet an interval shorter than π inside [0, π).
     let c = if c < -FRAC_PI_2 { c + TAU } else { c };
@@ -125,7 +125,7 @@ pub fn arc_intensity(
 }
 
 /// `∫ (N·v)₊^m (P·T) dθ` over `range`, with `f(φ) = F(φ, m + 1)`.
-fn lobe_integral(
+pub(super) fn lobe_integral(
     frame: &ArcFrame,
     across: Vec3,
     v: Vec3,
@@ -183,7 +183,7 @@ pub fn brute_force(view: &ArcView, range: ArcRange, material: &Material, samples
 }
 
 #[cfg(test)]
-mod tests_support {
+pub(super) mod tests_support {
     use super::*;
     /// A deterministic stream of unit vectors.
     pub fn directions(seed: u64) -> impl FnMut() -> Vec3 {

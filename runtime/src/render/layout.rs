@@ -96,7 +96,19 @@ pub(crate) fn wgsl_constants() -> String {
     for (name, value) in constants() {
         text.push_str(&format!("const {name}: u32 = {value}u;\n"));
     }
-    text.push_str("const PI: f32 = 3.14159265358979;\n\n");
+    text.push_str("const PI: f32 = 3.14159265358979;\n");
+    // The GGX arc rule's nodes and weights (highlight/ggx.rs).
+    let nodes = crate::highlight::ggx::NODES;
+    let pairs: Vec<String> = nodes
+        .iter()
+        .map(|(x, w)| format!("vec2<f32>({x:?}, {w:?})"))
+        .collect();
+    text.push_str(&format!(
+        "const GGX_NODES: array<vec2<f32>, {}> = array<vec2<f32>, {}>({});\n\n",
+        nodes.len(),
+        nodes.len(),
+        pairs.join(", ")
+    ));
     text
 }
 
@@ -168,13 +180,27 @@ pub(crate) struct Post {
     pub(crate) _pad: u32,
 }
 
+/// `PunctualLight` in `shaders/brdf.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct PunctualLight {
+    pub(crate) position: [f32; 4],
+    pub(crate) color: [f32; 4],
+    pub(crate) spot: [f32; 4],
+    pub(crate) cone: [f32; 4],
+}
+
 /// `Lighting` in `shaders/highlight.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 pub(crate) struct Lighting {
-    pub(crate) light: [f32; 4],
-    pub(crate) color: [f32; 4],
+    pub(crate) light: PunctualLight,
     pub(crate) material: [f32; 4],
+    pub(crate) base: [f32; 4],
+    pub(crate) pbr: u32,
+    pub(crate) _pad0: u32,
+    pub(crate) _pad1: u32,
+    pub(crate) _pad2: u32,
 }
 
 /// `MeshFrame` in `shaders/mesh.wgsl`.
@@ -182,13 +208,14 @@ pub(crate) struct Lighting {
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 pub(crate) struct MeshFrame {
     pub(crate) mvp: [[f32; 4]; 4],
-    pub(crate) light: [f32; 4],
+    pub(crate) light: PunctualLight,
     pub(crate) color: [f32; 4],
     pub(crate) ambient: f32,
     pub(crate) specular: f32,
     pub(crate) shininess: f32,
-    pub(crate) _pad: u32,
+    pub(crate) pbr: u32,
     pub(crate) eye: [f32; 4],
+    pub(crate) surface: [f32; 4],
 }
 
 /// `DrawArgs` in `shaders/compute.wgsl`: one indirect draw's arguments.
@@ -332,7 +359,12 @@ pub(crate) fn layouts() -> Vec<Layout> {
                 mvp, eye, frustum, lo, hi, colors, visible, _pad0, _pad1, _pad2
             ]
         ),
-        layout!("Lighting", Lighting, [light, color, material]),
+        layout!("PunctualLight", PunctualLight, [position, color, spot, cone]),
+        layout!(
+            "Lighting",
+            Lighting,
+            [light, material, base, pbr, _pad0, _pad1, _pad2]
+        ),
         layout!(
             "Post",
             Post,
@@ -341,7 +373,7 @@ pub(crate) fn layouts() -> Vec<Layout> {
         layout!(
             "MeshFrame",
             MeshFrame,
-            [mvp, light, color, ambient, specular, shininess, _pad, eye]
+            [mvp, light, color, ambient, specular, shininess, pbr, eye, surface]
         ),
         layout!(
             "DrawArgs",

@@ -10,7 +10,9 @@ use super::layout::MeshFrame;
 use super::modules::{Program, Shader};
 use super::pipelines::{PipelineSet, Raster};
 use super::techniques::Blocks;
+use super::lighting::punctual;
 use super::{Camera, GpuAsset, Instance, Light, Pipelines, RenderError};
+use crate::highlight::ggx::PbrMaterial;
 
 /// Where the mesh's light comes from.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -21,20 +23,28 @@ pub enum MeshLight {
     Model(Light),
 }
 
-/// How the mesh looks: `color × (ambient + (1 − ambient) (N·L)₊) + specular (N·H)₊^shininess`
-/// (Blinn; with `ambient` 0, `color` = R_d and `specular` = R_s it is the highlight's model exactly).
+/// How the mesh looks: `color × (ambient + (1 − ambient) E (N·L)₊) + specular E (N·H)₊^shininess`
+/// with `E` the light's colour (Blinn; with `ambient` 0, `color` = R_d and `specular` = R_s it is the
+/// highlight's model exactly), or with `pbr` glTF's metallic-roughness model as
+/// [`Shading::Pbr`](super::lighting::Shading::Pbr) shades chamfer strips.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MeshStyle {
     /// Straight-alpha RGBA base colour.
     pub color: [f32; 4],
     /// The light.
     pub light: MeshLight,
-    /// Share of the colour lit regardless of the light, 0..1.
+    /// The light's colour × intensity (linear RGB), as [`Highlight::color`](super::Highlight::color).
+    pub light_color: [f32; 3],
+    /// Share of the (diffuse) colour lit regardless of the light, 0..1.
     pub ambient: f32,
     /// Specular reflectance `R_s` (white), 0 for none.
     pub specular: f32,
     /// Specular exponent.
     pub shininess: f32,
+    /// Shade with glTF's metallic-roughness model and this material instead of Blinn's: its base
+    /// colour replaces `color`'s RGB (the alpha stays), `specular` and `shininess` are unused, and
+    /// point and spot lights fall off as 1/d².
+    pub pbr: Option<PbrMaterial>,
 }
 
 impl Default for MeshStyle {
@@ -42,9 +52,11 @@ impl Default for MeshStyle {
         Self {
             color: [0.86, 0.86, 0.84, 1.0],
             light: MeshLight::View([-0.4, 0.6, 0.7]),
+            light_color: [1.0; 3],
             ambient: 0.35,
             specular: 0.0,
             shininess: 32.0,
+            pbr: None,
         }
     }
 }
@@ -55,7 +67,7 @@ const MESH: Bindings = Bindings::draw("mesh", &[Binding::new(0, "mesh", Kind::Bl
 pub(crate) fn shader() -> Shader {
     Shader::new(
         "mesh.wgsl",
-        &[chamfer_shaders::MESH],
+        &[chamfer_shaders::BRDF, chamfer_shaders::MESH],
         vec![Program::draw("mesh_vertex", "mesh_fragment", &MESH)],
     )
 }
@@ -179,25 +191,33 @@ impl MeshRenderer {
 /// The mesh pass's uniform for `camera` (already in the instance's model space).
 fn mesh_frame(camera: &Camera, style: &MeshStyle) -> MeshFrame {
     let light = match style.light {
-        MeshLight::View(towards) => camera
-            .model_view
-            .inverse()
-            .transform_vector3(Vec3::from(towards))
-            .normalize_or(Vec3::Z)
-            .extend(0.0),
-        MeshLight::Model(Light::Directional(towards)) => {
-            Vec3::from(towards).normalize_or(Vec3::Z).extend(0.0)
+        MeshLight::View(towards) => Light::Directional(
+            camera
+                .model_view
+                .inverse()
+                .transform_vector3(Vec3::from(towards))
+                .to_array(),
+        ),
+        MeshLight::Model(light) => light,
+    };
+    let mut color = style.color;
+    let (pbr, surface) = match &style.pbr {
+        Some(material) => {
+            let [r, g, b] = material.clamped_base().to_array();
+            color = [r, g, b, color[3]];
+            (1, [material.clamped_metallic(), material.alpha(), 0.0, 0.0])
         }
-        MeshLight::Model(Light::Point(position)) => Vec3::from(position).extend(1.0),
+        None => (0, [0.0; 4]),
     };
     MeshFrame {
         mvp: camera.view_projection().to_cols_array_2d(),
-        light: light.to_array(),
-        color: style.color,
+        light: punctual(&light, style.light_color, style.pbr.is_some()),
+        color,
         ambient: style.ambient.clamp(0.0, 1.0),
         specular: style.specular.max(0.0),
         shininess: style.shininess.max(0.0),
-        _pad: 0,
+        pbr,
         eye: camera.eye().to_array(),
+        surface,
     }
 }

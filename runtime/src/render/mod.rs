@@ -64,7 +64,7 @@ pub use crate::camera::{Camera, Orbit};
 pub use derived::AssetExtras;
 pub use error::RenderError;
 pub use gpu_asset::GpuAsset;
-pub use lighting::{Highlight, Light};
+pub use lighting::{Highlight, Light, Shading};
 pub use mesh::{MeshLight, MeshRenderer, MeshStyle};
 pub use offscreen::{Image, Offscreen, OffscreenTarget};
 pub use pipelines::Pipelines;

@@ -5,11 +5,12 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, bail};
 use chamfer_preprocess::write::{ensure_not_an_input, ensure_replaceable, write_atomically};
 use chamfer_runtime::asset::Asset;
+use chamfer_runtime::highlight::ggx::PbrMaterial;
 use chamfer_runtime::highlight::strip::Material;
 use chamfer_runtime::render::{
     Camera, CapMethod, EdgeClasses, EdgeStyle, GpuAsset, Highlight, HybridDepth, Image, Instance,
     Light, MeshLight, MeshRenderer, MeshStyle, Offscreen, Orbit, Pipelines, SceneRenderer,
-    Technique,
+    Shading as ShadingModel, Technique,
 };
 use clap::{Args, ValueEnum};
 use glam::Mat4;
@@ -179,10 +180,42 @@ pub struct ViewArgs {
     /// `--style chamfer`: specular exponent n, 1 to 128.
     #[arg(long, default_value_t = 32.0)]
     shininess: f32,
+    /// `--style chamfer`: Blinn's model of seed 000 (--diffuse, --specular, --shininess) or glTF's
+    /// metallic-roughness model (--base-color, --metallic, --roughness).
+    #[arg(long, value_enum, default_value_t = Shading::Blinn)]
+    shading: Shading,
+    /// `--shading pbr`: perceptual roughness, 0.045 to 1.
+    #[arg(long, default_value_t = 0.4)]
+    roughness: f32,
+    /// `--shading pbr`: metallic, 0 (dielectric) to 1 (metal).
+    #[arg(long, default_value_t = 0.0)]
+    metallic: f32,
+    /// `--shading pbr`: base colour, linear RGB 0 to 1.
+    #[arg(long, value_name = "R,G,B", value_delimiter = ',', default_values_t = [0.8, 0.8, 0.8])]
+    base_color: Vec<f32>,
+    /// `--style chamfer`: the light's intensity (default 1 for Blinn; π for PBR, which lights a
+    /// white face seen head-on to 1; point and spot lights fall off as 1/d² under PBR).
+    #[arg(long)]
+    light_intensity: Option<f32>,
+    /// `--style chamfer` with --light-pos: make the light a spot shining this way.
+    #[arg(long, value_name = "X,Y,Z", value_delimiter = ',', allow_hyphen_values = true,
+          requires = "light_pos")]
+    spot_dir: Option<Vec<f32>>,
+    /// `--spot-dir`: the cone's inner and outer half-angles, degrees.
+    #[arg(long, value_name = "INNER,OUTER", value_delimiter = ',', default_values_t = [20.0, 30.0])]
+    spot_angles: Vec<f32>,
     /// `--style chamfer`: K of the blend weight W = K r_e / (d r_max) (default: the camera's distance
     /// to the model's centre).
     #[arg(long)]
     k: Option<f32>,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum Shading {
+    /// Seed 000's Blinn model.
+    Blinn,
+    /// glTF's metallic-roughness model (GGX, Smith, Schlick).
+    Pbr,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -277,6 +310,36 @@ impl ViewArgs {
                 bail!("{name} must be 0 to 10, not {value}");
             }
         }
+        if !(self.roughness.is_finite() && (0.0..=1.0).contains(&self.roughness)) {
+            bail!("--roughness must be 0 to 1, not {}", self.roughness);
+        }
+        if !(self.metallic.is_finite() && (0.0..=1.0).contains(&self.metallic)) {
+            bail!("--metallic must be 0 to 1, not {}", self.metallic);
+        }
+        if self.base_color.len() != 3
+            || !self
+                .base_color
+                .iter()
+                .all(|c| c.is_finite() && (0.0..=1.0).contains(c))
+        {
+            bail!("--base-color needs three numbers from 0 to 1");
+        }
+        if self
+            .light_intensity
+            .is_some_and(|i| !(i.is_finite() && (0.0..=1e9).contains(&i)))
+        {
+            bail!("--light-intensity must be a number from 0 to 1e9");
+        }
+        if self.spot_dir.as_ref().is_some_and(|d| {
+            d.len() != 3 || !d.iter().all(|c| c.is_finite()) || d.iter().all(|&c| c == 0.0)
+        }) {
+            bail!("--spot-dir needs three finite numbers (a direction not 0,0,0)");
+        }
+        if !matches!(self.spot_angles[..], [inner, outer]
+            if inner.is_finite() && outer.is_finite() && 0.0 <= inner && inner <= outer && outer <= 90.0)
+        {
+            bail!("--spot-angles needs INNER,OUTER degrees with 0 <= INNER <= OUTER <= 90");
+        }
         let light = self.light_pos.as_deref().unwrap_or(&self.light_dir);
         if light.len() != 3
             || !light.iter().all(|c| c.is_finite())
@@ -316,11 +379,14 @@ impl ViewArgs {
         });
         let highlight = (self.style == Style::Chamfer).then(|| Highlight {
             light: self.light(),
-            color: [1.0; 3],
-            material: Material {
-                diffuse: self.diffuse,
-                specular: self.specular,
-                shininess: self.shininess,
+            color: [self.light_intensity(); 3],
+            shading: match self.pbr() {
+                Some(material) => ShadingModel::Pbr(material),
+                None => ShadingModel::Blinn(Material {
+                    diffuse: self.diffuse,
+                    specular: self.specular,
+                    shininess: self.shininess,
+                }),
             },
             ambient: self.ambient,
             k: self.k,
@@ -343,10 +409,33 @@ impl ViewArgs {
 
 impl ViewArgs {
     fn light(&self) -> Light {
-        match &self.light_pos {
-            Some(p) => Light::Point([p[0], p[1], p[2]]),
-            None => Light::Directional([self.light_dir[0], self.light_dir[1], self.light_dir[2]]),
+        let three = |v: &[f32]| [v[0], v[1], v[2]];
+        match (&self.light_pos, &self.spot_dir) {
+            (Some(p), Some(d)) => Light::Spot {
+                position: three(p),
+                direction: three(d),
+                inner_deg: self.spot_angles[0],
+                outer_deg: self.spot_angles[1],
+            },
+            (Some(p), None) => Light::Point(three(p)),
+            _ => Light::Directional(three(&self.light_dir)),
         }
+    }
+
+    fn light_intensity(&self) -> f32 {
+        let default = match self.shading {
+            Shading::Blinn => 1.0,
+            Shading::Pbr => std::f32::consts::PI,
+        };
+        self.light_intensity.unwrap_or(default)
+    }
+
+    fn pbr(&self) -> Option<PbrMaterial> {
+        (self.shading == Shading::Pbr).then(|| PbrMaterial {
+            base_color: [self.base_color[0], self.base_color[1], self.base_color[2]],
+            metallic: self.metallic,
+            roughness: self.roughness,
+        })
     }
 
     fn mesh_style(&self) -> MeshStyle {
@@ -357,9 +446,11 @@ impl ViewArgs {
         MeshStyle {
             color: [self.diffuse, self.diffuse, self.diffuse, 1.0],
             light: MeshLight::Model(self.light()),
+            light_color: [self.light_intensity(); 3],
             ambient: self.ambient,
             specular: self.specular,
             shininess: self.shininess,
+            pbr: self.pbr(),
         }
     }
 }

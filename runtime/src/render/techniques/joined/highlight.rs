@@ -1,10 +1,8 @@
 //! The chamfer highlight's per-frame uniforms (seed 000): the F(φ, n + 1) row of the material's
-//! exponent, rewritten only when the exponent changes, and the light and material.
-
-use glam::Vec3;
+//! exponent, rewritten only when the exponent changes (Blinn shading), and the light and material.
 
 use super::super::FrameContext;
-use crate::render::lighting::Light;
+use crate::render::lighting::{Shading, punctual};
 use crate::render::{Pipelines as Cache, layout};
 
 /// The highlight's buffers.
@@ -47,37 +45,40 @@ impl HighlightUniforms {
         let Some(highlight) = &cx.style.highlight else {
             return false;
         };
-        let material = highlight.material;
-        let exponent = material.shininess.clamp(1.0, 128.0) + 1.0;
-        if self.row_exponent != Some(exponent) {
-            let row = crate::highlight::table::CosPowerRow::new(exponent);
-            cx.queue
-                .write_buffer(&self.cos_power, 0, bytemuck::cast_slice(row.values()));
-            self.row_exponent = Some(exponent);
-        }
-        let light = match highlight.light {
-            Light::Directional(d) => {
-                let d = Vec3::from(d).normalize_or(Vec3::Z);
-                [d.x, d.y, d.z, 0.0]
-            }
-            Light::Point([x, y, z]) => [x, y, z, 1.0],
-        };
         // K by the first instance (for one asset: the camera's distance to its centre).
         let k = highlight.k.unwrap_or_else(|| {
             cx.instances.first().map_or(1.0, |d| {
                 d.camera.eye().truncate().distance(d.asset.center())
             })
         });
-        let [r, g, b] = highlight.color;
+        let ambient = highlight.ambient.clamp(0.0, 1.0);
+        let (material, base, pbr) = match highlight.shading {
+            Shading::Blinn(material) => {
+                let exponent = material.shininess.clamp(1.0, 128.0) + 1.0;
+                if self.row_exponent != Some(exponent) {
+                    let row = crate::highlight::table::CosPowerRow::new(exponent);
+                    cx.queue
+                        .write_buffer(&self.cos_power, 0, bytemuck::cast_slice(row.values()));
+                    self.row_exponent = Some(exponent);
+                }
+                let material = [material.diffuse, material.specular, exponent - 1.0, ambient];
+                (material, [0.0; 3], false)
+            }
+            Shading::Pbr(material) => {
+                let metallic = material.clamped_metallic();
+                let base = material.clamped_base().to_array();
+                ([metallic, material.alpha(), 0.0, ambient], base, true)
+            }
+        };
+        let [r, g, b] = base;
         let lighting = layout::Lighting {
-            light,
-            color: [r, g, b, k],
-            material: [
-                material.diffuse,
-                material.specular,
-                exponent - 1.0,
-                highlight.ambient.clamp(0.0, 1.0),
-            ],
+            light: punctual(&highlight.light, highlight.color, pbr),
+            material,
+            base: [r, g, b, k],
+            pbr: pbr.into(),
+            _pad0: 0,
+            _pad1: 0,
+            _pad2: 0,
         };
         cx.queue
             .write_buffer(&self.lighting, 0, bytemuck::bytes_of(&lighting));

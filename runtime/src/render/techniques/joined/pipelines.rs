@@ -22,6 +22,7 @@ const SHADERS: [(&str, &[&str], &[Program]); 8] = [
         &[
             wgsl::COMMON,
             wgsl::BATCH,
+            wgsl::BRDF,
             wgsl::HIGHLIGHT,
             wgsl::LISTS,
             wgsl::COMPUTE,
@@ -52,6 +53,7 @@ const SHADERS: [(&str, &[&str], &[Program]); 8] = [
         &[
             wgsl::COMMON,
             wgsl::BATCH,
+            wgsl::BRDF,
             wgsl::HIGHLIGHT,
             wgsl::LISTS,
             wgsl::COMPUTE,
@@ -69,6 +71,7 @@ const SHADERS: [(&str, &[&str], &[Program]); 8] = [
         &[
             wgsl::COMMON,
             wgsl::BATCH,
+            wgsl::BRDF,
             wgsl::HIGHLIGHT,
             wgsl::LISTS,
             wgsl::COMPUTE,
@@ -82,6 +85,7 @@ const SHADERS: [(&str, &[&str], &[Program]); 8] = [
         &[
             wgsl::COMMON,
             wgsl::FRAME,
+            wgsl::BRDF,
             wgsl::HIGHLIGHT,
             wgsl::DRAW,
             wgsl::EDGES,
@@ -94,6 +98,7 @@ const SHADERS: [(&str, &[&str], &[Program]); 8] = [
         &[
             wgsl::COMMON,
             wgsl::FRAME,
+            wgsl::BRDF,
             wgsl::HIGHLIGHT,
             wgsl::DRAW,
             wgsl::CAPS,
