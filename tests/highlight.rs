@@ -7,7 +7,7 @@ use chamfer_preprocess::mesh::Mesh;
 use chamfer_preprocess::{BakeOptions, Radius, bake};
 use chamfer_runtime::highlight::strip::Material;
 use chamfer_runtime::render::{
-    Camera, EdgeClasses, EdgeStyle, Highlight, Image, Light, MeshLight, MeshStyle, Orbit,
+    Camera, EdgeClasses, EdgeStyle, Highlight, Image, Light, MeshLight, MeshStyle, Orbit, Shading,
 };
 use chamfer_tests::render;
 use glam::{Vec2, Vec3};
@@ -30,6 +30,13 @@ fn rounded_box(r: f32) -> Mesh {
         coords.push(-1.0);
     }
     coords.extend((0..=INTERIOR).map(|k| -inner + 2.0 * inner * k as f32 / INTERIOR as f32));
+    if r > 0.0 {
+        // A line just inside each band, so the normals interpolated across the last flat cell turn
+        // only within a twentieth of r of the band (as the real surface does), not across the cell.
+        let near = inner - 0.05 * r;
+        coords.insert(BAND + 1, -near);
+        coords.insert(coords.len() - BAND - 1, near);
+    }
     if r > 0.0 {
         coords.extend(
             (1..=BAND)
@@ -94,6 +101,7 @@ fn edge_light(r: f32, light: Light, camera: &Camera) -> Vec<(f64, f64, f64)> {
         ambient: 0.0,
         specular: MATERIAL.specular,
         shininess: MATERIAL.shininess,
+        ..MeshStyle::default()
     };
     let smooth = BakeOptions::DEFAULT.with_crease_deg(60.0);
     let rounded = bake(rounded_box(r), "rounded", &smooth)
@@ -113,7 +121,7 @@ fn edge_light(r: f32, light: Light, camera: &Camera) -> Vec<(f64, f64, f64)> {
         highlight: Some(Highlight {
             light,
             color: [1.0; 3],
-            material: MATERIAL,
+            shading: Shading::Blinn(MATERIAL),
             ambient: 0.0,
             k: Some(center_distance),
         }),
@@ -221,6 +229,7 @@ fn the_highlight_carries_the_light_of_real_fillets() {
             let light = match light {
                 Light::Directional([x, y, z]) => format!("towards {x}, {y}, {z}"),
                 Light::Point([x, y, z]) => format!("point at {x}, {y}, {z}"),
+                Light::Spot { .. } => unreachable!("no spot in this sweep"),
             };
             println!(
                 "| {radius_px} | {light} | {} | {:.2} % | {:.1} % |",
@@ -238,4 +247,418 @@ fn the_highlight_carries_the_light_of_real_fillets() {
     // the same box drawn without it is off by the `plain` column (asserted above 3 % at r >= 3 px).
     assert!(plain_worst > 0.03, "the control must differ: {plain_worst}");
     assert!(worst < 0.025, "worst relative error {:.2} %", worst * 100.0);
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Issue 29: the same validation under glTF's metallic-roughness shading, for a box and for a
+// cylinder whose rims are rounded, at roughness 0.2, 0.5 and 0.8.
+
+use chamfer_runtime::highlight::ggx::{self, PbrMaterial};
+use std::collections::HashSet;
+
+/// A cylinder of radius 1 along y from −1 to 1, both rims rounded with radius `r` (0: sharp),
+/// `AROUND` facets around.
+fn rounded_cylinder(r: f32) -> Mesh {
+    const AROUND: usize = 192;
+    const BAND: usize = 16;
+    let inner = 1.0 - r;
+    // The profile (ρ, y) from the top's centre to the bottom's.
+    // Each flat part gets a ring a twentieth of r before its fillet, so interpolated normals turn
+    // only there (see rounded_box).
+    let near = inner - 0.05 * r;
+    let mut profile: Vec<(f32, f32)> = (0..=8).map(|k| (near * k as f32 / 8.0, 1.0)).collect();
+    if r > 0.0 {
+        profile.push((inner, 1.0));
+    }
+    let quarter = |k: usize| k as f32 / BAND as f32 * std::f32::consts::FRAC_PI_2;
+    if r > 0.0 {
+        profile.extend(
+            (1..=BAND).map(|k| (inner + r * quarter(k).sin(), inner + r * quarter(k).cos())),
+        );
+    }
+    if r > 0.0 {
+        profile.push((1.0, near));
+    }
+    profile.extend((1..24).map(|k| (1.0, near - 2.0 * near * k as f32 / 24.0)));
+    profile.push((1.0, -near));
+    if r > 0.0 {
+        profile.push((1.0, -inner));
+        profile.extend(
+            (1..=BAND).map(|k| (inner + r * quarter(k).cos(), -inner - r * quarter(k).sin())),
+        );
+    }
+    if r > 0.0 {
+        profile.push((near, -1.0));
+    }
+    profile.extend((1..=8).map(|k| (near * (1.0 - k as f32 / 8.0), -1.0)));
+
+    let mut mesh = Mesh::default();
+    let mut rings = Vec::new();
+    for &(rho, y) in &profile {
+        let first = mesh.positions.len() as u32;
+        let count = if rho == 0.0 { 1 } else { AROUND };
+        for j in 0..count {
+            let phi = j as f32 / AROUND as f32 * std::f32::consts::TAU;
+            mesh.positions
+                .push(Vec3::new(rho * phi.cos(), y, rho * phi.sin()));
+        }
+        rings.push((first, count));
+    }
+    for pair in rings.windows(2) {
+        let (ring, next) = (pair[0], pair[1]);
+        let at = |(first, count): (u32, usize), j: usize| first + (j % count) as u32;
+        for j in 0..AROUND {
+            let (a, b, c, d) = (at(ring, j), at(ring, j + 1), at(next, j), at(next, j + 1));
+            if ring.1 > 1 {
+                mesh.triangles.push([a, b, c]);
+            }
+            if next.1 > 1 {
+                mesh.triangles.push([b, d, c]);
+            }
+        }
+    }
+    mesh.materials = vec![0; mesh.triangles.len()];
+    mesh
+}
+
+/// Twice the signed volume's sign check: the triangles face outwards.
+fn faces_outwards(mesh: &Mesh) -> bool {
+    let volume: f32 = mesh
+        .triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
+            a.dot(b.cross(c))
+        })
+        .sum();
+    volume > 0.0
+}
+
+/// A sharp edge seen by the test: the polyline along it (the part measured) and its face normals.
+struct MeasuredEdge {
+    points: Vec<Vec3>,
+    normals: [Vec3; 2],
+}
+
+/// The box's edges whose faces both face the eye, their middle 60 %.
+fn box_edges(eye: Vec3) -> Vec<MeasuredEdge> {
+    let mut edges = Vec::new();
+    for axis in 0..3 {
+        for corner in 0..4 {
+            let signs = [corner & 1, corner & 2].map(|bit| if bit == 0 { -1.0 } else { 1.0 });
+            let (b, c) = ((axis + 1) % 3, (axis + 2) % 3);
+            let mut nb = Vec3::ZERO;
+            nb[b] = signs[0];
+            let mut nc = Vec3::ZERO;
+            nc[c] = signs[1];
+            let middle = nb + nc;
+            if nb.dot(eye - middle) <= 0.0 || nc.dot(eye - middle) <= 0.0 {
+                continue;
+            }
+            let mut along = Vec3::ZERO;
+            along[axis] = 0.6;
+            edges.push(MeasuredEdge {
+                points: vec![middle - along, middle + along],
+                normals: [nb, nc],
+            });
+        }
+    }
+    edges
+}
+
+/// The cylinder's top rim where both faces face the eye, less 20 % at either end of that arc
+/// (towards its ends the side is seen at grazing angles).
+fn rim_edges(eye: Vec3) -> Vec<MeasuredEdge> {
+    let at = |phi: f32| Vec3::new(phi.cos(), 1.0, phi.sin());
+    let seen: Vec<f32> = (0..720)
+        .map(|k| k as f32 / 720.0 * std::f32::consts::TAU)
+        .filter(|&phi| {
+            let side = Vec3::new(phi.cos(), 0.0, phi.sin());
+            side.dot(eye - at(phi)) > 0.0 && Vec3::Y.dot(eye - at(phi)) > 0.0
+        })
+        .collect();
+    // The seen arc, unwrapped where it crosses φ = 0.
+    let mut arc: Vec<f32> = seen.clone();
+    if let Some(gap) = seen.windows(2).position(|w| w[1] - w[0] > 0.1) {
+        arc = seen[gap + 1..]
+            .iter()
+            .copied()
+            .chain(seen[..=gap].iter().map(|phi| phi + std::f32::consts::TAU))
+            .collect();
+    }
+    let trim = arc.len() / 5;
+    let kept = &arc[trim..arc.len() - trim];
+    // Each short piece of the rim is an edge of its own (its side normal turns).
+    kept.windows(2)
+        .step_by(2)
+        .map(|w| {
+            let middle = 0.5 * (w[0] + w[1]);
+            MeasuredEdge {
+                points: vec![at(w[0]), at(w[1])],
+                normals: [Vec3::Y, Vec3::new(middle.cos(), 0.0, middle.sin())],
+            }
+        })
+        .collect()
+}
+
+/// The pixels within `reach` pixels across the projected polylines.
+fn pixels_near(camera: &Camera, edges: &[MeasuredEdge], reach: f32) -> HashSet<(u32, u32)> {
+    let project = |p: Vec3| {
+        let c = camera.view_projection() * p.extend(1.0);
+        let [w, h] = camera.viewport.map(|v| v as f32);
+        Vec2::new((c.x / c.w + 1.0) * 0.5 * w, (1.0 - c.y / c.w) * 0.5 * h)
+    };
+    let mut pixels = HashSet::new();
+    for edge in edges {
+        for pair in edge.points.windows(2) {
+            let (ps, pe) = (project(pair[0]), project(pair[1]));
+            let along = (pe - ps).normalize();
+            let across = Vec2::new(-along.y, along.x);
+            let length = ps.distance(pe);
+            for k in 0..=(length * 4.0) as i32 {
+                let p = ps + along * (k as f32 * 0.25);
+                for j in 0..=(8.0 * reach) as i32 {
+                    let q = p + across * (j as f32 * 0.25 - reach);
+                    pixels.insert((q.x as u32, q.y as u32));
+                }
+            }
+        }
+    }
+    pixels
+}
+
+/// The brightest radiance (per unit light) any normal on the measured edges' arcs or faces sends to
+/// the eye: the light is scaled so the truth never saturates 8-bit output.
+fn peak_radiance(edges: &[MeasuredEdge], eye: Vec3, to_light: Vec3, material: &PbrMaterial) -> f32 {
+    let mut peak = 0.0f32;
+    for edge in edges {
+        let middle = edge.points.iter().copied().sum::<Vec3>() / edge.points.len() as f32;
+        let to_viewer = (eye - middle).normalize();
+        for k in 0..=256 {
+            let n = edge.normals[0]
+                .slerp(edge.normals[1], k as f32 / 256.0)
+                .normalize();
+            peak = peak.max(ggx::radiance(n, to_light, to_viewer, material).max_element());
+        }
+    }
+    peak
+}
+
+/// `asset` drawn `factor` times larger each way and averaged back, `factor²` samples per pixel: the
+/// truth, integrated over each pixel as the highlight integrates its slice of the arc (a single sample
+/// per pixel would catch or miss a narrow specular lobe on a fillet a few pixels wide).
+fn render_supersampled(
+    asset: &chamfer_runtime::asset::Asset,
+    orbit: &Orbit,
+    size: u32,
+    mesh: &MeshStyle,
+    factor: u32,
+) -> Image {
+    let camera = Camera::orbit([[-1.0; 3], [1.0; 3]], orbit, [size * factor; 2]);
+    let large = render(asset, &camera, Some(mesh), None, [0.0, 0.0, 0.0, 1.0]);
+    let mut rgba = Vec::with_capacity((size * size * 4) as usize);
+    for y in 0..size {
+        for x in 0..size {
+            for channel in 0..4 {
+                let mut sum = 0u32;
+                for dy in 0..factor {
+                    for dx in 0..factor {
+                        sum += u32::from(large.pixel(x * factor + dx, y * factor + dy)[channel]);
+                    }
+                }
+                rgba.push(((sum + factor * factor / 2) / (factor * factor)) as u8);
+            }
+        }
+    }
+    Image {
+        width: size,
+        height: size,
+        rgba,
+    }
+}
+
+/// How a highlighted picture compares with the truth over `pixels`: the relative error of the summed
+/// light, and the mean per-pixel error as a share of the truth's lit range there.
+fn compare(ours: &Image, truth: &Image, pixels: &HashSet<(u32, u32)>) -> (f64, f64) {
+    let value = |image: &Image, (x, y): (u32, u32)| {
+        let p = image.pixel(x, y);
+        (f64::from(p[0]) + f64::from(p[1]) + f64::from(p[2])) / (3.0 * 255.0)
+    };
+    let (mut sum_ours, mut sum_truth, mut error) = (0.0, 0.0, 0.0);
+    let (mut lo, mut hi) = (f64::MAX, f64::MIN);
+    for &p in pixels {
+        let (o, t) = (value(ours, p), value(truth, p));
+        sum_ours += o;
+        sum_truth += t;
+        error += (o - t).abs();
+        lo = lo.min(t);
+        hi = hi.max(t);
+    }
+    let mean = error / pixels.len() as f64;
+    (
+        (sum_ours - sum_truth).abs() / sum_truth,
+        mean / (hi - lo).max(1e-6),
+    )
+}
+
+/// Seed 000's Blinn model fitted to a GGX material (Phong exponent 2/α² − 2, the normalised lobe's
+/// reflectance): what a renderer that pastes the seed's highlight over PBR faces would draw.
+fn blinn_stand_in(material: &PbrMaterial) -> Material {
+    let alpha = material.alpha();
+    let shininess = (2.0 / (alpha * alpha) - 2.0).clamp(1.0, 128.0);
+    let f0 = material.f0().x;
+    Material {
+        diffuse: material.diffuse_color().x * (1.0 - f0) / std::f32::consts::PI,
+        specular: f0 * (shininess + 8.0) / (8.0 * std::f32::consts::PI),
+        shininess,
+    }
+}
+
+#[test]
+fn the_pbr_highlight_carries_the_light_of_real_fillets() {
+    let orbit = Orbit {
+        azimuth_deg: 30.0,
+        elevation_deg: 24.0,
+        distance: Some(6.0),
+        ..Orbit::default()
+    };
+    let camera = Camera::orbit([[-1.0; 3], [1.0; 3]], &orbit, [360, 360]);
+    let eye = camera.eye().truncate();
+    let pixels_per_unit = 1.0 / (camera.pixel_scale() * 6.0);
+    // Two lights, and a third placed so its mirror reflection lands on the middle of the first measured
+    // edge's strip (where the specular lobe decides what is seen).
+    let mirrored = |edges: &[MeasuredEdge]| {
+        let edge = &edges[edges.len() / 2];
+        let middle = edge.points.iter().copied().sum::<Vec3>() / edge.points.len() as f32;
+        let n = (edge.normals[0] + edge.normals[1]).normalize();
+        let v = (eye - middle).normalize();
+        2.0 * n.dot(v) * n - v
+    };
+    type Shape = (&'static str, fn(f32) -> Mesh, fn(Vec3) -> Vec<MeasuredEdge>);
+    let shapes: [Shape; 2] = [
+        ("box", rounded_box, box_edges),
+        ("cylinder", rounded_cylinder, rim_edges),
+    ];
+    let black = [0.0, 0.0, 0.0, 1.0];
+    let (mut worst_sum, mut worst_mean, mut control_mean, mut plain_worst) =
+        (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    println!(
+        "| shape | r (px) | roughness | light towards | summed light error | mean error / lit range | Blinn stand-in: mean error | no highlight: mean error |"
+    );
+    println!("|---|---:|---:|---|---:|---:|---:|---:|");
+    for (name, shape, measured) in shapes {
+        assert!(
+            faces_outwards(&shape(0.1)) && faces_outwards(&shape(0.0)),
+            "{name}"
+        );
+        let edges = measured(eye);
+        assert!(!edges.is_empty(), "{name}: an edge faces the camera");
+        let lights = [
+            Vec3::new(0.3, 0.9, 0.5),
+            Vec3::new(0.9, 0.35, 0.6),
+            mirrored(&edges),
+        ];
+        // K of the blend weight: the distance at which a strip blends by exactly its coverage, that of
+        // the measured edges.
+        let points: Vec<Vec3> = edges.iter().flat_map(|e| e.points.clone()).collect();
+        let k = eye.distance(points.iter().copied().sum::<Vec3>() / points.len() as f32);
+        for radius_px in [3.0f32, 6.0] {
+            let r = radius_px / pixels_per_unit;
+            let smooth = BakeOptions::DEFAULT.with_crease_deg(60.0);
+            let rounded = bake(shape(r), "rounded", &smooth)
+                .expect("rounded shape")
+                .asset;
+            let sharp = bake(
+                shape(0.0),
+                "sharp",
+                &BakeOptions::DEFAULT.with_radius(Radius::Absolute(r)),
+            )
+            .expect("sharp shape")
+            .asset;
+            let pixels = pixels_near(&camera, &edges, 1.5 * radius_px + 1.5);
+            for roughness in [0.2f32, 0.5, 0.8] {
+                for towards in lights {
+                    let material = PbrMaterial {
+                        base_color: [0.7; 3],
+                        metallic: 0.0,
+                        roughness,
+                    };
+                    let to_light = towards.normalize();
+                    let intensity = (0.9 / peak_radiance(&edges, eye, to_light, &material))
+                        .min(std::f32::consts::PI);
+                    let light = Light::Directional(to_light.to_array());
+                    let mesh_style = MeshStyle {
+                        light: MeshLight::Model(light),
+                        light_color: [intensity; 3],
+                        ambient: 0.0,
+                        pbr: Some(material),
+                        ..MeshStyle::default()
+                    };
+                    let highlighted = |shading| EdgeStyle {
+                        classes: EdgeClasses::NONE,
+                        highlight: Some(Highlight {
+                            light,
+                            color: [intensity; 3],
+                            shading,
+                            ambient: 0.0,
+                            k: Some(k),
+                        }),
+                        ..EdgeStyle::default()
+                    };
+                    let truth = render_supersampled(&rounded, &orbit, 360, &mesh_style, 4);
+                    let ours = render(
+                        &sharp,
+                        &camera,
+                        Some(&mesh_style),
+                        Some(&highlighted(Shading::Pbr(material))),
+                        black,
+                    );
+                    let blinn = render(
+                        &sharp,
+                        &camera,
+                        Some(&mesh_style),
+                        Some(&highlighted(Shading::Blinn(blinn_stand_in(&material)))),
+                        black,
+                    );
+                    let plain = render(&sharp, &camera, Some(&mesh_style), None, black);
+                    let (summed, mean) = compare(&ours, &truth, &pixels);
+                    let (_, blinn_mean) = compare(&blinn, &truth, &pixels);
+                    let (_, plain_mean) = compare(&plain, &truth, &pixels);
+                    worst_sum = worst_sum.max(summed);
+                    worst_mean = worst_mean.max(mean);
+                    control_mean = control_mean.max(blinn_mean);
+                    plain_worst = plain_worst.max(plain_mean);
+                    println!(
+                        "| {name} | {radius_px} | {roughness} | {:.2}, {:.2}, {:.2} | {:.2} % | {:.2} % | {:.2} % | {:.2} % |",
+                        to_light.x,
+                        to_light.y,
+                        to_light.z,
+                        summed * 100.0,
+                        mean * 100.0,
+                        blinn_mean * 100.0,
+                        plain_mean * 100.0
+                    );
+                }
+            }
+        }
+    }
+    println!(
+        "worst: summed {:.2} %, mean {:.2} % of the lit range (Blinn stand-in: {:.2} %, no highlight: {:.2} %)",
+        worst_sum * 100.0,
+        worst_mean * 100.0,
+        control_mean * 100.0,
+        plain_worst * 100.0
+    );
+    // Measured (lavapipe): mean at most 0.46 % of the lit range, summed light within 1.11 %; the Blinn
+    // stand-in 1.98 %, no highlight 16.6 %. The issue's bound is 1 % of the lit range.
+    assert!(worst_mean <= 0.01, "mean error {:.2} %", worst_mean * 100.0);
+    assert!(
+        worst_sum <= 0.025,
+        "summed error {:.2} %",
+        worst_sum * 100.0
+    );
+    assert!(
+        control_mean > 2.0 * worst_mean && plain_worst > 0.05,
+        "the controls must differ: Blinn {control_mean}, none {plain_worst}"
+    );
 }

@@ -16,7 +16,8 @@ use chamfer_runtime::asset::Asset;
 use chamfer_runtime::highlight::strip::Material;
 use chamfer_runtime::render::{
     Camera, CapMethod, EdgeClasses, EdgeStyle, FrameViews, GpuAsset, Highlight, Instance, Light,
-    MeshLight, MeshRenderer, MeshStyle, Orbit, Pipelines, SceneRenderer, Shading, Target, Technique,
+    MeshLight, MeshRenderer, MeshStyle, Orbit, Pipelines, SceneRenderer, Shading, Target,
+    Technique,
 };
 use glam::{Mat4, Vec3};
 use winit::application::ApplicationHandler;

@@ -242,8 +242,8 @@ pub fn brute_force(
         }
         let dd = nh.max(0.0).powi(2) * (a2 - 1.0) + 1.0;
         let distribution = a2 / (std::f64::consts::PI * dd * dd);
-        let visibility =
-            0.5 / (nl * (nv * nv * (1.0 - a2) + a2).sqrt() + nv * (nl * nl * (1.0 - a2) + a2).sqrt());
+        let visibility = 0.5
+            / (nl * (nv * nv * (1.0 - a2) + a2).sqrt() + nv * (nl * nl * (1.0 - a2) + a2).sqrt());
         sum += (diffuse + fresnel * distribution * visibility) * nl * weight;
     }
     (sum / weights).max(glam::DVec3::ZERO).to_array()
@@ -294,7 +294,13 @@ mod tests {
                 continue;
             }
             let width = visible.1 - visible.0;
-            for (from, to) in [(0.0, 1.0), (0.0, 0.2), (0.3, 0.55), (0.8, 1.0), (0.45, 0.47)] {
+            for (from, to) in [
+                (0.0, 1.0),
+                (0.0, 0.2),
+                (0.3, 0.55),
+                (0.8, 1.0),
+                (0.45, 0.47),
+            ] {
                 let range = (visible.0 + from * width, visible.0 + to * width);
                 let (ours, projected) = arc_radiance(&view, range, &material);
                 let sampled = brute_force(&view, range, &material, 400_000);
@@ -316,7 +322,9 @@ mod tests {
             }
         }
         assert!(checked > 1000, "{checked}");
-        eprintln!("GGX arc rule: worst error {worst:.2e} of the arc's light at {worst_at:?}, {checked} ranges");
+        eprintln!(
+            "GGX arc rule: worst error {worst:.2e} of the arc's light at {worst_at:?}, {checked} ranges"
+        );
     }
 
     #[test]
@@ -338,7 +346,10 @@ mod tests {
             };
             let (ours, _) = arc_radiance(&view, (0.0, 0.01), &material);
             let face = radiance(n1, to_light, to_viewer, &material);
-            assert!((ours - face).abs().max_element() < 0.01 * face.max_element(), "{ours} vs {face}");
+            assert!(
+                (ours - face).abs().max_element() < 0.01 * face.max_element(),
+                "{ours} vs {face}"
+            );
         }
     }
 }

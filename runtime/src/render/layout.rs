@@ -359,7 +359,11 @@ pub(crate) fn layouts() -> Vec<Layout> {
                 mvp, eye, frustum, lo, hi, colors, visible, _pad0, _pad1, _pad2
             ]
         ),
-        layout!("PunctualLight", PunctualLight, [position, color, spot, cone]),
+        layout!(
+            "PunctualLight",
+            PunctualLight,
+            [position, color, spot, cone]
+        ),
         layout!(
             "Lighting",
             Lighting,
@@ -373,7 +377,9 @@ pub(crate) fn layouts() -> Vec<Layout> {
         layout!(
             "MeshFrame",
             MeshFrame,
-            [mvp, light, color, ambient, specular, shininess, pbr, eye, surface]
+            [
+                mvp, light, color, ambient, specular, shininess, pbr, eye, surface
+            ]
         ),
         layout!(
             "DrawArgs",

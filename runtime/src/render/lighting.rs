@@ -87,7 +87,10 @@ pub(crate) fn punctual(light: &Light, color: [f32; 3], falloff: bool) -> Punctua
             out.position = d.extend(0.0).to_array();
         }
         Light::Point(position) => {
-            out.position = finite(position).unwrap_or(Vec3::ZERO).extend(1.0).to_array();
+            out.position = finite(position)
+                .unwrap_or(Vec3::ZERO)
+                .extend(1.0)
+                .to_array();
         }
         Light::Spot {
             position,
@@ -95,9 +98,18 @@ pub(crate) fn punctual(light: &Light, color: [f32; 3], falloff: bool) -> Punctua
             inner_deg,
             outer_deg,
         } => {
-            out.position = finite(position).unwrap_or(Vec3::ZERO).extend(1.0).to_array();
+            out.position = finite(position)
+                .unwrap_or(Vec3::ZERO)
+                .extend(1.0)
+                .to_array();
             let axis = finite(direction).map_or(-Vec3::Z, |d| d.normalize_or(-Vec3::Z));
-            let degrees = |a: f32| if a.is_finite() { a.clamp(0.0, 90.0) } else { 45.0 };
+            let degrees = |a: f32| {
+                if a.is_finite() {
+                    a.clamp(0.0, 90.0)
+                } else {
+                    45.0
+                }
+            };
             let outer = degrees(outer_deg);
             let inner = degrees(inner_deg).min(outer);
             out.spot = axis.extend(outer.to_radians().cos()).to_array();

@@ -7,10 +7,10 @@ use glam::Vec3;
 use super::bindings::{Binding, Bindings, Kind};
 use super::gpu_asset::VERTEX_LAYOUTS;
 use super::layout::MeshFrame;
+use super::lighting::punctual;
 use super::modules::{Program, Shader};
 use super::pipelines::{PipelineSet, Raster};
 use super::techniques::Blocks;
-use super::lighting::punctual;
 use super::{Camera, GpuAsset, Instance, Light, Pipelines, RenderError};
 use crate::highlight::ggx::PbrMaterial;
 

@@ -198,8 +198,13 @@ pub struct ViewArgs {
     #[arg(long)]
     light_intensity: Option<f32>,
     /// `--style chamfer` with --light-pos: make the light a spot shining this way.
-    #[arg(long, value_name = "X,Y,Z", value_delimiter = ',', allow_hyphen_values = true,
-          requires = "light_pos")]
+    #[arg(
+        long,
+        value_name = "X,Y,Z",
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        requires = "light_pos"
+    )]
     spot_dir: Option<Vec<f32>>,
     /// `--spot-dir`: the cone's inner and outer half-angles, degrees.
     #[arg(long, value_name = "INNER,OUTER", value_delimiter = ',', default_values_t = [20.0, 30.0])]
