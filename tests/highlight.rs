@@ -662,3 +662,55 @@ fn the_pbr_highlight_carries_the_light_of_real_fillets() {
         "the controls must differ: Blinn {control_mean}, none {plain_worst}"
     );
 }
+
+#[test]
+fn a_spot_light_lights_only_its_cone_and_falls_off_with_distance() {
+    let orbit = Orbit {
+        azimuth_deg: 30.0,
+        elevation_deg: 50.0,
+        distance: Some(6.0),
+        ..Orbit::default()
+    };
+    let camera = Camera::orbit([[-1.0; 3], [1.0; 3]], &orbit, [240, 240]);
+    let cube = bake(
+        rounded_box(0.0),
+        "box",
+        &BakeOptions::DEFAULT.with_radius(Radius::Absolute(0.05)),
+    )
+    .expect("box")
+    .asset;
+    let project = |p: Vec3| {
+        let c = camera.view_projection() * p.extend(1.0);
+        ((c.x / c.w + 1.0) * 120.0, (1.0 - c.y / c.w) * 120.0)
+    };
+    let brightness = |light: Light, intensity: f32, p: Vec3| {
+        let mesh = MeshStyle {
+            light: MeshLight::Model(light),
+            light_color: [intensity; 3],
+            ambient: 0.0,
+            pbr: Some(PbrMaterial::default()),
+            ..MeshStyle::default()
+        };
+        let image = render(&cube, &camera, Some(&mesh), None, [0.0, 0.0, 0.0, 1.0]);
+        let (x, y) = project(p);
+        image.pixel(x as u32, y as u32)[0]
+    };
+    // 3 units above the top face, shining down: the face's centre is on the axis, the point near
+    // its corner 25° off it.
+    let spot = Light::Spot {
+        position: [0.0, 4.0, 0.0],
+        direction: [0.0, -1.0, 0.0],
+        inner_deg: 10.0,
+        outer_deg: 20.0,
+    };
+    let (centre, corner) = (Vec3::new(0.0, 1.0, 0.0), Vec3::new(0.9, 1.0, 0.9));
+    assert!(brightness(spot, 20.0, centre) > 100);
+    assert_eq!(brightness(spot, 20.0, corner), 0);
+    // The control: a point light at the same place lights both.
+    let point = Light::Point([0.0, 4.0, 0.0]);
+    assert!(brightness(point, 20.0, corner) > 50);
+    // 1/d²: the same light twice as far needs four times the intensity to look the same.
+    let near = brightness(Light::Point([0.0, 3.0, 0.0]), 5.0, centre);
+    let far = brightness(Light::Point([0.0, 5.0, 0.0]), 20.0, centre);
+    assert!(near > 60 && near.abs_diff(far) <= 2, "{near} vs {far}");
+}

@@ -473,6 +473,31 @@ fn render_writes_a_png_of_a_mesh_or_an_asset() {
                 "-60",
             ],
         ),
+        (
+            &cube,
+            vec![
+                "--style",
+                "chamfer",
+                "--radius-rel",
+                "0.02",
+                "--shading",
+                "pbr",
+                "--roughness",
+                "0.3",
+                "--metallic",
+                "1",
+                "--base-color",
+                "0.9,0.6,0.3",
+                "--light-pos",
+                "2,3,2",
+                "--spot-dir",
+                "-2,-3,-2",
+                "--spot-angles",
+                "10,40",
+                "--light-intensity",
+                "40",
+            ],
+        ),
     ] {
         let png = dir.path().join("cube.png");
         let mut args = vec![
@@ -501,7 +526,34 @@ fn render_refuses_bad_input_and_options_and_keeps_the_old_picture() {
     std::fs::write(&not_an_asset, b"CHAMFER\0 but nothing else").expect("write");
     let cube = fixture("shapes/cube.obj");
     let truncated = fixture("broken/truncated.glb");
-    let cases: [(Vec<&str>, &str); 7] = [
+    let chamfer_style = |extra: &[&'static str]| {
+        let mut args = vec![path_str(&cube), "--style", "chamfer", "--shading", "pbr"];
+        args.extend(extra);
+        args
+    };
+    let cases: [(Vec<&str>, &str); 13] = [
+        (chamfer_style(&["--roughness", "1.5"]), "--roughness"),
+        (chamfer_style(&["--metallic", "NaN"]), "--metallic"),
+        (chamfer_style(&["--base-color", "0.5,0.5"]), "--base-color"),
+        (
+            chamfer_style(&["--light-intensity", "1e10"]),
+            "--light-intensity",
+        ),
+        (
+            chamfer_style(&["--light-pos", "1,2,3", "--spot-dir", "0,0,0"]),
+            "--spot-dir",
+        ),
+        (
+            chamfer_style(&[
+                "--light-pos",
+                "1,2,3",
+                "--spot-dir",
+                "0,-1,0",
+                "--spot-angles",
+                "30,10",
+            ]),
+            "--spot-angles",
+        ),
         (vec![path_str(&not_an_asset)], "fake.chamfer"),
         (vec![path_str(&truncated)], "truncated.glb"),
         (vec![path_str(&cube), "--width", "0"], "--width"),
