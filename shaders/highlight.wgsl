@@ -194,8 +194,11 @@ fn strip_radiance(arc: Arc, across: vec3<f32>, middle: vec3<f32>, to_viewer: vec
     let light = light_radiance(lighting.light, middle);
     if lighting.pbr != 0u {
         let m = Pbr(lighting.base.rgb, lighting.material.x, lighting.material.y);
+        // The ambient term at the slice's middle normal (it varies slowly over the arc).
+        let mid = 0.5 * (range.x + range.y);
+        let normal = arc.ex * cos(mid) + arc.ey * sin(mid);
         return light * arc_radiance(arc, across, to_light, to_viewer, range)
-            + lighting.material.w * pbr_diffuse_color(m);
+            + lighting.material.w * uniform_environment(m, dot(normal, to_viewer));
     }
     return light * arc_intensity(arc, across, to_light, to_viewer, range);
 }

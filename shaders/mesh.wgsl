@@ -42,7 +42,7 @@ fn mesh_fragment(v: MeshVarying, @builtin(front_facing) front: bool) -> @locatio
     let ambient = mesh.ambient;
     if mesh.pbr != 0u {
         let m = Pbr(mesh.color.rgb, mesh.surface.x, mesh.surface.y);
-        let lit = light * pbr_radiance(m, n, to_light, to_viewer) + ambient * pbr_diffuse_color(m);
+        let lit = light * pbr_radiance(m, n, to_light, to_viewer) + ambient * uniform_environment(m, dot(n, to_viewer));
         return vec4<f32>(lit, mesh.color.a);
     }
     let diffuse = max(dot(n, to_light), 0.0);

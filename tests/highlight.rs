@@ -240,7 +240,7 @@ fn the_highlight_carries_the_light_of_real_fillets() {
         }
     }
     println!("worst: {:.2} %", worst * 100.0);
-    // Measured: at most 0.94 % over this sweep, point light included (lavapipe, 1 sample). What is
+    // Measured: at most 0.65 % over this sweep, point light included (lavapipe, 1 sample). What is
     // left comes from the paper's own approximations (light and viewer directions taken at each edge's middle, the
     // corners ignored), from rasterizing the tessellated fillets and from 8-bit output. The bound
     // leaves room for other rasterizers while staying far below what the highlight contributes:

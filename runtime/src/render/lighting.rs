@@ -49,8 +49,8 @@ pub struct Highlight {
     pub color: [f32; 3],
     /// The model the strip is shaded with.
     pub shading: Shading,
-    /// Share of the diffuse colour lit regardless of the light (0 in the paper), as
-    /// [`super::MeshStyle::ambient`].
+    /// Share of the diffuse colour lit regardless of the light (0 in the paper); under
+    /// [`Shading::Pbr`] the radiance of a uniform white environment, as [`super::MeshStyle::ambient`].
     pub ambient: f32,
     /// `K` of the blend weight `W = K r_e / (d r_max)` (§3.2); `None`: the camera's distance to the
     /// model's centre, so a strip at that distance blends by exactly the share of the pixel it covers.

@@ -35,7 +35,8 @@ pub struct MeshStyle {
     pub light: MeshLight,
     /// The light's colour × intensity (linear RGB), as [`Highlight::color`](super::Highlight::color).
     pub light_color: [f32; 3],
-    /// Share of the (diffuse) colour lit regardless of the light, 0..1.
+    /// Share of the colour lit regardless of the light, 0..1 (with `pbr`: the radiance of a uniform
+    /// white environment, reflected diffusely and by the specular lobe's directional albedo).
     pub ambient: f32,
     /// Specular reflectance `R_s` (white), 0 for none.
     pub specular: f32,
