@@ -86,6 +86,26 @@ fn rounded_box(r: f32) -> Mesh {
     mesh
 }
 
+/// A shape baked twice: truly rounded with radius `r` (smooth normals across its fillets), and sharp
+/// with `r` as every crease's chamfer radius.
+fn rounded_and_sharp(
+    shape: fn(f32) -> Mesh,
+    r: f32,
+) -> (chamfer_runtime::asset::Asset, chamfer_runtime::asset::Asset) {
+    let smooth = BakeOptions::DEFAULT.with_crease_deg(60.0);
+    let rounded = bake(shape(r), "rounded", &smooth).expect("rounded").asset;
+    let chamfered = BakeOptions::DEFAULT.with_radius(Radius::Absolute(r));
+    let sharp = bake(shape(0.0), "sharp", &chamfered).expect("sharp").asset;
+    (rounded, sharp)
+}
+
+/// Where `p` lands in `camera`'s picture, in pixels from the top left.
+fn to_pixels(camera: &Camera, p: Vec3) -> Vec2 {
+    let c = camera.view_projection() * p.extend(1.0);
+    let [w, h] = camera.viewport.map(|v| v as f32);
+    Vec2::new((c.x / c.w + 1.0) * 0.5 * w, (1.0 - c.y / c.w) * 0.5 * h)
+}
+
 const MATERIAL: Material = Material {
     diffuse: 0.55,
     specular: 0.35,
@@ -103,17 +123,7 @@ fn edge_light(r: f32, light: Light, camera: &Camera) -> Vec<(f64, f64, f64)> {
         shininess: MATERIAL.shininess,
         ..MeshStyle::default()
     };
-    let smooth = BakeOptions::DEFAULT.with_crease_deg(60.0);
-    let rounded = bake(rounded_box(r), "rounded", &smooth)
-        .expect("rounded box")
-        .asset;
-    let sharp = bake(
-        rounded_box(0.0),
-        "box",
-        &BakeOptions::DEFAULT.with_radius(Radius::Absolute(r)),
-    )
-    .expect("box")
-    .asset;
+    let (rounded, sharp) = rounded_and_sharp(rounded_box, r);
     let eye = camera.eye().truncate();
     let center_distance = eye.length();
     let highlight = EdgeStyle {
@@ -132,11 +142,7 @@ fn edge_light(r: f32, light: Light, camera: &Camera) -> Vec<(f64, f64, f64)> {
     let ours = render(&sharp, camera, Some(&mesh_style), Some(&highlight), black);
     let plain = render(&sharp, camera, Some(&mesh_style), None, black);
 
-    let project = |p: Vec3| {
-        let c = camera.view_projection() * p.extend(1.0);
-        let [w, h] = camera.viewport.map(|v| v as f32);
-        Vec2::new((c.x / c.w + 1.0) * 0.5 * w, (1.0 - c.y / c.w) * 0.5 * h)
-    };
+    let project = |p: Vec3| to_pixels(camera, p);
     let radius_px = r / (camera.pixel_scale() * center_distance);
     let reach = (2.0 * radius_px).max(0.0) + 3.0;
     let mut sums = Vec::new();
@@ -266,17 +272,13 @@ fn rounded_cylinder(r: f32) -> Mesh {
     // Each flat part gets a ring a twentieth of r before its fillet, so interpolated normals turn
     // only there (see rounded_box).
     let near = inner - 0.05 * r;
+    let quarter = |k: usize| k as f32 / BAND as f32 * std::f32::consts::FRAC_PI_2;
     let mut profile: Vec<(f32, f32)> = (0..=8).map(|k| (near * k as f32 / 8.0, 1.0)).collect();
     if r > 0.0 {
         profile.push((inner, 1.0));
-    }
-    let quarter = |k: usize| k as f32 / BAND as f32 * std::f32::consts::FRAC_PI_2;
-    if r > 0.0 {
         profile.extend(
             (1..=BAND).map(|k| (inner + r * quarter(k).sin(), inner + r * quarter(k).cos())),
         );
-    }
-    if r > 0.0 {
         profile.push((1.0, near));
     }
     profile.extend((1..24).map(|k| (1.0, near - 2.0 * near * k as f32 / 24.0)));
@@ -286,8 +288,6 @@ fn rounded_cylinder(r: f32) -> Mesh {
         profile.extend(
             (1..=BAND).map(|k| (inner + r * quarter(k).cos(), -inner - r * quarter(k).sin())),
         );
-    }
-    if r > 0.0 {
         profile.push((near, -1.0));
     }
     profile.extend((1..=8).map(|k| (near * (1.0 - k as f32 / 8.0), -1.0)));
@@ -403,15 +403,10 @@ fn rim_edges(eye: Vec3) -> Vec<MeasuredEdge> {
 
 /// The pixels within `reach` pixels across the projected polylines.
 fn pixels_near(camera: &Camera, edges: &[MeasuredEdge], reach: f32) -> HashSet<(u32, u32)> {
-    let project = |p: Vec3| {
-        let c = camera.view_projection() * p.extend(1.0);
-        let [w, h] = camera.viewport.map(|v| v as f32);
-        Vec2::new((c.x / c.w + 1.0) * 0.5 * w, (1.0 - c.y / c.w) * 0.5 * h)
-    };
     let mut pixels = HashSet::new();
     for edge in edges {
         for pair in edge.points.windows(2) {
-            let (ps, pe) = (project(pair[0]), project(pair[1]));
+            let (ps, pe) = (to_pixels(camera, pair[0]), to_pixels(camera, pair[1]));
             let along = (pe - ps).normalize();
             let across = Vec2::new(-along.y, along.x);
             let length = ps.distance(pe);
@@ -564,17 +559,7 @@ fn the_pbr_highlight_carries_the_light_of_real_fillets() {
         let k = eye.distance(points.iter().copied().sum::<Vec3>() / points.len() as f32);
         for radius_px in [3.0f32, 6.0] {
             let r = radius_px / pixels_per_unit;
-            let smooth = BakeOptions::DEFAULT.with_crease_deg(60.0);
-            let rounded = bake(shape(r), "rounded", &smooth)
-                .expect("rounded shape")
-                .asset;
-            let sharp = bake(
-                shape(0.0),
-                "sharp",
-                &BakeOptions::DEFAULT.with_radius(Radius::Absolute(r)),
-            )
-            .expect("sharp shape")
-            .asset;
+            let (rounded, sharp) = rounded_and_sharp(shape, r);
             let pixels = pixels_near(&camera, &edges, 1.5 * radius_px + 1.5);
             for roughness in [0.2f32, 0.5, 0.8] {
                 for towards in lights {
@@ -679,10 +664,6 @@ fn a_spot_light_lights_only_its_cone_and_falls_off_with_distance() {
     )
     .expect("box")
     .asset;
-    let project = |p: Vec3| {
-        let c = camera.view_projection() * p.extend(1.0);
-        ((c.x / c.w + 1.0) * 120.0, (1.0 - c.y / c.w) * 120.0)
-    };
     let brightness = |light: Light, intensity: f32, p: Vec3| {
         let mesh = MeshStyle {
             light: MeshLight::Model(light),
@@ -692,8 +673,8 @@ fn a_spot_light_lights_only_its_cone_and_falls_off_with_distance() {
             ..MeshStyle::default()
         };
         let image = render(&cube, &camera, Some(&mesh), None, [0.0, 0.0, 0.0, 1.0]);
-        let (x, y) = project(p);
-        image.pixel(x as u32, y as u32)[0]
+        let at = to_pixels(&camera, p);
+        image.pixel(at.x as u32, at.y as u32)[0]
     };
     // 3 units above the top face, shining down: the face's centre is on the axis, the point near
     // its corner 25° off it.

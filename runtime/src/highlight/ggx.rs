@@ -251,8 +251,7 @@ pub fn brute_force(
 
 #[cfg(test)]
 mod tests {
-    use super::super::strip::tests_support::directions;
-    use super::super::strip::visible_arc;
+    use super::super::strip::tests_support::{directions, random_view};
     use super::*;
 
     #[test]
@@ -261,20 +260,7 @@ mod tests {
         let roughnesses = [MIN_ROUGHNESS, 0.1, 0.2, 0.35, 0.5, 0.65, 0.8, 1.0];
         let (mut checked, mut worst, mut worst_at) = (0, 0.0f64, (0.0, 0));
         for case in 0..640 {
-            let n1 = random();
-            let n2 = (n1 + random() * 1.2).normalize();
-            let to_viewer = random();
-            let Some(across) = n1.cross(n2).normalize().cross(to_viewer).try_normalize() else {
-                continue;
-            };
-            let view = ArcView {
-                n1,
-                n2,
-                to_light: random(),
-                to_viewer,
-                across,
-            };
-            let Some(visible) = visible_arc(&view) else {
+            let Some((view, visible)) = random_view(&mut random) else {
                 continue;
             };
             let roughness = roughnesses[case % roughnesses.len()];

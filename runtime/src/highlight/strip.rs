@@ -185,6 +185,23 @@ pub fn brute_force(view: &ArcView, range: ArcRange, material: &Material, samples
 #[cfg(test)]
 pub(super) mod tests_support {
     use super::*;
+    /// A random edge seen from a random direction (from `random`), with its visible arc; `None`
+    /// where the edge is seen end-on or its strip is out of sight.
+    pub fn random_view(random: &mut impl FnMut() -> Vec3) -> Option<(ArcView, ArcRange)> {
+        let n1 = random();
+        let n2 = (n1 + random() * 1.2).normalize();
+        let to_viewer = random();
+        let across = n1.cross(n2).normalize().cross(to_viewer).try_normalize()?;
+        let view = ArcView {
+            n1,
+            n2,
+            to_light: random(),
+            to_viewer,
+            across,
+        };
+        Some((view, visible_arc(&view)?))
+    }
+
     /// A deterministic stream of unit vectors.
     pub fn directions(seed: u64) -> impl FnMut() -> Vec3 {
         let mut state = seed;
@@ -205,7 +222,7 @@ pub(super) mod tests_support {
 
 #[cfg(test)]
 mod tests {
-    use super::tests_support::directions;
+    use super::tests_support::{directions, random_view};
     use super::*;
 
     #[test]
@@ -213,21 +230,7 @@ mod tests {
         let mut random = directions(7);
         let (mut checked, mut worst) = (0, 0.0f64);
         for case in 0..400 {
-            let n1 = random();
-            let n2 = (n1 + random() * 1.2).normalize();
-            let to_viewer = random();
-            let axis = n1.cross(n2).normalize();
-            let Some(across) = axis.cross(to_viewer).try_normalize() else {
-                continue;
-            };
-            let view = ArcView {
-                n1,
-                n2,
-                to_light: random(),
-                to_viewer,
-                across,
-            };
-            let Some(visible) = visible_arc(&view) else {
+            let Some((view, visible)) = random_view(&mut random) else {
                 continue;
             };
             let shininess = [1.0, 4.5, 32.0, 128.0][case % 4];
