@@ -3,8 +3,8 @@
 //!
 //! Drag to orbit, scroll to zoom. Keys: 1 contours, 2 ridges, 3 valleys, 4 boundaries, 5 marked
 //! (toggle each class); + / - edge width; C cycles the cap method; D depth-scaled width; E edges on
-//! or off; O orthographic; T cycles the edge technique (its name is in the title); H the chamfer
-//! highlight (seed 000) under a light circling the model; X explodes a scene (each instance moved
+//! or off; O orthographic; T cycles the edge technique (its name is in the title); H cycles the chamfer
+//! highlight under a light circling the model: off, seed 000's Blinn model, glTF's metallic-roughness; X explodes a scene (each instance moved
 //! away from the centre, every frame's transforms given anew); Esc quits. Meshes are baked with a chamfer radius of 0.4 % of their diagonal on ridges. It is also the smallest example of hosting the renderers in an
 //! application's own wgpu setup: the window, device and frame belong to this file.
 
@@ -13,6 +13,7 @@ use std::sync::Arc;
 
 use anyhow::Context;
 use chamfer_runtime::asset::Asset;
+use chamfer_runtime::highlight::ggx::PbrMaterial;
 use chamfer_runtime::highlight::strip::Material;
 use chamfer_runtime::render::{
     Camera, CapMethod, EdgeClasses, EdgeStyle, FrameViews, GpuAsset, Highlight, Instance, Light,
@@ -61,7 +62,7 @@ fn main() -> anyhow::Result<()> {
         orbit: Orbit::default(),
         style: EdgeStyle::default(),
         draw_edges: true,
-        highlight: false,
+        highlight: Lit::Off,
         started: std::time::Instant::now(),
         dragging: false,
         cursor: None,
@@ -69,6 +70,14 @@ fn main() -> anyhow::Result<()> {
     };
     event_loop.run_app(&mut viewer)?;
     viewer.error.map_or(Ok(()), Err)
+}
+
+/// How chamfer edges are lit (key H).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Lit {
+    Off,
+    Blinn,
+    Pbr,
 }
 
 struct Viewer {
@@ -81,7 +90,7 @@ struct Viewer {
     orbit: Orbit,
     style: EdgeStyle,
     draw_edges: bool,
-    highlight: bool,
+    highlight: Lit,
     started: std::time::Instant,
     dragging: bool,
     cursor: Option<(f64, f64)>,
@@ -380,7 +389,7 @@ impl ApplicationHandler for Viewer {
                 true
             }
             WindowEvent::RedrawRequested => {
-                let (style, mesh_style) = if self.highlight {
+                let (style, mesh_style) = if self.highlight != Lit::Off {
                     // The light circles the model once every eight seconds, above it.
                     let angle = self.started.elapsed().as_secs_f32() * std::f32::consts::TAU / 8.0;
                     let light = Light::Directional([angle.cos(), 0.8, angle.sin()]);
@@ -389,19 +398,30 @@ impl ApplicationHandler for Viewer {
                         specular: 0.5,
                         shininess: 32.0,
                     };
+                    let pbr = PbrMaterial {
+                        base_color: [0.62, 0.64, 0.68],
+                        metallic: 0.0,
+                        roughness: 0.35,
+                    };
+                    let (shading, intensity) = match self.highlight {
+                        Lit::Pbr => (Shading::Pbr(pbr), std::f32::consts::PI),
+                        _ => (Shading::Blinn(material), 1.0),
+                    };
                     let highlight = Highlight {
                         light,
-                        shading: Shading::Blinn(material),
+                        color: [intensity; 3],
+                        shading,
                         ambient: 0.2,
-                        ..Highlight::default()
+                        k: None,
                     };
                     let mesh_style = MeshStyle {
                         color: [material.diffuse, material.diffuse, material.diffuse, 1.0],
                         light: MeshLight::Model(light),
+                        light_color: [intensity; 3],
                         ambient: 0.2,
                         specular: material.specular,
                         shininess: material.shininess,
-                        ..MeshStyle::default()
+                        pbr: (self.highlight == Lit::Pbr).then_some(pbr),
                     };
                     (
                         EdgeStyle {
@@ -429,7 +449,7 @@ impl ApplicationHandler for Viewer {
                     self.title,
                     style.technique.name()
                 ));
-                if self.highlight {
+                if self.highlight != Lit::Off {
                     gpu.window.request_redraw();
                 }
                 false
@@ -475,7 +495,11 @@ impl ApplicationHandler for Viewer {
                     event_loop.exit();
                 }
                 if event.logical_key == Key::Character("h".into()) {
-                    self.highlight = !self.highlight;
+                    self.highlight = match self.highlight {
+                        Lit::Off => Lit::Blinn,
+                        Lit::Blinn => Lit::Pbr,
+                        Lit::Pbr => Lit::Off,
+                    };
                     true
                 } else if event.logical_key == Key::Character("x".into()) {
                     self.explode = !self.explode;
