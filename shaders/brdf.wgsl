@@ -17,7 +17,15 @@ struct PunctualLight {
 }
 
 fn towards_light(light: PunctualLight, p: vec3<f32>) -> vec3<f32> {
-    return normalize(light.position.xyz - p * light.position.w);
+    let d = light.position.xyz - p * light.position.w;
+    // A light placed on the shaded point itself: any direction (not NaN).
+    return select(vec3<f32>(0.0, 0.0, 1.0), normalize(d), dot(d, d) > 1e-20);
+}
+
+// The unit half vector, or zero where light and viewer are opposite (as glam's normalize_or_zero).
+fn half_vector(to_light: vec3<f32>, to_viewer: vec3<f32>) -> vec3<f32> {
+    let s = to_light + to_viewer;
+    return select(vec3<f32>(0.0), normalize(s), dot(s, s) > 1e-12);
 }
 
 // The light's colour arriving at `p`: distance falloff and the spot's cone (KHR_lights_punctual).
@@ -28,7 +36,7 @@ fn light_radiance(light: PunctualLight, p: vec3<f32>) -> vec3<f32> {
         scale = 1.0 / max(dot(offset, offset), 1e-12);
     }
     if dot(light.spot.xyz, light.spot.xyz) > 0.0 {
-        let cos_angle = dot(-normalize(offset), light.spot.xyz);
+        let cos_angle = dot(-towards_light(light, p), light.spot.xyz);
         let t = clamp((cos_angle - light.spot.w) / max(light.cone.x - light.spot.w, 1e-4), 0.0, 1.0);
         scale *= t * t;
     }
@@ -77,7 +85,7 @@ fn pbr_radiance(m: Pbr, n: vec3<f32>, to_light: vec3<f32>, to_viewer: vec3<f32>)
     if n_dot_l <= 0.0 {
         return vec3<f32>(0.0);
     }
-    let half = normalize(to_light + to_viewer);
+    let half = half_vector(to_light, to_viewer);
     let fresnel = schlick(m, dot(to_viewer, half));
     let specular = ggx_distribution(dot(n, half), m.alpha) * smith_visibility(n_dot_l, dot(n, to_viewer), m.alpha);
     return ((vec3<f32>(1.0) - fresnel) * pbr_diffuse_color(m) / PI + fresnel * specular) * n_dot_l;

@@ -110,7 +110,7 @@ fn lobe(arc: Arc, across: vec3<f32>, v: vec3<f32>, range: vec2<f32>, m: f32, clo
 // The GGX arc rule (runtime/src/highlight/ggx.rs): ∫ D(N·H) Vis (N·L)₊ (P·T) dθ over `range`, after
 // tan u = a tan w makes D's lobe a smooth weight, by 16-point Gauss–Legendre in w.
 fn ggx_arc(arc: Arc, across: vec3<f32>, to_light: vec3<f32>, to_viewer: vec3<f32>, range: vec2<f32>, alpha: f32) -> f32 {
-    let half = normalize(to_light + to_viewer);
+    let half = half_vector(to_light, to_viewer);
     let polar = angle_in(arc, half);
     if polar.y < 1e-6 {
         return 0.0;
@@ -155,7 +155,7 @@ fn arc_radiance(arc: Arc, across: vec3<f32>, to_light: vec3<f32>, to_viewer: vec
     let m = Pbr(lighting.base.rgb, lighting.material.x, lighting.material.y);
     let diffuse = lobe(arc, across, to_light, range, 1.0, true);
     let specular = ggx_arc(arc, across, to_light, to_viewer, range, m.alpha);
-    let fresnel = schlick(m, dot(to_viewer, normalize(to_light + to_viewer)));
+    let fresnel = schlick(m, dot(to_viewer, half_vector(to_light, to_viewer)));
     let lit = (vec3<f32>(1.0) - fresnel) * pbr_diffuse_color(m) / PI * diffuse + fresnel * specular;
     return max(lit / projected, vec3<f32>(0.0));
 }
@@ -166,12 +166,12 @@ fn arc_intensity(arc: Arc, across: vec3<f32>, to_light: vec3<f32>, to_viewer: ve
     if abs(projected) < 1e-9 {
         return 0.0;
     }
-    let half = normalize(to_light + to_viewer);
+    let half = half_vector(to_light, to_viewer);
     let diffuse = lobe(arc, across, to_light, range, 1.0, true);
     let specular = lobe(arc, across, half, range, lighting.material.z, false);
     let ambient = lighting.material.w;
     let lit = (lighting.material.x * (1.0 - ambient) * diffuse + lighting.material.y * specular) / projected;
-    return max(lit + lighting.material.x * ambient, 0.0);
+    return max(lit, 0.0);
 }
 
 // The visible arc: where the strip's normal faces the viewer.
@@ -200,7 +200,10 @@ fn strip_radiance(arc: Arc, across: vec3<f32>, middle: vec3<f32>, to_viewer: vec
         return light * arc_radiance(arc, across, to_light, to_viewer, range)
             + lighting.material.w * uniform_environment(m, dot(normal, to_viewer));
     }
-    return light * arc_intensity(arc, across, to_light, to_viewer, range);
+    // The ambient share is lit regardless of the light (its colour, distance and cone), as on the
+    // mesh (mesh.wgsl).
+    let ambient = lighting.material.x * lighting.material.w;
+    return light * arc_intensity(arc, across, to_light, to_viewer, range) + vec3<f32>(ambient);
 }
 
 // Screen offset (pixels, along the quad's left normal) of the strip's point with normal angle θ.

@@ -46,6 +46,6 @@ fn mesh_fragment(v: MeshVarying, @builtin(front_facing) front: bool) -> @locatio
         return vec4<f32>(lit, mesh.color.a);
     }
     let diffuse = max(dot(n, to_light), 0.0);
-    let specular = mesh.specular * pow(max(dot(n, normalize(to_light + to_viewer)), 0.0), mesh.shininess);
+    let specular = mesh.specular * pow(max(dot(n, half_vector(to_light, to_viewer)), 0.0), mesh.shininess);
     return vec4<f32>(mesh.color.rgb * (ambient + (1.0 - ambient) * diffuse * light) + specular * light, mesh.color.a);
 }

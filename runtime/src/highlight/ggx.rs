@@ -26,8 +26,8 @@ use glam::Vec3;
 
 use super::strip::{ArcFrame, ArcRange, ArcView, clip_to_lobe, lobe_integral};
 
-/// The smallest roughness shaded (Filament's floor): below it `α⁴` underflows in f32 half precision and
-/// the lobe is narrower than any pixel's slice anyway.
+/// The smallest roughness shaded (Filament's floor, which keeps `α⁴` representable): a smoother
+/// surface's lobe is narrower than any pixel's slice of the arc anyway.
 pub const MIN_ROUGHNESS: f32 = 0.045;
 
 /// glTF's metallic-roughness material.
