@@ -91,13 +91,19 @@ fn pbr_radiance(m: Pbr, n: vec3<f32>, to_light: vec3<f32>, to_viewer: vec3<f32>)
     return ((vec3<f32>(1.0) - fresnel) * pbr_diffuse_color(m) / PI + fresnel * specular) * n_dot_l;
 }
 
-// What a uniform white environment of radiance 1 reflects at `n_dot_v`: Lambert's c_diff plus the
-// specular lobe's directional albedo, by Karis' analytic fit of the split-sum's DFG term (Unreal,
-// "Physically Based Shading on Mobile", 2014). The PBR `ambient` share is this environment's radiance.
-fn uniform_environment(m: Pbr, n_dot_v: f32) -> vec3<f32> {
+// The split sum (Karis 2013): what an environment whose irradiance (over π) at the normal is
+// `irradiance` and whose radiance prefiltered for the material's lobe along the reflection is
+// `specular` sends towards the viewer: c_diff × irradiance plus `specular` × the lobe's directional
+// albedo, by Karis' analytic fit of the DFG term (Unreal, "Physically Based Shading on Mobile", 2014).
+fn environment_radiance(m: Pbr, n_dot_v: f32, irradiance: vec3<f32>, specular: vec3<f32>) -> vec3<f32> {
     let roughness = sqrt(m.alpha);
     let r = roughness * vec4<f32>(-1.0, -0.0275, -0.572, 0.022) + vec4<f32>(1.0, 0.0425, 1.04, -0.04);
     let a004 = min(r.x * r.x, exp2(-9.28 * max(n_dot_v, 0.0))) * r.x + r.y;
     let ab = vec2<f32>(-1.04, 1.04) * a004 + r.zw;
-    return pbr_diffuse_color(m) + pbr_f0(m) * ab.x + ab.y;
+    return pbr_diffuse_color(m) * irradiance + (pbr_f0(m) * ab.x + ab.y) * specular;
+}
+
+// A uniform white environment of radiance 1: the PBR `ambient` share is its radiance.
+fn uniform_environment(m: Pbr, n_dot_v: f32) -> vec3<f32> {
+    return environment_radiance(m, n_dot_v, vec3<f32>(1.0), vec3<f32>(1.0));
 }

@@ -7,6 +7,7 @@
 @group(0) @binding(21) var<storage, read> chamfers: array<ChamferRecord>;
 @group(0) @binding(22) var<storage, read> cos_power: array<f32>;
 @group(0) @binding(23) var<uniform> lighting: Lighting;
+@group(0) @binding(30) var<storage, read> environment: array<vec4<f32>>;
 
 struct Cap {
     end: u32,

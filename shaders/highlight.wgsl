@@ -31,7 +31,8 @@ struct Lighting {
     material: vec4<f32>,
     // PBR: the base colour (linear RGB). w: K of the blend weight.
     base: vec4<f32>,
-    // 1: glTF's metallic-roughness shading (brdf.wgsl, the GGX arc rule below); 0: Blinn (seed 000).
+    // SHADE_PBR: glTF's metallic-roughness shading (brdf.wgsl, the GGX arc rule below), else Blinn
+    // (seed 000); SHADE_ENVIRONMENT: plus the image-based light (edges.wgsl, `strip_environment`).
     pbr: u32,
     _pad0: u32,
     _pad1: u32,
@@ -192,7 +193,7 @@ fn to_light_at(p: vec3<f32>) -> vec3<f32> {
 fn strip_radiance(arc: Arc, across: vec3<f32>, middle: vec3<f32>, to_viewer: vec3<f32>, range: vec2<f32>) -> vec3<f32> {
     let to_light = to_light_at(middle);
     let light = light_radiance(lighting.light, middle);
-    if lighting.pbr != 0u {
+    if (lighting.pbr & SHADE_PBR) != 0u {
         let m = Pbr(lighting.base.rgb, lighting.material.x, lighting.material.y);
         // The ambient term at the slice's middle normal (it varies slowly over the arc).
         let mid = 0.5 * (range.x + range.y);

@@ -12,7 +12,8 @@ struct MeshFrame {
     // Specular reflectance and exponent (Blinn).
     specular: f32,
     shininess: f32,
-    // 1: metallic-roughness shading with `surface`; 0: Blinn.
+    // SHADE_PBR: metallic-roughness shading with `surface` (else Blinn); SHADE_ENVIRONMENT: plus the
+    // image-based light of `environment`.
     pbr: u32,
     // The camera in model space: a point (w = 1) or a direction towards the viewer (w = 0).
     eye: vec4<f32>,
@@ -21,6 +22,7 @@ struct MeshFrame {
 }
 
 @group(0) @binding(0) var<uniform> mesh: MeshFrame;
+@group(0) @binding(1) var<storage, read> environment: array<vec4<f32>>;
 
 struct MeshVarying {
     @builtin(position) position: vec4<f32>,
@@ -40,9 +42,12 @@ fn mesh_fragment(v: MeshVarying, @builtin(front_facing) front: bool) -> @locatio
     let light = light_radiance(mesh.light, v.model_position);
     let to_viewer = normalize(mesh.eye.xyz - v.model_position * mesh.eye.w);
     let ambient = mesh.ambient;
-    if mesh.pbr != 0u {
+    if (mesh.pbr & SHADE_PBR) != 0u {
         let m = Pbr(mesh.color.rgb, mesh.surface.x, mesh.surface.y);
-        let lit = light * pbr_radiance(m, n, to_light, to_viewer) + ambient * uniform_environment(m, dot(n, to_viewer));
+        var lit = light * pbr_radiance(m, n, to_light, to_viewer) + ambient * uniform_environment(m, dot(n, to_viewer));
+        if (mesh.pbr & SHADE_ENVIRONMENT) != 0u {
+            lit += environment_light(m, n, to_viewer);
+        }
         return vec4<f32>(lit, mesh.color.a);
     }
     let diffuse = max(dot(n, to_light), 0.0);

@@ -263,8 +263,11 @@ fn the_highlight_carries_the_light_of_real_fillets() {
 // Issue 29: the same validation under glTF's metallic-roughness shading, for a box and for a
 // cylinder whose rims are rounded, at roughness 0.2, 0.5 and 0.8.
 
+use chamfer_runtime::highlight::environment::Environment;
 use chamfer_runtime::highlight::ggx::{self, PbrMaterial};
+use chamfer_runtime::render::{EdgeRenderer, GpuAsset, MeshRenderer};
 use std::collections::HashSet;
+use std::sync::Arc;
 
 /// A cylinder of radius 1 along y from −1 to 1, both rims rounded with radius `r` (0: sharp),
 /// `AROUND` facets around.
@@ -452,9 +455,10 @@ fn render_supersampled(
     size: u32,
     mesh: &MeshStyle,
     factor: u32,
+    environment: Option<&Arc<Environment>>,
 ) -> Image {
     let camera = Camera::orbit([[-1.0; 3], [1.0; 3]], orbit, [size * factor; 2]);
-    let large = render(asset, &camera, Some(mesh), None, [0.0, 0.0, 0.0, 1.0]);
+    let large = render_lit(asset, &camera, mesh, None, environment);
     let mut rgba = Vec::with_capacity((size * size * 4) as usize);
     for y in 0..size {
         for x in 0..size {
@@ -474,6 +478,32 @@ fn render_supersampled(
         height: size,
         rgba,
     }
+}
+
+/// `asset` drawn on black with `mesh` and, if given, `edges`, both lit by `environment` too.
+fn render_lit(
+    asset: &chamfer_runtime::asset::Asset,
+    camera: &Camera,
+    mesh: &MeshStyle,
+    edges: Option<&EdgeStyle>,
+    environment: Option<&Arc<Environment>>,
+) -> Image {
+    let gpu = chamfer_tests::gpu();
+    let [width, height] = camera.viewport;
+    let target = gpu.target(width, height, 1).expect("target");
+    let pipelines = chamfer_tests::pipelines(target.formats());
+    let uploaded = GpuAsset::new(&gpu.device, asset).expect("upload");
+    let mut mesh_renderer = MeshRenderer::new(&pipelines, &uploaded).expect("mesh renderer");
+    mesh_renderer.set_environment(environment.cloned());
+    let mut edge_renderer = EdgeRenderer::new(&pipelines, &uploaded);
+    edge_renderer.set_environment(environment.cloned());
+    chamfer_tests::draw_frame(
+        &target,
+        camera,
+        [0.0, 0.0, 0.0, 1.0],
+        Some((&mut mesh_renderer, mesh)),
+        edges.map(|style| (&mut edge_renderer, style)),
+    )
 }
 
 /// How a highlighted picture compares with the truth over `pixels`: the relative error of the summed
@@ -594,7 +624,7 @@ fn the_pbr_highlight_carries_the_light_of_real_fillets() {
                         }),
                         ..EdgeStyle::default()
                     };
-                    let truth = render_supersampled(&rounded, &orbit, 360, &mesh_style, 4);
+                    let truth = render_supersampled(&rounded, &orbit, 360, &mesh_style, 4, None);
                     let ours = render(
                         &sharp,
                         &camera,
@@ -698,4 +728,118 @@ fn a_spot_light_lights_only_its_cone_and_falls_off_with_distance() {
     let near = brightness(Light::Point([0.0, 3.0, 0.0]), 5.0, centre);
     let far = brightness(Light::Point([0.0, 5.0, 0.0]), 20.0, centre);
     assert!(near > 60 && near.abs_diff(far) <= 2, "{near} vs {far}");
+}
+
+/// An environment of a dim sky over a dark ground and a bright round light (radius 12°) whose centre
+/// is `towards`: what a rounded edge should catch.
+fn sky_with_a_light(towards: Vec3) -> Environment {
+    let (width, height) = (256u32, 128u32);
+    let towards = towards.normalize();
+    let texels = (0..width * height)
+        .map(|i| {
+            let (x, y) = (i % width, i / width);
+            let d = chamfer_runtime::highlight::environment::direction(
+                (x as f32 + 0.5) / width as f32,
+                (y as f32 + 0.5) / height as f32,
+            );
+            let sky = if d.y > 0.0 { 0.05 + 0.1 * d.y } else { 0.02 };
+            let light = if d.dot(towards) > 12f32.to_radians().cos() {
+                0.9
+            } else {
+                0.0
+            };
+            [sky + light, sky + light * 0.95, sky + light * 0.85]
+        })
+        .collect();
+    Environment::new(width, height, texels).expect("environment")
+}
+
+#[test]
+fn the_pbr_highlight_catches_the_environment_like_real_fillets() {
+    let orbit = Orbit {
+        azimuth_deg: 30.0,
+        elevation_deg: 24.0,
+        distance: Some(6.0),
+        ..Orbit::default()
+    };
+    let camera = Camera::orbit([[-1.0; 3], [1.0; 3]], &orbit, [360, 360]);
+    let eye = camera.eye().truncate();
+    let pixels_per_unit = 1.0 / (camera.pixel_scale() * 6.0);
+    let edges = box_edges(eye);
+    // The environment's light where the middle measured edge mirrors the eye.
+    let edge = &edges[edges.len() / 2];
+    let middle = edge.points.iter().copied().sum::<Vec3>() / edge.points.len() as f32;
+    let n = (edge.normals[0] + edge.normals[1]).normalize();
+    let v = (eye - middle).normalize();
+    let environment = Arc::new(sky_with_a_light(2.0 * n.dot(v) * n - v));
+    let points: Vec<Vec3> = edges.iter().flat_map(|e| e.points.clone()).collect();
+    let k = eye.distance(points.iter().copied().sum::<Vec3>() / points.len() as f32);
+    let (mut worst_mean, mut worst_sum, mut plain_worst) = (0.0f64, 0.0f64, 0.0f64);
+    println!(
+        "| r (px) | roughness | metallic | summed light error | mean error / lit range | no highlight: mean error |"
+    );
+    println!("|---:|---:|---:|---:|---:|---:|");
+    for radius_px in [3.0f32, 6.0] {
+        let (rounded, sharp) = rounded_and_sharp(rounded_box, radius_px / pixels_per_unit);
+        let pixels = pixels_near(&camera, &edges, 1.5 * radius_px + 1.5);
+        for roughness in [0.2f32, 0.5, 0.8] {
+            for metallic in [0.0f32, 1.0] {
+                let material = PbrMaterial {
+                    base_color: [0.8; 3],
+                    metallic,
+                    roughness,
+                };
+                // No punctual light: the environment alone.
+                let mesh_style = MeshStyle {
+                    light_color: [0.0; 3],
+                    ambient: 0.0,
+                    pbr: Some(material),
+                    ..MeshStyle::default()
+                };
+                let strips = EdgeStyle {
+                    classes: EdgeClasses::NONE,
+                    highlight: Some(Highlight {
+                        light: Light::Directional([0.0, 1.0, 0.0]),
+                        color: [0.0; 3],
+                        shading: Shading::Pbr(material),
+                        ambient: 0.0,
+                        k: Some(k),
+                    }),
+                    ..EdgeStyle::default()
+                };
+                let truth =
+                    render_supersampled(&rounded, &orbit, 360, &mesh_style, 4, Some(&environment));
+                let ours = render_lit(
+                    &sharp,
+                    &camera,
+                    &mesh_style,
+                    Some(&strips),
+                    Some(&environment),
+                );
+                let plain = render_lit(&sharp, &camera, &mesh_style, None, Some(&environment));
+                let (summed, mean) = compare(&ours, &truth, &pixels);
+                let (_, plain_mean) = compare(&plain, &truth, &pixels);
+                worst_mean = worst_mean.max(mean);
+                worst_sum = worst_sum.max(summed);
+                plain_worst = plain_worst.max(plain_mean);
+                println!(
+                    "| {radius_px} | {roughness} | {metallic} | {:.2} % | {:.2} % | {:.2} % |",
+                    summed * 100.0,
+                    mean * 100.0,
+                    plain_mean * 100.0
+                );
+            }
+        }
+    }
+    println!(
+        "worst: summed {:.2} %, mean {:.2} % of the lit range (no highlight: {:.2} %)",
+        worst_sum * 100.0,
+        worst_mean * 100.0,
+        plain_worst * 100.0
+    );
+    assert!(worst_mean <= 0.01, "mean error {:.2} %", worst_mean * 100.0);
+    assert!(
+        plain_worst > 3.0 * worst_mean,
+        "the control must differ: {plain_worst}"
+    );
 }

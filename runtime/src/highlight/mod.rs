@@ -8,7 +8,9 @@
 //!   reference it is tested against.
 //! - [`ggx`]: the same integral under glTF's metallic-roughness shading (GGX, Smith, Schlick, Lambert;
 //!   issue 29), by a substitution that makes the GGX lobe smooth and a 16-point rule.
+//! - [`environment`]: image-based light, an equirectangular environment prefiltered for one roughness.
 
+pub mod environment;
 pub mod ggx;
 pub mod strip;
 pub mod table;

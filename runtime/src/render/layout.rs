@@ -8,6 +8,7 @@
 //!   every member's offset and each struct's size with these types.
 
 use crate::asset::EdgeFlags;
+use crate::highlight::environment;
 
 /// Threads per workgroup of every edge compute pass.
 pub(crate) const WORKGROUP: u32 = 256;
@@ -87,8 +88,19 @@ pub(crate) fn constants() -> Vec<(&'static str, u32)> {
         ("MAX_GATHER", MAX_GATHER),
         ("CLUSTER_EDGES", CLUSTER_EDGES),
         ("COS_POWER_SAMPLES", crate::highlight::table::SAMPLES as u32),
+        ("ENV_SPECULAR_WIDTH", environment::SPECULAR_SIZE[0]),
+        ("ENV_SPECULAR_HEIGHT", environment::SPECULAR_SIZE[1]),
+        ("ENV_IRRADIANCE_WIDTH", environment::IRRADIANCE_SIZE[0]),
+        ("ENV_IRRADIANCE_HEIGHT", environment::IRRADIANCE_SIZE[1]),
+        ("SHADE_PBR", SHADE_PBR),
+        ("SHADE_ENVIRONMENT", SHADE_ENVIRONMENT),
     ]
 }
+
+/// Bits of `Lighting::pbr` and `MeshFrame::pbr`: shade with glTF's metallic-roughness model.
+pub(crate) const SHADE_PBR: u32 = 1;
+/// ... and add the image-based light of the `environment` binding.
+pub(crate) const SHADE_ENVIRONMENT: u32 = 2;
 
 /// The WGSL declarations of [`constants`], put in front of every shader module.
 pub(crate) fn wgsl_constants() -> String {

@@ -5,13 +5,15 @@ use std::sync::Arc;
 use glam::Vec3;
 
 use super::bindings::{Binding, Bindings, Kind};
+use super::environment::EnvironmentBuffer;
 use super::gpu_asset::VERTEX_LAYOUTS;
-use super::layout::MeshFrame;
+use super::layout::{MeshFrame, SHADE_ENVIRONMENT, SHADE_PBR};
 use super::lighting::punctual;
 use super::modules::{Program, Shader};
 use super::pipelines::{PipelineSet, Raster};
 use super::techniques::Blocks;
 use super::{Camera, GpuAsset, Instance, Light, Pipelines, RenderError};
+use crate::highlight::environment::Environment;
 use crate::highlight::ggx::PbrMaterial;
 
 /// Where the mesh's light comes from.
@@ -62,13 +64,23 @@ impl Default for MeshStyle {
     }
 }
 
-const MESH: Bindings = Bindings::draw("mesh", &[Binding::new(0, "mesh", Kind::Block)]);
+const MESH: Bindings = Bindings::draw(
+    "mesh",
+    &[
+        Binding::new(0, "mesh", Kind::Block),
+        Binding::new(1, "environment", Kind::Read),
+    ],
+);
 
 /// The mesh pass's module.
 pub(crate) fn shader() -> Shader {
     Shader::new(
         "mesh.wgsl",
-        &[chamfer_shaders::BRDF, chamfer_shaders::MESH],
+        &[
+            chamfer_shaders::BRDF,
+            chamfer_shaders::ENVIRONMENT,
+            chamfer_shaders::MESH,
+        ],
         vec![Program::draw("mesh_vertex", "mesh_fragment", &MESH)],
     )
 }
@@ -109,6 +121,9 @@ pub struct MeshRenderer {
     asset: Option<GpuAsset>,
     /// Per instance of this frame: its block and asset.
     draws: Vec<(u32, GpuAsset)>,
+    /// The image-based light, when one is set.
+    environment: Option<Arc<Environment>>,
+    environment_maps: EnvironmentBuffer,
 }
 
 impl MeshRenderer {
@@ -128,7 +143,15 @@ impl MeshRenderer {
             group: None,
             asset: None,
             draws: Vec::new(),
+            environment: None,
+            environment_maps: EnvironmentBuffer::new(pipelines.device()),
         })
+    }
+
+    /// Lights physically based meshes ([`MeshStyle::pbr`]) by `environment` too (its directions in
+    /// model space, as [`Light`]'s), from the next `prepare` on; `None` removes it.
+    pub fn set_environment(&mut self, environment: Option<Arc<Environment>>) {
+        self.environment = environment;
     }
 
     /// Sets this frame's camera and style for the asset given to [`new`](Self::new) (nothing is
@@ -148,6 +171,10 @@ impl MeshRenderer {
         instances: &[Instance<'_>],
         style: &MeshStyle,
     ) {
+        let lit_by_environment = style.pbr.is_some_and(|material| {
+            self.environment_maps
+                .update(queue, self.environment.as_ref(), material.alpha())
+        });
         let frames: Vec<MeshFrame> = instances
             .iter()
             .map(|instance| {
@@ -155,7 +182,11 @@ impl MeshRenderer {
                     model_view: camera.model_view * instance.transform,
                     ..*camera
                 };
-                mesh_frame(&camera, style)
+                let mut frame = mesh_frame(&camera, style);
+                if lit_by_environment {
+                    frame.pbr |= SHADE_ENVIRONMENT;
+                }
+                frame
             })
             .collect();
         if self.blocks.write(&self.cache, queue, &frames) {
@@ -163,10 +194,15 @@ impl MeshRenderer {
         }
         if self.group.is_none() {
             let layout = self.cache.layout(&MESH);
-            let blocks = &self.blocks;
-            // A group of one block binding cannot fail to be made.
+            let (blocks, maps) = (&self.blocks, &self.environment_maps.buffer);
+            // A group of a block and a buffer cannot fail to be made.
             self.group = MESH
-                .group(self.cache.device(), &layout, |_| Ok(blocks.binding()))
+                .group(self.cache.device(), &layout, |binding| {
+                    Ok(match binding.index {
+                        0 => blocks.binding(),
+                        _ => maps.as_entire_binding(),
+                    })
+                })
                 .ok();
         }
         self.draws = instances
@@ -206,7 +242,10 @@ fn mesh_frame(camera: &Camera, style: &MeshStyle) -> MeshFrame {
         Some(material) => {
             let [r, g, b] = material.clamped_base().to_array();
             color = [r, g, b, color[3]];
-            (1, [material.clamped_metallic(), material.alpha(), 0.0, 0.0])
+            (
+                SHADE_PBR,
+                [material.clamped_metallic(), material.alpha(), 0.0, 0.0],
+            )
         }
         None => (0, [0.0; 4]),
     };

@@ -46,6 +46,7 @@
 
 mod bindings;
 mod derived;
+mod environment;
 mod error;
 mod gpu_asset;
 pub(crate) mod layout;

@@ -13,11 +13,14 @@
 //! contours are found with the camera in its own model space, so any affine transform works,
 //! non-uniform scales and mirrors included.
 
+use std::sync::Arc;
+
 use glam::{Mat4, Vec3};
 
 use super::layout::MAX_INSTANCES;
 use super::techniques::{self, Drawn, FrameContext, FrameOptions, Module, TechniqueFrame};
 use super::{Camera, EdgeColors, EdgeStyle, GpuAsset, Pipelines, RenderError, Technique};
+use crate::highlight::environment::Environment;
 
 /// One drawn copy of an asset: where it is and, optionally, its own colours.
 #[derive(Clone, Copy, Debug)]
@@ -127,6 +130,8 @@ pub struct SceneRenderer {
     technique: Option<Technique>,
     first_slots: u64,
     stats: SceneStats,
+    /// The highlight's image-based light, when one is set.
+    environment: Option<Arc<Environment>>,
 }
 
 impl SceneRenderer {
@@ -148,7 +153,16 @@ impl SceneRenderer {
             technique: None,
             first_slots: slots,
             stats: SceneStats::default(),
+            environment: None,
         }
+    }
+
+    /// Lights physically based chamfer strips ([`Shading::Pbr`](super::Shading::Pbr)) by
+    /// `environment` too (its directions in model space, as [`Light`](super::Light)'s), from the next
+    /// `prepare` on; `None` removes it. Give the mesh pass the same
+    /// ([`MeshRenderer::set_environment`](super::MeshRenderer::set_environment)).
+    pub fn set_environment(&mut self, environment: Option<Arc<Environment>>) {
+        self.environment = environment;
     }
 
     /// Sets this frame's camera, instances and style, and records the frame's compute work into
@@ -230,6 +244,7 @@ impl SceneRenderer {
             camera,
             style,
             instances: &drawn,
+            environment: self.environment.as_ref(),
         };
         frame.prepare(&cx, encoder)?;
         Ok(Prepared { frame: &**frame })
@@ -307,6 +322,11 @@ impl EdgeRenderer {
             scene: SceneRenderer::new(pipelines),
             asset: asset.clone(),
         }
+    }
+
+    /// See [`SceneRenderer::set_environment`].
+    pub fn set_environment(&mut self, environment: Option<Arc<Environment>>) {
+        self.scene.set_environment(environment);
     }
 
     /// Sets this frame's camera and style and records the frame's compute work into `encoder`

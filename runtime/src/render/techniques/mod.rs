@@ -163,6 +163,8 @@ pub(crate) struct FrameContext<'a> {
     pub(crate) style: &'a EdgeStyle,
     /// The instances in view, in the order their blocks are numbered.
     pub(crate) instances: &'a [Drawn<'a>],
+    /// The highlight's image-based light.
+    pub(crate) environment: Option<&'a std::sync::Arc<crate::highlight::environment::Environment>>,
 }
 
 /// Per-frame GPU state of one technique drawing a frame's instances.

@@ -36,6 +36,8 @@ pub(crate) const SURVIVORS: Binding = Binding::new(27, "survivors", ReadWrite);
 pub(crate) const CULL_DISPATCH: Binding = Binding::new(28, "cull_dispatch", ReadWrite);
 /// The place pass writes whether each instance is in view.
 const PLACED_FRAMES: Binding = Binding::new(29, "instance_frames", ReadWrite);
+/// The highlight's image-based light: the environment's prefiltered maps.
+pub(crate) const ENVIRONMENT: Binding = Binding::new(30, "environment", Read);
 
 /// What the draw passes read of the lists the compute passes wrote.
 const fn read_only(binding: Binding) -> Binding {
@@ -113,6 +115,7 @@ pub(crate) const DRAW: Bindings = Bindings::draw(
         read_only(CHAMFERS),
         COS_POWER,
         LIGHTING,
+        ENVIRONMENT,
     ],
 );
 pub(crate) const SEGMENTS: Bindings =

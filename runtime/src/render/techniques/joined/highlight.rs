@@ -2,6 +2,8 @@
 //! exponent, rewritten only when the exponent changes (Blinn shading), and the light and material.
 
 use super::super::FrameContext;
+use crate::render::environment::EnvironmentBuffer;
+use crate::render::layout::{SHADE_ENVIRONMENT, SHADE_PBR};
 use crate::render::lighting::{Shading, punctual};
 use crate::render::{Pipelines as Cache, layout};
 
@@ -10,6 +12,8 @@ use crate::render::{Pipelines as Cache, layout};
 pub(super) struct HighlightUniforms {
     pub(super) cos_power: wgpu::Buffer,
     pub(super) lighting: wgpu::Buffer,
+    /// The environment's maps for the material's roughness.
+    pub(super) environment: EnvironmentBuffer,
     /// The exponent the cos-power row holds now.
     row_exponent: Option<f32>,
 }
@@ -36,6 +40,7 @@ impl HighlightUniforms {
                 std::mem::size_of::<layout::Lighting>(),
                 wgpu::BufferUsages::UNIFORM,
             ),
+            environment: EnvironmentBuffer::new(device),
             row_exponent: None,
         }
     }
@@ -52,7 +57,7 @@ impl HighlightUniforms {
             })
         });
         let ambient = highlight.ambient.clamp(0.0, 1.0);
-        let (material, base, pbr) = match highlight.shading {
+        let (material, base, shade) = match highlight.shading {
             Shading::Blinn(material) => {
                 let exponent = material.shininess.clamp(1.0, 128.0) + 1.0;
                 if self.row_exponent != Some(exponent) {
@@ -62,20 +67,29 @@ impl HighlightUniforms {
                     self.row_exponent = Some(exponent);
                 }
                 let material = [material.diffuse, material.specular, exponent - 1.0, ambient];
-                (material, [0.0; 3], false)
+                (material, [0.0; 3], 0)
             }
             Shading::Pbr(material) => {
                 let metallic = material.clamped_metallic();
                 let base = material.clamped_base().to_array();
-                ([metallic, material.alpha(), 0.0, ambient], base, true)
+                let lit_by_environment =
+                    self.environment
+                        .update(cx.queue, cx.environment, material.alpha());
+                let shade = SHADE_PBR
+                    | if lit_by_environment {
+                        SHADE_ENVIRONMENT
+                    } else {
+                        0
+                    };
+                ([metallic, material.alpha(), 0.0, ambient], base, shade)
             }
         };
         let [r, g, b] = base;
         let lighting = layout::Lighting {
-            light: punctual(&highlight.light, highlight.color, pbr),
+            light: punctual(&highlight.light, highlight.color, shade != 0),
             material,
             base: [r, g, b, k],
-            pbr: pbr.into(),
+            pbr: shade,
             _pad0: 0,
             _pad1: 0,
             _pad2: 0,
@@ -86,6 +100,6 @@ impl HighlightUniforms {
     }
 
     pub(super) fn gpu_bytes(&self) -> u64 {
-        self.cos_power.size() + self.lighting.size()
+        self.cos_power.size() + self.lighting.size() + self.environment.buffer.size()
     }
 }

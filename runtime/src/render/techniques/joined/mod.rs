@@ -124,7 +124,7 @@ struct Resources<'r> {
 impl<'r> Resources<'r> {
     fn get(&self, binding: Binding) -> Result<wgpu::BindingResource<'r>, RenderError> {
         let (lists, instances) = (self.lists, self.instances);
-        let buffers: [(Binding, &wgpu::Buffer); 14] = [
+        let buffers: [(Binding, &wgpu::Buffer); 15] = [
             (DRAWN, &lists.drawn),
             (JOINS, &lists.joins),
             (OUT, &lists.out),
@@ -139,6 +139,7 @@ impl<'r> Resources<'r> {
             (CULL_DISPATCH, &instances.cull_dispatch),
             (COS_POWER, &self.highlight.cos_power),
             (LIGHTING, &self.highlight.lighting),
+            (ENVIRONMENT, &self.highlight.environment.buffer),
         ];
         if binding.index == crate::render::bindings::FRAME.index {
             return Ok(self.blocks.binding());

@@ -87,6 +87,7 @@ const SHADERS: [(&str, &[&str], &[Program]); 8] = [
             wgsl::FRAME,
             wgsl::BRDF,
             wgsl::HIGHLIGHT,
+            wgsl::ENVIRONMENT,
             wgsl::DRAW,
             wgsl::EDGES,
         ],
