@@ -32,6 +32,7 @@ pub mod compact;
 mod corners;
 pub mod degenerate;
 pub mod draw;
+pub mod environment;
 mod error;
 pub mod input;
 pub mod inspect;

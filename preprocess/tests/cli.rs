@@ -519,6 +519,37 @@ fn render_shades_chamfers_with_pbr_under_a_spot() {
     };
     let (gold, _) = lit("-2,-3,-2");
     assert!(gold > 200, "{gold} gold pixels");
+    // The same cube lit by an environment alone (no light): lit, where without it it is black.
+    let sky = fixture("environments/sky.hdr");
+    let run = chamfer(&[
+        "render",
+        path_str(&cube),
+        "-o",
+        path_str(&png),
+        "--width",
+        "96",
+        "--height",
+        "64",
+        "--style",
+        "chamfer",
+        "--radius-rel",
+        "0.02",
+        "--shading",
+        "pbr",
+        "--ambient",
+        "0",
+        "--light-intensity",
+        "0",
+        "--env",
+        path_str(&sky),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let pixels = png_pixels(&std::fs::read(&png).expect("png"));
+    let lit_by_sky = pixels
+        .iter()
+        .filter(|p| p[3] == 255 && p[0].max(p[1]).max(p[2]) > 40 && p[0] < 250)
+        .count();
+    assert!(lit_by_sky > 200, "{lit_by_sky} pixels lit by the sky");
     let (gold, black) = lit("2,3,2");
     assert!(
         gold == 0 && black > 200,
@@ -582,7 +613,27 @@ fn render_refuses_bad_input_and_options_and_keeps_the_old_picture() {
         args.extend(extra);
         args
     };
-    let cases: [(Vec<&str>, &str); 13] = [
+    let truncated_hdr = fixture("broken/truncated.hdr");
+    let sky = fixture("environments/sky.hdr");
+    let cases: [(Vec<&str>, &str); 15] = [
+        (
+            {
+                let mut args = chamfer_style(&[]);
+                args.extend(["--env", path_str(&truncated_hdr)]);
+                args
+            },
+            "truncated.hdr",
+        ),
+        (
+            vec![
+                path_str(&cube),
+                "--style",
+                "chamfer",
+                "--env",
+                path_str(&sky),
+            ],
+            "--env",
+        ),
         (chamfer_style(&["--roughness", "1.5"]), "--roughness"),
         (chamfer_style(&["--metallic", "NaN"]), "--metallic"),
         (chamfer_style(&["--base-color", "0.5,0.5"]), "--base-color"),

@@ -1370,3 +1370,29 @@ fn peak_of(command: &mut std::process::Command) -> (u64, std::process::ExitStatu
         std::process::ExitStatus::from_raw(status),
     )
 }
+
+#[test]
+fn fuzz_environment() {
+    let seeds = seeds(&["environments/sky.hdr", "broken/truncated.hdr"]);
+    run("environment", 21, seeds, mutate_bytes, decode_environment);
+}
+
+/// A Radiance HDR environment decodes to finite, non-negative texels or is refused by name.
+/// True if it decoded.
+fn decode_environment(path: &Path, bytes: &[u8]) -> bool {
+    match chamfer_preprocess::environment::environment_from_bytes(path, bytes) {
+        Ok(environment) => {
+            let [width, height] = environment.size();
+            assert!(width >= 1 && height >= 1);
+            assert!(
+                u64::from(width) * u64::from(height) <= chamfer_preprocess::environment::MAX_TEXELS
+            );
+            true
+        }
+        Err(e) => {
+            let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
+            assert!(name.is_some_and(|n| e.to_string().contains(&n)), "{e}");
+            false
+        }
+    }
+}

@@ -1373,3 +1373,105 @@ fn threemf_packages_without_a_model_say_what_is_missing() {
         loaded.warnings
     );
 }
+
+// --- Environments for image-based light (issue 29): Radiance .hdr --------------------------------
+
+/// The error of reading `path` as an environment, checked to be one line naming the file, within 10 s.
+fn environment_refused(path: &Path) -> String {
+    let owned = path.to_owned();
+    let result = within(10, move || {
+        chamfer_preprocess::environment::read_environment(
+            &owned,
+            &chamfer_preprocess::Limits::DEFAULT,
+        )
+    });
+    let text = result
+        .err()
+        .unwrap_or_else(|| panic!("{} was accepted", path.display()))
+        .to_string();
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
+    assert!(name.is_some_and(|n| text.contains(&n)), "{text}");
+    assert!(!text.contains('\n'), "{text}");
+    text
+}
+
+/// A Radiance header declaring `width` × `height`, then `data`.
+fn hdr(width: u64, height: u64, data: &[u8]) -> Vec<u8> {
+    let mut bytes =
+        format!("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y {height} +X {width}\n").into_bytes();
+    bytes.extend_from_slice(data);
+    bytes
+}
+
+#[test]
+fn the_sky_environment_loads() {
+    let path = chamfer_tests_fixture("environments/sky.hdr");
+    let sky = chamfer_preprocess::environment::read_environment(
+        &path,
+        &chamfer_preprocess::Limits::DEFAULT,
+    )
+    .expect("sky.hdr");
+    assert_eq!(sky.size(), [64, 32]);
+}
+
+#[test]
+fn an_empty_environment_is_refused() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    environment_refused(&write(dir.path(), "empty.hdr", b""));
+}
+
+#[test]
+fn an_environment_that_is_not_radiance_hdr_is_refused() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    environment_refused(&write(
+        dir.path(),
+        "photo.hdr",
+        b"\x89PNG\r\n\x1a\n not an hdr",
+    ));
+}
+
+#[test]
+fn a_truncated_environment_is_refused() {
+    environment_refused(&chamfer_tests_fixture("broken/truncated.hdr"));
+}
+
+#[test]
+fn an_environment_declaring_a_huge_size_is_refused_before_decoding() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    // 2^31 × 2^31 texels declared in a 60-byte file: refused from the header, no allocation.
+    let text = environment_refused(&write(
+        dir.path(),
+        "huge.hdr",
+        hdr(1 << 31, 1 << 31, &[128, 128, 128, 128]),
+    ));
+    assert!(
+        text.contains("declares") || text.contains("dimension"),
+        "{text}"
+    );
+    let text = environment_refused(&write(
+        dir.path(),
+        "wide.hdr",
+        hdr(100_000, 100_000, &[128, 128, 128, 128]),
+    ));
+    assert!(text.contains("declares"), "{text}");
+}
+
+#[test]
+fn an_environment_of_zero_size_is_refused() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    environment_refused(&write(dir.path(), "zero.hdr", hdr(0, 4, &[])));
+}
+
+#[test]
+fn an_environment_that_is_a_fifo_is_refused() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("pipe.hdr");
+    mkfifo(&path);
+    environment_refused(&path);
+}
+
+fn chamfer_tests_fixture(relative: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../fixtures")
+        .join(relative)
+}

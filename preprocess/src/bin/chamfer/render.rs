@@ -1,8 +1,11 @@
 //! `chamfer render`: draw an asset, or a mesh baked on the fly, to a PNG without a window.
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use anyhow::{Context, bail};
+use chamfer_preprocess::Limits;
+use chamfer_preprocess::environment::read_environment;
 use chamfer_preprocess::write::{ensure_not_an_input, ensure_replaceable, write_atomically};
 use chamfer_runtime::asset::Asset;
 use chamfer_runtime::highlight::ggx::PbrMaterial;
@@ -197,6 +200,10 @@ pub struct ViewArgs {
     /// white face seen head-on to 1; point and spot lights fall off as 1/d² under PBR).
     #[arg(long)]
     light_intensity: Option<f32>,
+    /// `--shading pbr`: light strips and faces by this environment too (an equirectangular Radiance
+    /// .hdr, +Y up, its middle facing -Z, in model space), prefiltered for --roughness.
+    #[arg(long, value_name = "FILE.hdr")]
+    env: Option<PathBuf>,
     /// `--style chamfer` with --light-pos: make the light a spot shining this way.
     #[arg(
         long,
@@ -317,6 +324,9 @@ impl ViewArgs {
         }
         if !(self.roughness.is_finite() && (0.0..=1.0).contains(&self.roughness)) {
             bail!("--roughness must be 0 to 1, not {}", self.roughness);
+        }
+        if self.env.is_some() && (self.style != Style::Chamfer || self.shading != Shading::Pbr) {
+            bail!("--env needs --style chamfer --shading pbr");
         }
         if !(self.metallic.is_finite() && (0.0..=1.0).contains(&self.metallic)) {
             bail!("--metallic must be 0 to 1, not {}", self.metallic);
@@ -462,7 +472,9 @@ impl ViewArgs {
 
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     args.view.check()?;
-    ensure_not_an_input(&args.output, &[&args.input])?;
+    let mut inputs = vec![args.input.as_path()];
+    inputs.extend(args.view.env.as_deref());
+    ensure_not_an_input(&args.output, &inputs)?;
     ensure_replaceable(&args.output)?;
     let options = args.options.to_options()?;
     let name = args.input.to_string_lossy().to_ascii_lowercase();
@@ -516,6 +528,10 @@ pub fn render_scene(
     let target = gpu.target(view.camera.width, view.camera.height, view.samples)?;
     let pipelines = Pipelines::new(&gpu.device, &target.formats())?;
     let technique = view.technique()?;
+    let environment = match &view.env {
+        Some(path) => Some(Arc::new(read_environment(path, &Limits::DEFAULT)?)),
+        None => None,
+    };
     let uploaded = assets
         .iter()
         .map(|asset| GpuAsset::for_techniques(&gpu.device, asset, &[technique]))
@@ -528,8 +544,10 @@ pub fn render_scene(
         .camera
         .camera(Instance::scene_bounds(&drawn).unwrap_or([[0.0; 3], [1.0; 3]]));
     let mut mesh = MeshRenderer::for_scenes(&pipelines)?;
+    mesh.set_environment(environment.clone());
     mesh.prepare_scene(&gpu.queue, &camera, &drawn, &view.mesh_style());
     let mut edges = SceneRenderer::new(&pipelines);
+    edges.set_environment(environment);
     let mut encoder = gpu.encoder();
     let prepared = match view.style {
         Style::Mesh => None,
