@@ -7,10 +7,11 @@
 //! ```
 //! With no mesh it benches the cube with wide strips (radius 5 % of its diagonal: tens of pixels
 //! across, where the per-pixel integral dominates), the fandisk and the Stanford bunny (0.4 %: strips
-//! about a pixel wide). Every crease gets the radius. Per mesh, four configurations run round-robin
+//! about a pixel wide). Every crease gets the radius. Per mesh, six configurations run round-robin
 //! after two warm-up rounds: the mesh alone (Blinn faces), the mesh with Blinn strips, the mesh alone
-//! with PBR faces, the mesh with PBR strips; each frame is timed from encoding to the GPU finishing,
-//! and the table shows medians.
+//! with PBR faces, the mesh with PBR strips, and the last two again lit by `fixtures/environments/sky.hdr`
+//! too (image-based light); each frame is timed from encoding to the GPU finishing, and the table
+//! shows medians.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -56,9 +57,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         gpu.info.name, gpu.info.backend, size[0], size[1]
     );
     println!(
-        "| mesh | radius (of diagonal) | chamfer edges | Blinn: mesh ms | Blinn: + strips ms | Blinn strips ms | PBR: mesh ms | PBR: + strips ms | PBR strips ms | PBR strips / Blinn strips | PBR frame / Blinn frame |"
+        "| mesh | radius (of diagonal) | chamfer edges | Blinn: mesh ms | Blinn: + strips ms | Blinn strips ms | PBR: mesh ms | PBR: + strips ms | PBR strips ms | PBR strips / Blinn strips | PBR frame / Blinn frame | PBR + environment: mesh ms | + strips ms | strips ms | env strips / Blinn strips |"
     );
-    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    let sky = chamfer_preprocess::environment::read_environment(
+        &root.join("environments/sky.hdr"),
+        &chamfer_preprocess::Limits::DEFAULT,
+    )?;
+    let start = Instant::now();
+    let _ = sky.prefilter(PbrMaterial::default().alpha());
+    let prefilter_ms = start.elapsed().as_secs_f64() * 1e3;
+    let sky = std::sync::Arc::new(sky);
     for (path, radius) in &meshes {
         let options = BakeOptions::DEFAULT.with_radius(Radius::Relative(*radius));
         let asset = chamfer_preprocess::bake_file(path, &options)?.asset;
@@ -98,9 +107,20 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         };
         let style_blinn = strips(Shading::Blinn(blinn), [1.0; 3]);
         let style_pbr = strips(Shading::Pbr(pbr), [std::f32::consts::PI; 3]);
-        let mut mesh = MeshRenderer::new(&pipelines, &uploaded)?;
-        let mut edges = EdgeRenderer::new(&pipelines, &uploaded);
-        let mut frame = |mesh_style: &MeshStyle, edge_style: Option<&EdgeStyle>| {
+        let mut lit = [
+            (
+                MeshRenderer::new(&pipelines, &uploaded)?,
+                EdgeRenderer::new(&pipelines, &uploaded),
+            ),
+            (
+                MeshRenderer::new(&pipelines, &uploaded)?,
+                EdgeRenderer::new(&pipelines, &uploaded),
+            ),
+        ];
+        lit[1].0.set_environment(Some(sky.clone()));
+        lit[1].1.set_environment(Some(sky.clone()));
+        let mut frame = |with_sky: bool, mesh_style: &MeshStyle, edge_style: Option<&EdgeStyle>| {
+            let (mesh, edges) = &mut lit[usize::from(with_sky)];
             let start = Instant::now();
             let mut encoder = gpu.encoder();
             mesh.prepare(&gpu.queue, &camera, mesh_style);
@@ -118,13 +138,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             gpu.submit(encoder)?;
             Ok::<f64, Box<dyn std::error::Error>>(start.elapsed().as_secs_f64() * 1e3)
         };
-        let mut times = [(); 4].map(|_| Vec::new());
+        let mut times = [(); 6].map(|_| Vec::new());
         for round in 0..frames + 2 {
             let row = [
-                frame(&mesh_blinn, None)?,
-                frame(&mesh_blinn, Some(&style_blinn))?,
-                frame(&mesh_pbr, None)?,
-                frame(&mesh_pbr, Some(&style_pbr))?,
+                frame(false, &mesh_blinn, None)?,
+                frame(false, &mesh_blinn, Some(&style_blinn))?,
+                frame(false, &mesh_pbr, None)?,
+                frame(false, &mesh_pbr, Some(&style_pbr))?,
+                frame(true, &mesh_pbr, None)?,
+                frame(true, &mesh_pbr, Some(&style_pbr))?,
             ];
             if round >= 2 {
                 for (list, t) in times.iter_mut().zip(row) {
@@ -132,12 +154,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 }
             }
         }
-        let [bm, bs, pm, ps] = times.map(|mut v| {
+        let [bm, bs, pm, ps, em, es] = times.map(|mut v| {
             v.sort_by(f64::total_cmp);
             v[v.len() / 2]
         });
         println!(
-            "| {} | {:.1} % | {} | {bm:.2} | {bs:.2} | {:.2} | {pm:.2} | {ps:.2} | {:.2} | {:.2}× | {:.2}× |",
+            "| {} | {:.1} % | {} | {bm:.2} | {bs:.2} | {:.2} | {pm:.2} | {ps:.2} | {:.2} | {:.2}× | {:.2}× | {em:.2} | {es:.2} | {:.2} | {:.2}× |",
             path.file_name()
                 .map(|n| n.to_string_lossy())
                 .unwrap_or_default(),
@@ -147,7 +169,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             ps - pm,
             (ps - pm) / (bs - bm).max(1e-3),
             ps / bs,
+            es - em,
+            (es - em) / (bs - bm).max(1e-3),
         );
     }
+    println!(
+        "\nprefiltering environments/sky.hdr for one roughness (CPU, once per environment and roughness): {prefilter_ms:.1} ms"
+    );
     Ok(())
 }
