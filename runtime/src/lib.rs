@@ -14,7 +14,6 @@
 
 pub mod asset;
 pub mod camera;
-#[cfg(feature = "render")]
 pub mod highlight;
 #[cfg(feature = "render")]
 pub mod render;

@@ -201,17 +201,6 @@ impl Environment {
     }
 }
 
-impl Prefiltered {
-    /// Both maps in one buffer, specular first (the shaders' `environment` binding).
-    pub(crate) fn texels(&self) -> Vec<[f32; 4]> {
-        self.specular
-            .iter()
-            .chain(&self.irradiance)
-            .copied()
-            .collect()
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -48,7 +48,14 @@ impl EnvironmentBuffer {
             .is_some_and(|(held, a)| Arc::ptr_eq(held, environment) && *a == alpha.to_bits());
         if !current {
             let maps = environment.prefilter(alpha);
-            queue.write_buffer(&self.buffer, 0, bytemuck::cast_slice(&maps.texels()));
+            // Both maps in one buffer, specular first, as `environment` holds them.
+            let texels: Vec<[f32; 4]> = maps
+                .specular
+                .iter()
+                .chain(&maps.irradiance)
+                .copied()
+                .collect();
+            queue.write_buffer(&self.buffer, 0, bytemuck::cast_slice(&texels));
             self.holds = Some((environment.clone(), alpha.to_bits()));
         }
         true
