@@ -408,6 +408,34 @@ fn rim_edges(eye: Vec3) -> Vec<MeasuredEdge> {
         .collect()
 }
 
+/// The view of the PBR validations: the box or cylinder from 6 units, 360 × 360.
+fn validation_view() -> (Orbit, Camera) {
+    let orbit = Orbit {
+        azimuth_deg: 30.0,
+        elevation_deg: 24.0,
+        distance: Some(6.0),
+        ..Orbit::default()
+    };
+    let camera = Camera::orbit([[-1.0; 3], [1.0; 3]], &orbit, [360, 360]);
+    (orbit, camera)
+}
+
+/// Towards where the middle of the middle measured edge's strip mirrors the eye.
+fn mirror_direction(edges: &[MeasuredEdge], eye: Vec3) -> Vec3 {
+    let edge = &edges[edges.len() / 2];
+    let middle = edge.points.iter().copied().sum::<Vec3>() / edge.points.len() as f32;
+    let n = (edge.normals[0] + edge.normals[1]).normalize();
+    let v = (eye - middle).normalize();
+    2.0 * n.dot(v) * n - v
+}
+
+/// K of the blend weight: the distance at which a strip blends by exactly its coverage, that of the
+/// measured edges.
+fn blend_distance(edges: &[MeasuredEdge], eye: Vec3) -> f32 {
+    let points: Vec<Vec3> = edges.iter().flat_map(|e| e.points.clone()).collect();
+    eye.distance(points.iter().copied().sum::<Vec3>() / points.len() as f32)
+}
+
 /// The pixels within `reach` pixels across the projected polylines.
 fn pixels_near(camera: &Camera, edges: &[MeasuredEdge], reach: f32) -> HashSet<(u32, u32)> {
     let mut pixels = HashSet::new();
@@ -545,24 +573,9 @@ fn blinn_stand_in(material: &PbrMaterial) -> Material {
 
 #[test]
 fn the_pbr_highlight_carries_the_light_of_real_fillets() {
-    let orbit = Orbit {
-        azimuth_deg: 30.0,
-        elevation_deg: 24.0,
-        distance: Some(6.0),
-        ..Orbit::default()
-    };
-    let camera = Camera::orbit([[-1.0; 3], [1.0; 3]], &orbit, [360, 360]);
+    let (orbit, camera) = validation_view();
     let eye = camera.eye().truncate();
     let pixels_per_unit = 1.0 / (camera.pixel_scale() * 6.0);
-    // Two lights, and a third placed so its mirror reflection lands on the middle of the middle measured
-    // edge's strip (where the specular lobe decides what is seen).
-    let mirrored = |edges: &[MeasuredEdge]| {
-        let edge = &edges[edges.len() / 2];
-        let middle = edge.points.iter().copied().sum::<Vec3>() / edge.points.len() as f32;
-        let n = (edge.normals[0] + edge.normals[1]).normalize();
-        let v = (eye - middle).normalize();
-        2.0 * n.dot(v) * n - v
-    };
     type Shape = (&'static str, fn(f32) -> Mesh, fn(Vec3) -> Vec<MeasuredEdge>);
     let shapes: [Shape; 2] = [
         ("box", rounded_box, box_edges),
@@ -582,15 +595,14 @@ fn the_pbr_highlight_carries_the_light_of_real_fillets() {
         );
         let edges = measured(eye);
         assert!(!edges.is_empty(), "{name}: an edge faces the camera");
+        // Two lights, and a third whose mirror reflection lands on a measured strip (where the
+        // specular lobe decides what is seen).
         let lights = [
             Vec3::new(0.3, 0.9, 0.5),
             Vec3::new(0.9, 0.35, 0.6),
-            mirrored(&edges),
+            mirror_direction(&edges, eye),
         ];
-        // K of the blend weight: the distance at which a strip blends by exactly its coverage, that of
-        // the measured edges.
-        let points: Vec<Vec3> = edges.iter().flat_map(|e| e.points.clone()).collect();
-        let k = eye.distance(points.iter().copied().sum::<Vec3>() / points.len() as f32);
+        let k = blend_distance(&edges, eye);
         for radius_px in [3.0f32, 6.0] {
             let r = radius_px / pixels_per_unit;
             let (rounded, sharp) = rounded_and_sharp(shape, r);
@@ -756,24 +768,13 @@ fn sky_with_a_light(towards: Vec3) -> Environment {
 
 #[test]
 fn the_pbr_highlight_catches_the_environment_like_real_fillets() {
-    let orbit = Orbit {
-        azimuth_deg: 30.0,
-        elevation_deg: 24.0,
-        distance: Some(6.0),
-        ..Orbit::default()
-    };
-    let camera = Camera::orbit([[-1.0; 3], [1.0; 3]], &orbit, [360, 360]);
+    let (orbit, camera) = validation_view();
     let eye = camera.eye().truncate();
     let pixels_per_unit = 1.0 / (camera.pixel_scale() * 6.0);
     let edges = box_edges(eye);
-    // The environment's light where the middle measured edge mirrors the eye.
-    let edge = &edges[edges.len() / 2];
-    let middle = edge.points.iter().copied().sum::<Vec3>() / edge.points.len() as f32;
-    let n = (edge.normals[0] + edge.normals[1]).normalize();
-    let v = (eye - middle).normalize();
-    let environment = Arc::new(sky_with_a_light(2.0 * n.dot(v) * n - v));
-    let points: Vec<Vec3> = edges.iter().flat_map(|e| e.points.clone()).collect();
-    let k = eye.distance(points.iter().copied().sum::<Vec3>() / points.len() as f32);
+    // The environment's light where a measured strip mirrors the eye.
+    let environment = Arc::new(sky_with_a_light(mirror_direction(&edges, eye)));
+    let k = blend_distance(&edges, eye);
     let (mut worst_mean, mut worst_sum, mut plain_worst) = (0.0f64, 0.0f64, 0.0f64);
     println!(
         "| r (px) | roughness | metallic | summed light error | mean error / lit range | no highlight: mean error |"
