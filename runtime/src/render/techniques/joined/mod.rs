@@ -287,22 +287,7 @@ impl Frame {
         Vec<PlannedBatch>,
     ) {
         // Instances of one asset next to each other, assets in the order they first appear.
-        let mut keys: Vec<&Arc<()>> = Vec::new();
-        let asset_of: Vec<usize> = cx
-            .instances
-            .iter()
-            .map(
-                |d| match keys.iter().position(|k| Arc::ptr_eq(k, &d.asset.key)) {
-                    Some(k) => k,
-                    None => {
-                        keys.push(&d.asset.key);
-                        keys.len() - 1
-                    }
-                },
-            )
-            .collect();
-        let mut order: Vec<usize> = (0..cx.instances.len()).collect();
-        order.sort_by_key(|&i| (asset_of[i], i));
+        let order = super::by_asset(cx.instances);
         let reach = |u: &layout::Frame| u.width.max(u.min_width) + 2.0;
         let mut frames = Vec::with_capacity(order.len());
         for (i, &d) in order.iter().enumerate() {
