@@ -31,7 +31,7 @@ fn first_slot() -> u32 {
 
 // Where (instance, edge) starts looking in the slot table.
 fn table_home(instance: u32, e: u32) -> u32 {
-    var h = e * 0x9e3779b1u ^ (instance * 0x85ebca77u + 0x27d4eb2fu);
+    var h = (e * 0x9e3779b1u) ^ (instance * 0x85ebca77u + 0x27d4eb2fu);
     h = (h ^ (h >> 15u)) * 0x2c1b3c6du;
     return (h ^ (h >> 12u)) & frame.table_mask;
 }

@@ -3,16 +3,18 @@
 //! Each step's time is recorded for `chamfer bake --timings` (the edge order counts as `assemble`).
 
 use std::path::Path;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use chamfer_runtime::asset::{Asset, Header, Indices, MAX_RING, Stats, clusters, pack_attributes};
 use glam::Vec3;
 use rayon::prelude::*;
+// std's clock panics in a browser; this one is std's everywhere else.
+use web_time::Instant;
 
 use crate::corners::VertexCorners;
 use crate::mesh::{Mark, Mesh, MeshError};
 use crate::{
-    BakeOptions, Error, adjacency, caps, classify, degenerate, intersections, load, mesh_order,
+    BakeOptions, Companions, Error, adjacency, caps, classify, degenerate, intersections, load, mesh_order,
     normals, radii, stitch, weld,
 };
 
@@ -93,6 +95,23 @@ pub fn bake_bytes(path: &Path, bytes: &[u8], options: &BakeOptions) -> Result<Ba
     options.validate()?;
     let start = Instant::now();
     let loaded = load::load_bytes(path, bytes, &options.limits)?;
+    bake_loaded(path, loaded, start.elapsed(), options)
+}
+
+/// Bakes a mesh file given in memory with the files it refers to (a web page's dropped files):
+/// `path` names it (its extension picks the format; a name ending in `.gz` is inflated, within
+/// `options.limits`), and its references (an OBJ's `.mtl`, a `.gltf`'s buffers) are looked up in
+/// `companions`. The same file and options bake to the same asset as [`bake_file`].
+pub fn bake_with_companions(
+    path: &Path,
+    bytes: &[u8],
+    companions: Companions<'_>,
+    options: &BakeOptions,
+) -> Result<Baked, Error> {
+    options.validate()?;
+    let start = Instant::now();
+    let bytes = load::read_bytes(path, bytes, &options.limits)?;
+    let loaded = load::load_bytes_with(path, &bytes, companions, &options.limits)?;
     bake_loaded(path, loaded, start.elapsed(), options)
 }
 

@@ -50,7 +50,10 @@ pub mod stitch;
 pub mod weld;
 pub mod write;
 
-pub use bake::{Baked, STITCH_BOUNDARY_BEFORE, Timings, bake, bake_bytes, bake_file};
+pub use bake::{
+    Baked, STITCH_BOUNDARY_BEFORE, Timings, bake, bake_bytes, bake_file, bake_with_companions,
+};
+pub use load::Companions;
 pub use error::Error;
 pub use limits::Limits;
 pub use options::{BakeOptions, OptionsError, Radius, Stitch, WeldTolerance};

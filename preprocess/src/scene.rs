@@ -9,7 +9,7 @@ use chamfer_runtime::asset::Asset;
 use chamfer_runtime::scene::{MAX_SCENE_BYTES, SceneFile, SceneInstance};
 use glam::Mat4;
 
-use crate::load::files::{RefusedReference, read_reference};
+use crate::load::files::{Companions, RefusedReference, read_reference};
 use crate::load::{self, Format};
 use crate::write::write_atomically;
 use crate::{BakeOptions, Baked, Error, Limits, bake};
@@ -46,7 +46,7 @@ pub fn bake_scene(path: &Path, stem: &str, options: &BakeOptions) -> Result<Bake
     }
     let bytes = load::read(path, &options.limits)?;
     let mut warnings = Vec::new();
-    let parsed = load::parse_scene(path, &bytes, &options.limits, &mut warnings)
+    let parsed = load::parse_scene(path, &bytes, Companions::Folder, &options.limits, &mut warnings)
         .ok_or_else(unsupported)??;
     if parsed.meshes.is_empty() {
         return Err(Error::Unsupported {
@@ -161,7 +161,12 @@ pub fn read_scene(path: &Path, limits: &Limits) -> Result<LoadedScene, Error> {
                 reference: format!("asset {name:?}"),
                 problem,
             };
-            let bytes = read_reference(path, Path::new(name), limits.max_input_bytes).map_err(
+            let bytes = read_reference(
+                path,
+                Path::new(name),
+                limits.max_input_bytes,
+                Companions::Folder,
+            ).map_err(
                 |e| match e {
                     RefusedReference::Missing => refused("does not exist".into()),
                     RefusedReference::Refused(problem) => refused(problem),

@@ -41,6 +41,7 @@ use std::path::Path;
 use chamfer_runtime::asset::{Asset, EdgeFlags};
 use glam::Vec3;
 
+use crate::load::files::Companions;
 use crate::load::{self, Format, format_of};
 use crate::write::ensure_not_an_input;
 use crate::{BakeOptions, Error, bake};
@@ -200,7 +201,14 @@ pub fn annotate_with(
     let mut spans = Vec::new();
     let mesh = match format {
         Format::Gltf => {
-            load::gltf::parse_with_spans(input, &bytes, &options.limits, &mut warnings, &mut spans)?
+            load::gltf::parse_with_spans(
+                input,
+                &bytes,
+                Companions::Folder,
+                &options.limits,
+                &mut warnings,
+                &mut spans,
+            )?
         }
         _ => load::ply::parse(input, &bytes, &options.limits, &mut warnings)?,
     };

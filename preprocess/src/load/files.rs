@@ -5,7 +5,7 @@
 
 use std::fs::{File, Metadata};
 use std::io::{self, Read};
-use std::path::Path;
+use std::path::{Component, Path};
 
 use crate::limits::Limited;
 use crate::{Error, Limits};
@@ -29,21 +29,54 @@ pub(crate) fn read_input(
     let (file, length) = open_regular(path)?;
     limits.check(path, Limited::InputBytes, length)?;
     let compressed = path.to_string_lossy().to_ascii_lowercase().ends_with(".gz");
-    let over_limit = || Error::LimitExceeded {
+    if !compressed {
+        return read_capped(file, length, limits.max_input_bytes)
+            .map_err(read_error)?
+            .ok_or_else(|| over_limit(path, limits));
+    }
+    inflate(path, io::BufReader::new(file), limits, check_prefix)
+}
+
+/// [`read_input`] for a file already in memory (a browser's dropped file): the same limits, the
+/// same inflating of a `.gz` with `check_prefix` seeing what has been inflated so far.
+pub(crate) fn input_bytes(
+    path: &Path,
+    bytes: &[u8],
+    limits: &Limits,
+    check_prefix: &dyn Fn(&[u8]) -> Result<bool, Error>,
+) -> Result<Vec<u8>, Error> {
+    limits.check(path, Limited::InputBytes, bytes.len() as u64)?;
+    if path.to_string_lossy().to_ascii_lowercase().ends_with(".gz") {
+        inflate(path, bytes, limits, check_prefix)
+    } else {
+        Ok(bytes.to_vec())
+    }
+}
+
+fn over_limit(path: &Path, limits: &Limits) -> Error {
+    Error::LimitExceeded {
         path: path.to_owned(),
         what: Limited::InputBytes,
         count: limits.max_input_bytes.saturating_add(1),
         limit: limits.max_input_bytes,
-    };
-    if !compressed {
-        return read_capped(file, length, limits.max_input_bytes)
-            .map_err(read_error)?
-            .ok_or_else(over_limit);
     }
+}
+
+/// Inflates the gzip stream `compressed`, at most `limits.max_input_bytes` of it (see [`read_input`]).
+fn inflate(
+    path: &Path,
+    compressed: impl io::BufRead,
+    limits: &Limits,
+    check_prefix: &dyn Fn(&[u8]) -> Result<bool, Error>,
+) -> Result<Vec<u8>, Error> {
+    let read_error = |source| Error::Read {
+        path: path.to_owned(),
+        source,
+    };
     let mut inflated = Vec::new();
     let mut checked = false;
     let mut chunk = vec![0u8; INFLATE_CHUNK];
-    let mut source = flate2::read::GzDecoder::new(io::BufReader::new(file));
+    let mut source = flate2::bufread::GzDecoder::new(compressed);
     loop {
         let n = match source.read(&mut chunk) {
             Ok(0) => return Ok(inflated),
@@ -52,7 +85,7 @@ pub(crate) fn read_input(
             Err(e) => return Err(read_error(e)),
         };
         if inflated.len() as u64 + n as u64 > limits.max_input_bytes {
-            return Err(over_limit());
+            return Err(over_limit(path, limits));
         }
         reserve(&mut inflated, n, limits.max_input_bytes).map_err(read_error)?;
         inflated.extend_from_slice(&chunk[..n]);
@@ -97,17 +130,78 @@ pub(crate) enum RefusedReference {
     Refused(String),
 }
 
-/// Reads `reference` (relative to the folder of `input`, as the input names it) if it resolves
-/// inside that folder and is a regular file of at most `limit` bytes.
+/// Where the files an input refers to (an OBJ's `mtllib`, a glTF buffer `uri`) are read from.
+#[derive(Clone, Copy, Debug, Default)]
+pub enum Companions<'a> {
+    /// Beside the input on disk: inside its folder, regular files only.
+    #[default]
+    Folder,
+    /// Files in memory, as (name, bytes): what a web page is given when files are dropped on it.
+    /// A reference is looked up by its path relative to the input's folder (`textures/a.bin`),
+    /// then by its file name alone (a drop keeps no folders) when exactly one file has it. A
+    /// reference that climbs out of the folder (`..`) or is absolute is refused, as on disk.
+    Memory(&'a [(String, Vec<u8>)]),
+}
+
+/// Reads `reference` (relative to the folder of `input`, as the input names it) from `companions`:
+/// on disk if it resolves inside that folder and is a regular file, in memory as
+/// [`Companions::Memory`] says; at most `limit` bytes.
 pub(crate) fn read_reference(
     input: &Path,
     reference: &Path,
     limit: u64,
+    companions: Companions<'_>,
 ) -> Result<Vec<u8>, RefusedReference> {
-    let (file, length) = open_reference(input, reference, limit)?;
-    read_capped(file, length, limit)
-        .map_err(refused_by)?
-        .ok_or_else(|| too_large(limit))
+    let Companions::Memory(files) = companions else {
+        let (file, length) = open_reference(input, reference, limit)?;
+        return read_capped(file, length, limit)
+            .map_err(refused_by)?
+            .ok_or_else(|| too_large(limit));
+    };
+    let bytes = find_in_memory(reference, files)?;
+    if bytes.len() as u64 > limit {
+        return Err(too_large(limit));
+    }
+    Ok(bytes.to_vec())
+}
+
+/// The bytes `reference` names among `files` (see [`Companions::Memory`]).
+fn find_in_memory<'a>(
+    reference: &Path,
+    files: &'a [(String, Vec<u8>)],
+) -> Result<&'a [u8], RefusedReference> {
+    let parts = |path: &Path| -> Option<Vec<String>> {
+        path.components()
+            .filter(|c| !matches!(c, Component::CurDir))
+            .map(|c| match c {
+                Component::Normal(part) => Some(part.to_string_lossy().into_owned()),
+                _ => None,
+            })
+            .collect()
+    };
+    let wanted = parts(reference).filter(|p| !p.is_empty()).ok_or_else(|| {
+        RefusedReference::Refused(
+            "resolves outside the file's folder (only files beside it or below it are read)".into(),
+        )
+    })?;
+    let named = |name: &str| parts(Path::new(&name.replace('\\', "/")));
+    if let Some((_, bytes)) = files
+        .iter()
+        .find(|(name, _)| named(name).as_ref() == Some(&wanted))
+    {
+        return Ok(bytes);
+    }
+    let file_name = wanted.last();
+    let mut same_name = files
+        .iter()
+        .filter(|(name, _)| named(name).and_then(|p| p.last().cloned()).as_ref() == file_name);
+    match (same_name.next(), same_name.next()) {
+        (Some((_, bytes)), None) => Ok(bytes),
+        (None, _) => Err(RefusedReference::Missing),
+        (Some(_), Some(_)) => Err(RefusedReference::Refused(
+            "matches more than one of the given files by name: give it in its folder".into(),
+        )),
+    }
 }
 
 /// Opens `reference` as [`read_reference`] would read it: inside the folder of `input` after

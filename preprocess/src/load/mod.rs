@@ -7,6 +7,8 @@
 //! declares against [`Limits`] before allocating or looping over them.
 
 pub(crate) mod files;
+
+pub use files::Companions;
 pub(crate) mod gltf;
 mod obj;
 pub(crate) mod ply;
@@ -85,13 +87,23 @@ pub fn load(path: &Path, limits: &Limits) -> Result<Loaded, Error> {
 /// Parses a mesh already in memory; `path` picks the format and resolves files it refers to
 /// (an OBJ's `.mtl`, a `.gltf`'s buffers). `bytes` must already be inflated if the name ends in `.gz`.
 pub fn load_bytes(path: &Path, bytes: &[u8], limits: &Limits) -> Result<Loaded, Error> {
+    load_bytes_with(path, bytes, Companions::Folder, limits)
+}
+
+/// [`load_bytes`], reading the files the mesh refers to from `companions`.
+pub fn load_bytes_with(
+    path: &Path,
+    bytes: &[u8],
+    companions: Companions<'_>,
+    limits: &Limits,
+) -> Result<Loaded, Error> {
     let format = format_of(path).ok_or_else(|| Error::UnknownFormat {
         path: path.to_owned(),
     })?;
     let mut warnings = Vec::new();
     let mesh = match format {
-        Format::Obj => obj::parse(path, bytes, limits, &mut warnings)?,
-        Format::Gltf => gltf::parse(path, bytes, limits, &mut warnings)?,
+        Format::Obj => obj::parse(path, bytes, companions, limits, &mut warnings)?,
+        Format::Gltf => gltf::parse(path, bytes, companions, limits, &mut warnings)?,
         Format::Ply => ply::parse(path, bytes, limits, &mut warnings)?,
         Format::Stl => stl::parse(path, bytes, limits, &mut warnings)?,
         Format::ThreeMf => threemf::parse(path, bytes, limits, &mut warnings)?,
@@ -118,11 +130,12 @@ pub(crate) struct SceneMeshes {
 pub(crate) fn parse_scene(
     path: &Path,
     bytes: &[u8],
+    companions: Companions<'_>,
     limits: &Limits,
     warnings: &mut Vec<String>,
 ) -> Option<Result<SceneMeshes, Error>> {
     match format_of(path)? {
-        Format::Gltf => Some(gltf::parse_scene(path, bytes, limits, warnings)),
+        Format::Gltf => Some(gltf::parse_scene(path, bytes, companions, limits, warnings)),
         Format::ThreeMf => Some(threemf::parse_scene(path, bytes, limits, warnings)),
         _ => None,
     }
@@ -133,12 +146,23 @@ pub(crate) fn parse_scene(
 /// are checked against `limits` as soon as its header has been inflated; a binary STL's count too,
 /// and its inflating stops as soon as it passes the length that count gives.
 pub fn read(path: &Path, limits: &Limits) -> Result<Vec<u8>, Error> {
-    let format = format_of(path);
-    files::read_input(path, limits, &|prefix| match format {
+    files::read_input(path, limits, &|prefix| check_header(path, prefix, limits))
+}
+
+/// [`read`] for a file already in memory, named `path`: the same limits and checks, inflated if
+/// the name ends in `.gz`.
+pub fn read_bytes(path: &Path, bytes: &[u8], limits: &Limits) -> Result<Vec<u8>, Error> {
+    files::input_bytes(path, bytes, limits, &|prefix| check_header(path, prefix, limits))
+}
+
+/// Checks the counts a header declares from the first inflated bytes of a `.gz`: `Ok(true)` once
+/// it has seen enough.
+fn check_header(path: &Path, prefix: &[u8], limits: &Limits) -> Result<bool, Error> {
+    match format_of(path) {
         Some(Format::Ply) => ply_header::check_stream_prefix(path, prefix, limits),
         Some(Format::Stl) => stl::check_stream_prefix(path, prefix, limits),
         _ => Ok(true),
-    })
+    }
 }
 
 /// Splits a polygon into a triangle fan, the convention of OBJ and PLY readers (trimesh, tobj).

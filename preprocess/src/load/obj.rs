@@ -16,7 +16,7 @@ use std::path::Path;
 
 use glam::{Vec2, Vec3};
 
-use super::files::{RefusedReference, read_reference};
+use super::files::{Companions, RefusedReference, read_reference};
 use crate::limits::Limited;
 use crate::mesh::{Mesh, first_non_finite};
 use crate::{Error, Limits};
@@ -24,6 +24,7 @@ use crate::{Error, Limits};
 pub(super) fn parse(
     path: &Path,
     bytes: &[u8],
+    companions: Companions<'_>,
     limits: &Limits,
     warnings: &mut Vec<String>,
 ) -> Result<Mesh, Error> {
@@ -43,7 +44,7 @@ pub(super) fn parse(
     let consumed = Cell::new(0);
     let skipped = RefCell::new(Vec::new());
     let load_mtl = |mtl: &Path| {
-        let problem = match read_reference(path, mtl, limits.max_input_bytes) {
+        let problem = match read_reference(path, mtl, limits.max_input_bytes, companions) {
             Ok(text) => return tobj::load_mtl_buf(&mut text.as_slice()),
             Err(RefusedReference::Missing) => "does not exist".to_owned(),
             Err(RefusedReference::Refused(problem)) => problem,

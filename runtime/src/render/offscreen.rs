@@ -61,15 +61,7 @@ impl Offscreen {
     /// The depth format of this device's offscreen targets: 32-bit float, with stencil where the
     /// device has the feature, else 24-bit with stencil.
     pub fn depth_format(&self) -> wgpu::TextureFormat {
-        if self
-            .device
-            .features()
-            .contains(wgpu::Features::DEPTH32FLOAT_STENCIL8)
-        {
-            wgpu::TextureFormat::Depth32FloatStencil8
-        } else {
-            wgpu::TextureFormat::Depth24PlusStencil8
-        }
+        OffscreenTarget::depth_format(&self.device)
     }
 
     /// The formats of a `sample_count`-sample offscreen target (1 or 4): RGBA8 and
@@ -96,16 +88,7 @@ impl Offscreen {
         height: u32,
         formats: Target,
     ) -> Result<OffscreenTarget, RenderError> {
-        formats.check()?;
-        let limit = self.device.limits().max_texture_dimension_2d;
-        if width > limit || height > limit {
-            return Err(RenderError::Target(format!(
-                "a size of {width}x{height}: this device's textures are at most {limit} pixels wide and high"
-            )));
-        }
-        checked(&self.device, "the offscreen target", || {
-            OffscreenTarget::new(&self.device, width.max(1), height.max(1), formats)
-        })
+        OffscreenTarget::new(&self.device, width, height, formats)
     }
 
     /// A command encoder for a frame.
@@ -151,7 +134,53 @@ pub struct OffscreenTarget {
 const COLOR: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
 impl OffscreenTarget {
-    fn new(device: &wgpu::Device, width: u32, height: u32, formats: Target) -> Self {
+    /// A `width` × `height` target of `formats` on any device (an application's, a web page's):
+    /// colour RGBA8, any depth format, either depth convention. Fails with a typed error if the
+    /// device refuses the textures (too large, say). [`OffscreenTarget::color_texture`] is then
+    /// what to copy to a window's or a canvas's RGBA8 surface texture.
+    pub fn new(
+        device: &wgpu::Device,
+        width: u32,
+        height: u32,
+        formats: Target,
+    ) -> Result<Self, RenderError> {
+        formats.check()?;
+        if formats.color_format != COLOR {
+            return Err(RenderError::Target(format!(
+                "{:?} as an offscreen colour format (offscreen targets are {COLOR:?})",
+                formats.color_format
+            )));
+        }
+        let limit = device.limits().max_texture_dimension_2d;
+        if width > limit || height > limit {
+            return Err(RenderError::Target(format!(
+                "a size of {width}x{height}: this device's textures are at most {limit} pixels wide and high"
+            )));
+        }
+        checked(device, "the offscreen target", || {
+            Self::create(device, width.max(1), height.max(1), formats)
+        })
+    }
+
+    /// The depth format for offscreen targets on `device`: 32-bit float with stencil where the
+    /// device has the feature, else 24-bit with stencil.
+    pub fn depth_format(device: &wgpu::Device) -> wgpu::TextureFormat {
+        if device
+            .features()
+            .contains(wgpu::Features::DEPTH32FLOAT_STENCIL8)
+        {
+            wgpu::TextureFormat::Depth32FloatStencil8
+        } else {
+            wgpu::TextureFormat::Depth24PlusStencil8
+        }
+    }
+
+    /// The resolved colour texture (RGBA8, `COPY_SRC`), finished once the frame's commands are.
+    pub fn color_texture(&self) -> &wgpu::Texture {
+        &self.color
+    }
+
+    fn create(device: &wgpu::Device, width: u32, height: u32, formats: Target) -> Self {
         let texture = |label, format, samples, usage| {
             device.create_texture(&wgpu::TextureDescriptor {
                 label: Some(label),

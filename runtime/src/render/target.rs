@@ -144,6 +144,22 @@ impl Target {
 
 /// Runs `create` inside validation and out-of-memory error scopes, so a resource or pipeline the
 /// device refuses becomes a typed error instead of reaching wgpu's default handler (which panics).
+///
+/// In a browser the scopes' answers arrive on a later turn of the page's event loop, which a
+/// frame cannot wait for: there `create` runs unchecked and the device's uncaptured-error handler
+/// (which the page sets) reports a refusal.
+#[cfg(target_arch = "wasm32")]
+pub(crate) fn checked<T>(
+    _device: &wgpu::Device,
+    _what: &str,
+    create: impl FnOnce() -> T,
+) -> Result<T, RenderError> {
+    Ok(create())
+}
+
+/// Runs `create` inside validation and out-of-memory error scopes, so a resource or pipeline the
+/// device refuses becomes a typed error instead of reaching wgpu's default handler (which panics).
+#[cfg(not(target_arch = "wasm32"))]
 pub(crate) fn checked<T>(
     device: &wgpu::Device,
     what: &str,
@@ -165,6 +181,7 @@ pub(crate) fn checked<T>(
 
 /// The most specific causes of a device error, on one line (wgpu's own text is "Validation Error";
 /// the reason is in its source chain).
+#[cfg_attr(target_arch = "wasm32", allow(dead_code))]
 fn describe(error: &wgpu::Error) -> String {
     let mut causes = Vec::new();
     let mut source = std::error::Error::source(error);

@@ -8,7 +8,7 @@ use base64::Engine;
 use gltf::json;
 
 use crate::Limits;
-use crate::load::files::{RefusedReference, read_reference};
+use crate::load::files::{Companions, RefusedReference, read_reference};
 
 /// The bytes of every buffer, each at least as long as its declared `byteLength`. Only the first
 /// buffer may be the GLB binary chunk (as the specification says), so a file listing a thousand
@@ -17,6 +17,7 @@ pub(super) fn load<'a>(
     root: &json::Root,
     blob: Option<&'a [u8]>,
     path: &Path,
+    companions: Companions<'_>,
     limits: &Limits,
 ) -> Result<Vec<Cow<'a, [u8]>>, String> {
     root.buffers
@@ -38,7 +39,7 @@ pub(super) fn load<'a>(
                 ),
                 Some(uri) => {
                     let relative = relative_path(uri).map_err(|e| format!("buffer {i}: {e}"))?;
-                    let bytes = read_reference(path, &relative, limits.max_input_bytes).map_err(
+                    let bytes = read_reference(path, &relative, limits.max_input_bytes, companions).map_err(
                         |e| match e {
                             RefusedReference::Missing => {
                                 format!("buffer {i}: uri '{uri}' names a file that does not exist")

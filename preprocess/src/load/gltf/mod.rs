@@ -27,6 +27,7 @@ use gltf::json::{self, validation::Checked};
 
 use self::accessor::Accessors;
 use super::SceneMeshes;
+use crate::load::files::Companions;
 use crate::limits::Limited;
 use crate::mesh::Mesh;
 use crate::{Error, Limits};
@@ -52,16 +53,18 @@ pub(crate) struct PrimitiveSpan {
 pub(super) fn parse(
     path: &Path,
     bytes: &[u8],
+    companions: Companions<'_>,
     limits: &Limits,
     warnings: &mut Vec<String>,
 ) -> Result<Mesh, Error> {
-    parse_with_spans(path, bytes, limits, warnings, &mut Vec::new())
+    parse_with_spans(path, bytes, companions, limits, warnings, &mut Vec::new())
 }
 
 /// [`parse`], also listing each primitive's first instance.
 pub(crate) fn parse_with_spans(
     path: &Path,
     bytes: &[u8],
+    companions: Companions<'_>,
     limits: &Limits,
     warnings: &mut Vec<String>,
     spans: &mut Vec<PrimitiveSpan>,
@@ -69,6 +72,7 @@ pub(crate) fn parse_with_spans(
     with_document(
         path,
         bytes,
+        companions,
         limits,
         warnings,
         |root, accessors, instances, warnings| {
@@ -158,12 +162,14 @@ pub(crate) fn non_triangle_modes(root: &json::Root, meshes: &[usize]) -> Option<
 pub(crate) fn parse_scene(
     path: &Path,
     bytes: &[u8],
+    companions: Companions<'_>,
     limits: &Limits,
     warnings: &mut Vec<String>,
 ) -> Result<SceneMeshes, Error> {
     with_document(
         path,
         bytes,
+        companions,
         limits,
         warnings,
         |root, accessors, instances, warnings| {
@@ -207,6 +213,7 @@ pub(crate) fn parse_scene(
 fn with_document<R>(
     path: &Path,
     bytes: &[u8],
+    companions: Companions<'_>,
     limits: &Limits,
     warnings: &mut Vec<String>,
     read: impl FnOnce(
@@ -242,7 +249,7 @@ fn with_document<R>(
     limits.check(path, Limited::Vertices, vertices)?;
     limits.check(path, Limited::Triangles, triangles)?;
 
-    let buffers = buffers::load(root, gltf.blob.as_deref(), path, limits).map_err(invalid)?;
+    let buffers = buffers::load(root, gltf.blob.as_deref(), path, companions, limits).map_err(invalid)?;
     let accessors = Accessors {
         root,
         buffers: &buffers,

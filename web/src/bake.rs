@@ -1,0 +1,164 @@
+//! The page's Web Worker calls these: bake dropped files, inspect an asset, draw its SVG. Each is a
+//! plain Rust function (tested natively) under a thin wasm-bindgen wrapper.
+
+use std::path::Path;
+
+use chamfer_preprocess::draw::svg::{SvgOptions, write_svg};
+use chamfer_preprocess::draw::{DrawOptions, hidden_lines};
+use chamfer_preprocess::inspect::summary;
+use chamfer_preprocess::{Companions, bake_with_companions, compact};
+use chamfer_runtime::asset::Asset;
+use wasm_bindgen::prelude::*;
+
+use crate::settings::{BakeSettings, ViewSettings};
+
+/// A baked asset: the `.chamfer` file's bytes and its `chamfer inspect --json` report (with the
+/// bake's warnings and step times).
+#[wasm_bindgen]
+pub struct Baked {
+    asset: Vec<u8>,
+    report: String,
+}
+
+#[wasm_bindgen]
+impl Baked {
+    /// The `.chamfer` file's bytes.
+    #[wasm_bindgen(getter)]
+    pub fn asset(&self) -> Vec<u8> {
+        self.asset.clone()
+    }
+
+    /// The report, JSON.
+    #[wasm_bindgen(getter)]
+    pub fn report(&self) -> String {
+        self.report.clone()
+    }
+}
+
+/// Bakes the file `name` among `files` (name, bytes: the dropped file and its companions) as
+/// `chamfer bake` would bake it from a folder holding them, with `settings` (JSON,
+/// [`BakeSettings`]). `progress` hears each step's name before it starts. Errors name the file.
+pub fn bake_files(
+    name: &str,
+    files: &[(String, Vec<u8>)],
+    settings: &BakeSettings,
+    progress: &mut dyn FnMut(&str),
+) -> Result<Baked, String> {
+    let (options, compact) = settings.options()?;
+    let (_, bytes) = files
+        .iter()
+        .find(|(file, _)| file == name)
+        .ok_or_else(|| format!("{name}: not among the given files"))?;
+    progress("baking");
+    let path = Path::new(name);
+    let baked = bake_with_companions(path, bytes, Companions::Memory(files), &options)
+        .map_err(|e| e.to_string())?;
+    progress("encoding");
+    let mut asset = Vec::new();
+    compact::encode(&baked.asset, compact.as_ref(), &mut asset)
+        .map_err(|e| format!("{name}: cannot encode the asset: {e}"))?;
+    let mut report = summary(&baked.asset, asset.len() as u64, None);
+    report["warnings"] = baked.warnings.clone().into();
+    let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
+    report["bake_ms"] = serde_json::json!({
+        "parse": ms(baked.timings.parse),
+        "processing": ms(baked.timings.processing()),
+    });
+    Ok(Baked {
+        asset,
+        report: report.to_string(),
+    })
+}
+
+/// `chamfer inspect --json` of a `.chamfer` file's bytes; errors name the file.
+pub fn inspect_asset(name: &str, bytes: &[u8]) -> Result<String, String> {
+    let invalid = |e: &dyn std::fmt::Display| format!("{name}: not a valid .chamfer asset: {e}");
+    let asset = Asset::decode(bytes).map_err(|e| invalid(&e))?;
+    let precision = Asset::precision(bytes).map_err(|e| invalid(&e))?;
+    Ok(summary(&asset, bytes.len() as u64, Some(precision)).to_string())
+}
+
+/// `chamfer draw`'s hidden-line SVG of an asset, from the camera `view` places in a `width` ×
+/// `height` frame; only the classes `view` draws.
+pub fn svg_of(
+    name: &str,
+    bytes: &[u8],
+    view: &ViewSettings,
+    size: [u32; 2],
+) -> Result<String, String> {
+    let asset = Asset::decode(bytes).map_err(|e| format!("{name}: not a valid .chamfer asset: {e}"))?;
+    let camera = view.camera([asset.header.bounds_min, asset.header.bounds_max], size);
+    let drawing = hidden_lines(&asset, &camera, &DrawOptions::DEFAULT.with_classes(&view.line_classes()?));
+    let mut svg = Vec::new();
+    write_svg(&drawing, &SvgOptions::default().with_title(name), &mut svg)
+        .map_err(|e| format!("{name}: cannot write the drawing: {e}"))?;
+    String::from_utf8(svg).map_err(|e| format!("{name}: the drawing is not text: {e}"))
+}
+
+fn js_error(message: String) -> JsError {
+    JsError::new(&message)
+}
+
+/// [`bake_files`] for the page: `names[i]` is the name of `contents[i]`; `settings` is JSON;
+/// `progress` is called with each step's name.
+#[wasm_bindgen]
+pub fn bake(
+    name: &str,
+    names: Vec<String>,
+    contents: Vec<js_sys::Uint8Array>,
+    settings: &str,
+    progress: &js_sys::Function,
+) -> Result<Baked, JsError> {
+    if names.len() != contents.len() {
+        return Err(js_error(format!(
+            "{} names for {} files",
+            names.len(),
+            contents.len()
+        )));
+    }
+    let files: Vec<(String, Vec<u8>)> = names
+        .into_iter()
+        .zip(contents.iter().map(js_sys::Uint8Array::to_vec))
+        .collect();
+    let settings = BakeSettings::from_json(settings).map_err(js_error)?;
+    let mut report = |step: &str| {
+        // A progress listener that throws must not stop the bake.
+        let _ = progress.call1(&JsValue::NULL, &JsValue::from_str(step));
+    };
+    bake_files(name, &files, &settings, &mut report).map_err(js_error)
+}
+
+/// [`inspect_asset`] for the page.
+#[wasm_bindgen]
+pub fn inspect(name: &str, bytes: &[u8]) -> Result<String, JsError> {
+    inspect_asset(name, bytes).map_err(js_error)
+}
+
+/// [`svg_of`] for the page: `view` is JSON.
+#[wasm_bindgen]
+pub fn draw_svg(
+    name: &str,
+    bytes: &[u8],
+    view: &str,
+    width: u32,
+    height: u32,
+) -> Result<String, JsError> {
+    let view = ViewSettings::from_json(view).map_err(js_error)?;
+    svg_of(name, bytes, &view, [width, height]).map_err(js_error)
+}
+
+/// The techniques the runtime has, as JSON: `[{name, summary, post_process}]`.
+#[wasm_bindgen]
+pub fn techniques() -> String {
+    let all: Vec<serde_json::Value> = chamfer_runtime::render::Technique::all()
+        .iter()
+        .map(|t| {
+            serde_json::json!({
+                "name": t.name(),
+                "summary": t.summary(),
+                "post_process": t.is_post_process(),
+            })
+        })
+        .collect();
+    serde_json::Value::from(all).to_string()
+}

@@ -1,0 +1,319 @@
+// The page: files in (picker, drop, ?url=, or the bundled fandisk), bakes in worker.js, the asset
+// drawn by the wasm Viewer on WebGPU, the controls, the downloads. Query parameters: url (a file to
+// load), azimuth / elevation (the camera), size (WxH canvas pixels), technique.
+import init, { createViewer, techniques } from "./pkg/chamfer_web.js";
+
+const $ = (id) => document.getElementById(id);
+const canvas = $("canvas");
+const query = new URLSearchParams(location.search);
+const MESH = /\.(obj|gltf|glb|ply|ply\.gz|stl|stl\.gz|3mf)$/i;
+const CLASSES = ["contour", "boundary", "marked", "ridge", "valley", "intersection"];
+
+const state = {
+  viewer: null,
+  asset: null,         // {name, bytes} on screen
+  source: null,        // {name, files} of the last bake, for "bake again"
+  view: {
+    azimuth: Number(query.get("azimuth") ?? 35),
+    elevation: Number(query.get("elevation") ?? 25),
+    distance: null,
+    technique: query.get("technique") ?? "joined",
+    edge_width: 2,
+    classes: [...CLASSES],
+    highlight: "off",
+    edge_color: null,
+    background: [1, 1, 1, 1],
+  },
+  framesLeft: 0,
+  framesDrawn: 0,
+};
+// For the browser tests and the curious: what the page holds.
+window.chamfer = state;
+
+function showError(message) {
+  const box = $("error");
+  box.textContent = message;
+  box.hidden = false;
+  $("status").textContent = "Error";
+  document.body.dataset.state = "error";
+}
+
+function clearError() {
+  $("error").hidden = true;
+}
+
+// --- the worker -------------------------------------------------------------------------------
+const worker = new Worker("./worker.js", { type: "module" });
+let nextId = 0;
+const pending = new Map();
+worker.onmessage = ({ data }) => {
+  const job = pending.get(data.id);
+  if (!job) return;
+  if (data.progress) return job.progress?.(data.progress);
+  pending.delete(data.id);
+  data.error ? job.reject(new Error(data.error)) : job.resolve(data.result);
+};
+worker.onerror = (e) => showError(`The worker failed: ${e.message}`);
+function run(message, progress, transfer = []) {
+  const id = nextId++;
+  return new Promise((resolve, reject) => {
+    pending.set(id, { resolve, reject, progress });
+    worker.postMessage({ id, ...message }, transfer);
+  });
+}
+
+// --- loading ----------------------------------------------------------------------------------
+function bakeSettings() {
+  const settings = { compact: $("compact").checked };
+  const crease = $("crease-deg").value;
+  if (crease !== "") settings.crease_deg = Number(crease);
+  const radius = $("radius-rel").value;
+  if (radius !== "" && Number(radius) > 0) settings.radius_rel = Number(radius);
+  return JSON.stringify(settings);
+}
+
+// files: [{name, bytes: Uint8Array}]; the first mesh (or .chamfer) among them is opened.
+async function open(files) {
+  clearError();
+  const main = files.find((f) => /\.chamfer$/i.test(f.name)) ?? files.find((f) => MESH.test(f.name));
+  if (!main) {
+    return showError(`${files.map((f) => f.name).join(", ")}: no mesh or .chamfer among these ` +
+      "(OBJ, glTF, GLB, PLY, .ply.gz, STL, 3MF)");
+  }
+  document.body.dataset.state = "working";
+  try {
+    if (/\.chamfer$/i.test(main.name)) {
+      $("status").textContent = `Reading ${main.name}…`;
+      const { report } = await run({ op: "inspect", name: main.name, bytes: main.bytes });
+      return show(main.name, main.bytes, report, null);
+    }
+    state.source = { name: main.name, files };
+    const started = performance.now();
+    const result = await run({ op: "bake", name: main.name, files, settings: bakeSettings() },
+      (step) => { $("status").textContent = `${main.name}: ${step}…`; });
+    const name = main.name.replace(/(\.gz)?$/i, "").replace(/\.[^.]+$/, "") + ".chamfer";
+    result.report.page_ms = performance.now() - started;
+    result.report.worker_ms = result.ms;
+    show(name, result.asset, result.report, main.name);
+  } catch (e) {
+    showError(e.message);
+  }
+}
+
+function show(name, bytes, report, from) {
+  state.asset = { name, bytes, report };
+  $("stats").textContent = JSON.stringify(report, null, 1);
+  $("download-asset").disabled = false;
+  $("download-svg").disabled = false;
+  if (!state.viewer) {
+    $("status").textContent = `${name} baked (no WebGPU to draw it)`;
+    document.body.dataset.state = "baked";
+    return;
+  }
+  try {
+    state.viewer.show(name, bytes);
+    state.view.distance = null;
+    const took = report.worker_ms ? ` in ${report.worker_ms.toFixed(0)} ms` : "";
+    $("status").textContent = from ? `${from} baked${took}` : `${name}`;
+    redraw();
+  } catch (e) {
+    showError(e.message);
+  }
+}
+
+async function fetchFile(url) {
+  const response = await fetch(url);
+  if (!response.ok) throw new Error(`${url}: ${response.status} ${response.statusText}`);
+  const name = decodeURIComponent(new URL(url, location.href).pathname.split("/").pop() || "file");
+  return { name, bytes: new Uint8Array(await response.arrayBuffer()) };
+}
+
+async function openUrl(url) {
+  try {
+    const main = await fetchFile(url);
+    const files = [main];
+    // A .gltf's buffers and an OBJ's material library sit beside it.
+    if (/\.gltf$/i.test(main.name)) {
+      const json = JSON.parse(new TextDecoder().decode(main.bytes));
+      for (const buffer of json.buffers ?? []) {
+        if (buffer.uri && !buffer.uri.startsWith("data:")) {
+          files.push({ ...(await fetchFile(new URL(buffer.uri, new URL(url, location.href)).href)), name: buffer.uri });
+        }
+      }
+    }
+    await open(files);
+  } catch (e) {
+    showError(e.message);
+  }
+}
+
+async function readFiles(list) {
+  return Promise.all([...list].map(async (file) => ({
+    name: file.webkitRelativePath || file.name,
+    bytes: new Uint8Array(await file.arrayBuffer()),
+  })));
+}
+
+$("files").addEventListener("change", async (e) => open(await readFiles(e.target.files)));
+addEventListener("dragover", (e) => { e.preventDefault(); document.body.classList.add("dragging"); });
+addEventListener("dragleave", () => document.body.classList.remove("dragging"));
+addEventListener("drop", async (e) => {
+  e.preventDefault();
+  document.body.classList.remove("dragging");
+  open(await readFiles(e.dataTransfer.files));
+});
+
+// --- drawing ----------------------------------------------------------------------------------
+// The joined technique sizes its lists from what earlier frames read back: a few more frames after
+// each change let it settle.
+const SETTLE_FRAMES = 4;
+
+function redraw() {
+  if (!state.viewer || !state.asset) return;
+  const idle = state.framesLeft === 0;
+  state.framesLeft = SETTLE_FRAMES;
+  if (idle) requestAnimationFrame(frame);
+}
+
+function drawNow() {
+  state.viewer.setView(JSON.stringify(state.view));
+  state.viewer.draw(canvas.width, canvas.height);
+  state.framesDrawn++;
+}
+
+function frame() {
+  try {
+    drawNow();
+  } catch (e) {
+    state.framesLeft = 0;
+    return showError(e.message);
+  }
+  state.framesLeft--;
+  if (state.framesLeft > 0) {
+    requestAnimationFrame(frame);
+  } else {
+    document.body.dataset.state = "drawn";
+  }
+}
+
+// Draws a frame and reads the canvas back in the same task (a WebGPU canvas keeps its picture
+// only until the task ends): a PNG data URL. For the browser tests.
+state.capture = () => {
+  drawNow();
+  return canvas.toDataURL("image/png");
+};
+
+// --- the orbit camera: drag to turn, wheel or pinch to zoom -----------------------------------
+const pointers = new Map();
+canvas.addEventListener("pointerdown", (e) => {
+  canvas.setPointerCapture(e.pointerId);
+  pointers.set(e.pointerId, { x: e.clientX, y: e.clientY });
+});
+canvas.addEventListener("pointerup", (e) => pointers.delete(e.pointerId));
+canvas.addEventListener("pointercancel", (e) => pointers.delete(e.pointerId));
+canvas.addEventListener("pointermove", (e) => {
+  const last = pointers.get(e.pointerId);
+  if (!last) return;
+  if (pointers.size === 1) {
+    state.view.azimuth -= (e.clientX - last.x) * 0.4;
+    state.view.elevation = Math.max(-89, Math.min(89, state.view.elevation + (e.clientY - last.y) * 0.4));
+  } else if (pointers.size === 2) {
+    const other = [...pointers.entries()].find(([id]) => id !== e.pointerId)[1];
+    const before = Math.hypot(last.x - other.x, last.y - other.y);
+    const after = Math.hypot(e.clientX - other.x, e.clientY - other.y);
+    if (before > 0 && after > 0) zoom(before / after);
+  }
+  pointers.set(e.pointerId, { x: e.clientX, y: e.clientY });
+  redraw();
+});
+canvas.addEventListener("wheel", (e) => {
+  e.preventDefault();
+  zoom(Math.exp(e.deltaY * 0.001));
+  redraw();
+}, { passive: false });
+
+function zoom(factor) {
+  if (!state.viewer || !state.asset) return;
+  const current = state.view.distance ?? state.viewer.distance(canvas.width, canvas.height);
+  state.view.distance = Math.max(1e-4, current * factor);
+}
+
+// --- controls ---------------------------------------------------------------------------------
+function hexToLinear(hex) {
+  return [1, 3, 5].map((i) => parseInt(hex.slice(i, i + 2), 16) / 255).concat(1);
+}
+
+function setUpControls(list) {
+  const select = $("technique");
+  for (const t of list) {
+    select.add(new Option(t.name, t.name, false, t.name === state.view.technique));
+  }
+  const describe = () => {
+    const t = list.find((t) => t.name === select.value);
+    $("technique-summary").textContent = t ? t.summary : "";
+  };
+  describe();
+  select.addEventListener("change", () => { state.view.technique = select.value; describe(); redraw(); });
+  $("edge-width").addEventListener("input", (e) => {
+    state.view.edge_width = Number(e.target.value);
+    $("edge-width-value").textContent = e.target.value;
+    redraw();
+  });
+  for (const name of CLASSES) {
+    const label = document.createElement("label");
+    const box = Object.assign(document.createElement("input"), { type: "checkbox", checked: true });
+    box.addEventListener("change", () => {
+      state.view.classes = CLASSES.filter((c, i) => $("classes").querySelectorAll("input")[i].checked);
+      redraw();
+    });
+    label.append(box, ` ${name}`);
+    $("classes").append(label);
+  }
+  const edgeColor = () => {
+    state.view.edge_color = $("edge-color-on").checked ? hexToLinear($("edge-color").value) : null;
+    redraw();
+  };
+  $("edge-color").addEventListener("input", edgeColor);
+  $("edge-color-on").addEventListener("change", edgeColor);
+  $("background").addEventListener("input", (e) => { state.view.background = hexToLinear(e.target.value); redraw(); });
+  $("highlight").addEventListener("change", (e) => { state.view.highlight = e.target.value; redraw(); });
+  $("rebake").addEventListener("click", () => state.source && open(state.source.files));
+  $("download-asset").addEventListener("click", () => {
+    download(state.asset.name, new Blob([state.asset.bytes], { type: "application/octet-stream" }));
+  });
+  $("download-svg").addEventListener("click", async () => {
+    try {
+      const { svg } = await run({ op: "svg", name: state.asset.name, bytes: state.asset.bytes,
+        view: JSON.stringify(state.view), width: canvas.width, height: canvas.height });
+      download(state.asset.name.replace(/\.chamfer$/, ".svg"), new Blob([svg], { type: "image/svg+xml" }));
+    } catch (e) {
+      showError(e.message);
+    }
+  });
+}
+
+function download(name, blob) {
+  const link = Object.assign(document.createElement("a"), { href: URL.createObjectURL(blob), download: name });
+  link.click();
+  setTimeout(() => URL.revokeObjectURL(link.href), 1000);
+}
+
+// --- start ------------------------------------------------------------------------------------
+async function start() {
+  await init();
+  const size = query.get("size")?.match(/^(\d+)x(\d+)$/);
+  if (size) [canvas.width, canvas.height] = [Number(size[1]), Number(size[2])];
+  setUpControls(JSON.parse(techniques()));
+  try {
+    if (!navigator.gpu) throw new Error("this browser has no WebGPU (navigator.gpu is missing)");
+    state.viewer = await createViewer(canvas);
+    document.body.dataset.adapter = state.viewer.adapter;
+  } catch (e) {
+    showError(`The viewer needs WebGPU: ${e.message}. Every technique draws with compute shaders or ` +
+      "storage buffers read by vertex shaders, which WebGL2 lacks. Baking, inspecting and the " +
+      "downloads still work.");
+  }
+  await openUrl(query.get("url") ?? "fandisk.obj");
+}
+
+start().catch((e) => showError(e.message));
