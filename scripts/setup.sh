@@ -7,7 +7,9 @@ set -euo pipefail
 # Mesa's device-select layer prints harmless XDG_RUNTIME_DIR warnings without this.
 export NODEVICE_SELECT=1
 
-apt_packages=(build-essential pkg-config curl ca-certificates libvulkan1 mesa-vulkan-drivers)
+# clang and llvm (llvm-ar) compile meshoptimizer's encoders for the web page's wasm32 build; chromium
+# runs the page's tests (headless, WebGPU on its own SwiftShader).
+apt_packages=(build-essential pkg-config curl ca-certificates libvulkan1 mesa-vulkan-drivers clang llvm chromium)
 
 missing=()
 for p in "${apt_packages[@]}"; do
@@ -39,6 +41,17 @@ if ! command -v cargo >/dev/null; then
         curl --proto '=https' --tlsv1.2 -sSf https://sh.rustup.rs | sh -s -- -y --profile minimal
         export PATH="$HOME/.cargo/bin:$PATH"
     fi
+fi
+
+# The web page (web/, issue 26): the wasm32 target and the wasm-bindgen CLI of exactly the version
+# web/Cargo.toml pins (its output must match the crate's), installed once.
+rustup target list --installed 2>/dev/null | grep -qx wasm32-unknown-unknown \
+    || rustup target add wasm32-unknown-unknown
+wasm_bindgen_version=0.2.130
+if [[ "$(wasm-bindgen --version 2>/dev/null)" != "wasm-bindgen $wasm_bindgen_version" ]]; then
+    echo "setup: installing wasm-bindgen-cli $wasm_bindgen_version"
+    # Not --locked: its lock file names a webpki-roots version the registry no longer has.
+    cargo install -q wasm-bindgen-cli --version "$wasm_bindgen_version" --bin wasm-bindgen
 fi
 
 # The Python package (python/, issue 27): a virtual environment .venv/ with what building and testing it

@@ -8,6 +8,8 @@ source scripts/setup.sh
 cargo test --workspace --release --locked
 # Annotated glTF / GLB files through the Khronos glTF-Validator (npm).
 ./scripts/validate-gltf.sh
+# The web page: built for wasm32 and driven in headless Chromium.
+./scripts/test-web.sh
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --release --locked
 # Every crate users depend on, as crates.io would get it: cargo packs the workspace's crates into a
 # local registry overlay so each tarball builds against the others' tarballs (dependencies from
@@ -20,7 +22,7 @@ if [ -d "$target/debug/.fingerprint" ]; then
     find "$target/debug/.fingerprint" -maxdepth 1 -name 'chamfer-*' -exec rm -rf {} +
 fi
 cargo package --workspace --locked --allow-dirty --exclude chamfer-tests --exclude chamfer-build-script-example \
-    --exclude chamfer-python  # PyPI, not crates.io: its sdist and wheel are built below
+    --exclude chamfer-python --exclude chamfer-web  # Python: PyPI (sdist and wheel below); web: the page
 # The Python package (python/, issue 27), as users get it: its sdist, a wheel built from that sdist (into the
 # same target folder, so only our crates compile again) and installed into .venv, then its tests (pytest:
 # the bindings against the chamfer binary cargo test built, and the Dask batch bakes on a LocalCluster).

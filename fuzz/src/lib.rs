@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use chamfer_preprocess::{BakeOptions, Limits, bake, load};
+use chamfer_preprocess::{BakeOptions, Companions, Limits, bake, bake_with_companions, load};
 use chamfer_runtime::asset::Asset;
 
 /// Small limits, so an input that asks for a lot is refused quickly instead of baked slowly.
@@ -39,5 +39,20 @@ pub fn decode(data: &[u8]) {
         asset.header.sections.clear();
         again.header.sections.clear();
         assert_eq!(again, asset, "re-encoding changed the asset");
+    }
+}
+
+/// Bakes `data` as the web page bakes a dropped file named `name`: inflated in memory if the name
+/// ends in `.gz`, the files it refers to looked up among none in memory (never on disk). A refusal
+/// must name the file; a baked asset must decode.
+pub fn bake_dropped(name: &str, data: &[u8]) {
+    let options = BakeOptions::DEFAULT.with_limits(limits());
+    match bake_with_companions(Path::new(name), data, Companions::Memory(&[]), &options) {
+        Ok(baked) => {
+            if let Err(e) = Asset::decode(&baked.asset.encode_to_vec()) {
+                panic!("a baked asset does not decode: {e}");
+            }
+        }
+        Err(e) => assert!(e.to_string().contains(name), "{e}"),
     }
 }

@@ -14,8 +14,8 @@ use web_time::Instant;
 use crate::corners::VertexCorners;
 use crate::mesh::{Mark, Mesh, MeshError};
 use crate::{
-    BakeOptions, Companions, Error, adjacency, caps, classify, degenerate, intersections, load, mesh_order,
-    normals, radii, stitch, weld,
+    BakeOptions, Companions, Error, adjacency, caps, classify, degenerate, intersections, load,
+    mesh_order, normals, radii, stitch, weld,
 };
 
 /// The setting in which a bake with stitching on records the boundary edges stitching started

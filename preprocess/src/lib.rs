@@ -53,7 +53,7 @@ pub mod write;
 pub use bake::{
     Baked, STITCH_BOUNDARY_BEFORE, Timings, bake, bake_bytes, bake_file, bake_with_companions,
 };
-pub use load::Companions;
 pub use error::Error;
 pub use limits::Limits;
+pub use load::Companions;
 pub use options::{BakeOptions, OptionsError, Radius, Stitch, WeldTolerance};

@@ -46,8 +46,14 @@ pub fn bake_scene(path: &Path, stem: &str, options: &BakeOptions) -> Result<Bake
     }
     let bytes = load::read(path, &options.limits)?;
     let mut warnings = Vec::new();
-    let parsed = load::parse_scene(path, &bytes, Companions::Folder, &options.limits, &mut warnings)
-        .ok_or_else(unsupported)??;
+    let parsed = load::parse_scene(
+        path,
+        &bytes,
+        Companions::Folder,
+        &options.limits,
+        &mut warnings,
+    )
+    .ok_or_else(unsupported)??;
     if parsed.meshes.is_empty() {
         return Err(Error::Unsupported {
             path: path.to_owned(),
@@ -166,12 +172,11 @@ pub fn read_scene(path: &Path, limits: &Limits) -> Result<LoadedScene, Error> {
                 Path::new(name),
                 limits.max_input_bytes,
                 Companions::Folder,
-            ).map_err(
-                |e| match e {
-                    RefusedReference::Missing => refused("does not exist".into()),
-                    RefusedReference::Refused(problem) => refused(problem),
-                },
-            )?;
+            )
+            .map_err(|e| match e {
+                RefusedReference::Missing => refused("does not exist".into()),
+                RefusedReference::Refused(problem) => refused(problem),
+            })?;
             Asset::decode(&bytes).map_err(|e| Error::Parse {
                 path: load::files::folder_of(path).join(name),
                 format: "Chamfer asset",

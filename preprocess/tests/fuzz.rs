@@ -23,7 +23,9 @@ use std::time::Instant;
 use chamfer_preprocess::annotate::{GltfEdges, annotate_with};
 use chamfer_preprocess::compact::Meshopt;
 use chamfer_preprocess::draw::{Camera, DrawOptions, hidden_lines};
-use chamfer_preprocess::{BakeOptions, Limits, bake, bake_bytes, input, load};
+use chamfer_preprocess::{
+    BakeOptions, Companions, Limits, bake, bake_bytes, bake_with_companions, input, load,
+};
 use chamfer_runtime::asset::{Asset, CompactOptions, SectionKind};
 use glam::camera::rh::{proj::directx, view::look_at_mat4};
 use serde_json::Value;
@@ -1392,6 +1394,91 @@ fn decode_environment(path: &Path, bytes: &[u8]) -> bool {
         Err(e) => {
             let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
             assert!(name.is_some_and(|n| e.to_string().contains(&n)), "{e}");
+            false
+        }
+    }
+}
+
+/// The web page's bake (issue 26): a dropped file with its companions in memory
+/// ([`Companions::Memory`]), `.ply.gz` inflated in memory. Mutations reach the main file (a
+/// `.gltf` whose buffer is given beside it, an OBJ whose material library is, a gzip-compressed
+/// PLY mutated before compressing, or its compressed bytes).
+#[test]
+fn fuzz_dropped_files() {
+    let mut seeds = seeds(&["shapes/two-materials-external.gltf"]);
+    seeds.push(Seed {
+        name: "materials.obj".into(),
+        bytes: b"mtllib materials.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\n\
+                 usemtl red\nf 1 2 3\nf 1 3 4\nusemtl blue\nf 1 2 5\nf 2 3 5\n"
+            .to_vec(),
+    });
+    let ply = std::fs::read(fixture("shapes/cube-marked-le.ply")).expect("ply");
+    seeds.push(Seed {
+        name: "cube.ply.gz".into(),
+        bytes: gzip(&ply),
+    });
+    run(
+        "dropped-files",
+        22,
+        seeds,
+        |bytes, rng| match bytes.first() {
+            Some(0x1f) if rng.below(4) != 0 => {
+                let mut ply = inflate(bytes);
+                mutate_ply(&mut ply, rng);
+                *bytes = gzip(&ply);
+            }
+            Some(b'{') => mutate_gltf(bytes, rng),
+            Some(b'm') => mutate_text(bytes, rng, OBJ_LINES),
+            _ => mutate_bytes(bytes, rng),
+        },
+        bake_dropped,
+    );
+}
+
+fn gzip(bytes: &[u8]) -> Vec<u8> {
+    use std::io::Write;
+    let mut encoder = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::fast());
+    encoder.write_all(bytes).expect("gzip into memory");
+    encoder.finish().expect("gzip into memory")
+}
+
+fn inflate(bytes: &[u8]) -> Vec<u8> {
+    use std::io::Read;
+    let mut out = Vec::new();
+    let _ = flate2::read::GzDecoder::new(bytes).read_to_end(&mut out);
+    out
+}
+
+/// Bakes `bytes` as the page does (its companions in memory, never from disk): a baked asset
+/// decodes; a refusal names the file. True if it baked.
+fn bake_dropped(path: &Path, bytes: &[u8]) -> bool {
+    let companions = [
+        (
+            "two-materials.bin".to_owned(),
+            std::fs::read(fixture("shapes/two-materials.bin")).expect("bin"),
+        ),
+        (
+            "materials.mtl".to_owned(),
+            b"newmtl red\nKd 1 0 0\nnewmtl blue\nKd 0 0 1\n".to_vec(),
+        ),
+    ];
+    let name = path.file_name().expect("a file name");
+    let options = BakeOptions::DEFAULT.with_limits(limits());
+    match bake_with_companions(
+        Path::new(name),
+        bytes,
+        Companions::Memory(&companions),
+        &options,
+    ) {
+        Ok(baked) => {
+            if let Err(e) = Asset::decode(&baked.asset.encode_to_vec()) {
+                panic!("a baked asset does not decode: {e}");
+            }
+            true
+        }
+        Err(e) => {
+            let name = name.to_string_lossy();
+            assert!(e.to_string().contains(&*name), "{e}");
             false
         }
     }

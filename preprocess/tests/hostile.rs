@@ -8,7 +8,9 @@ use std::time::Duration;
 
 use base64::Engine;
 use chamfer_preprocess::build::bake_dir_into;
-use chamfer_preprocess::{BakeOptions, Baked, Error, Radius, bake_bytes, bake_file};
+use chamfer_preprocess::{
+    BakeOptions, Baked, Companions, Error, Radius, bake_bytes, bake_file, bake_with_companions,
+};
 use chamfer_runtime::asset::{Asset, MAX_RING};
 
 /// Runs `f` on another thread and fails the test if it has not finished in `seconds` (a hang is
@@ -1474,4 +1476,183 @@ fn chamfer_tests_fixture(relative: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../fixtures")
         .join(relative)
+}
+
+// --- Dropped files (issue 26): a mesh and its companions in memory, as the web page bakes them ---
+
+/// Bakes `name` from memory with `companions`, off the test thread, within 30 s.
+fn bake_dropped(
+    name: &str,
+    bytes: Vec<u8>,
+    companions: Vec<(String, Vec<u8>)>,
+    options: BakeOptions,
+) -> Result<Baked, Error> {
+    let name = name.to_owned();
+    within(30, move || {
+        bake_with_companions(
+            Path::new(&name),
+            &bytes,
+            Companions::Memory(&companions),
+            &options,
+        )
+    })
+}
+
+/// The error of [`bake_dropped`], checked to be one line naming the file.
+fn dropped_refused(
+    name: &str,
+    bytes: Vec<u8>,
+    companions: Vec<(String, Vec<u8>)>,
+    options: BakeOptions,
+) -> String {
+    let text = bake_dropped(name, bytes, companions, options)
+        .err()
+        .unwrap_or_else(|| panic!("{name} was accepted"))
+        .to_string();
+    assert!(
+        text.contains(name),
+        "the error does not name the file: {text}"
+    );
+    assert_eq!(text.lines().count(), 1, "{text}");
+    text
+}
+
+fn external_gltf(uri: &str) -> Vec<u8> {
+    let text = std::fs::read_to_string(chamfer_tests_fixture("shapes/two-materials-external.gltf"))
+        .expect("gltf");
+    text.replace("\"two-materials.bin\"", &format!("\"{uri}\""))
+        .into_bytes()
+}
+
+fn external_bin() -> Vec<u8> {
+    std::fs::read(chamfer_tests_fixture("shapes/two-materials.bin")).expect("bin")
+}
+
+#[test]
+fn dropped_files_bake_as_the_same_files_on_disk() {
+    let gltf = chamfer_tests_fixture("shapes/two-materials-external.gltf");
+    let on_disk = bake(&gltf).expect("on disk").asset.encode_to_vec();
+    let bytes = std::fs::read(&gltf).expect("gltf");
+    // By its relative path, and by its name alone (a drop keeps no folders).
+    for name in ["two-materials.bin", "dropped/two-materials.bin"] {
+        let dropped = bake_dropped(
+            "two-materials-external.gltf",
+            bytes.clone(),
+            vec![(name.to_owned(), external_bin())],
+            BakeOptions::DEFAULT,
+        )
+        .expect("dropped");
+        assert_eq!(dropped.asset.encode_to_vec(), on_disk, "{name}");
+    }
+}
+
+#[test]
+fn a_dropped_reference_outside_its_folder_is_refused() {
+    for uri in ["../two-materials.bin", "/two-materials.bin"] {
+        let text = dropped_refused(
+            "two-materials-external.gltf",
+            external_gltf(uri),
+            vec![("two-materials.bin".into(), external_bin())],
+            BakeOptions::DEFAULT,
+        );
+        assert!(
+            text.contains("the file's folder") || text.contains("not a relative file path"),
+            "{uri}: {text}"
+        );
+    }
+    // An OBJ's material library that climbs out is not read, even when a dropped file has its name.
+    let obj = b"mtllib ../materials.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n".to_vec();
+    let baked = bake_dropped(
+        "part.obj",
+        obj,
+        vec![("materials.mtl".into(), b"newmtl red\nKd 1 0 0\n".to_vec())],
+        BakeOptions::DEFAULT,
+    )
+    .expect("baked without its materials");
+    assert!(
+        baked
+            .warnings
+            .iter()
+            .any(|w| w.contains("outside the file's folder")),
+        "{:?}",
+        baked.warnings
+    );
+}
+
+#[test]
+fn a_dropped_reference_to_two_files_of_its_name_is_refused() {
+    let text = dropped_refused(
+        "two-materials-external.gltf",
+        external_gltf("two-materials.bin"),
+        vec![
+            ("a/two-materials.bin".into(), external_bin()),
+            ("b/two-materials.bin".into(), external_bin()),
+        ],
+        BakeOptions::DEFAULT,
+    );
+    assert!(text.contains("more than one"), "{text}");
+}
+
+#[test]
+fn a_missing_dropped_companion_is_named() {
+    let text = dropped_refused(
+        "two-materials-external.gltf",
+        external_gltf("two-materials.bin"),
+        Vec::new(),
+        BakeOptions::DEFAULT,
+    );
+    assert!(text.contains("does not exist"), "{text}");
+}
+
+#[test]
+fn a_dropped_companion_over_the_input_limit_is_refused() {
+    let small = BakeOptions::DEFAULT
+        .with_limits(chamfer_preprocess::Limits::DEFAULT.with_max_input_bytes(4096));
+    let text = dropped_refused(
+        "two-materials-external.gltf",
+        external_gltf("two-materials.bin"),
+        vec![("two-materials.bin".into(), vec![0; 8192])],
+        small,
+    );
+    assert!(text.contains("larger than the limit"), "{text}");
+}
+
+fn gzip(bytes: &[u8]) -> Vec<u8> {
+    use std::io::Write;
+    let mut encoder = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::best());
+    encoder.write_all(bytes).expect("gzip into memory");
+    encoder.finish().expect("gzip into memory")
+}
+
+#[test]
+fn a_dropped_gzip_bomb_stops_at_the_input_limit() {
+    let limit = 1 << 20;
+    let options = BakeOptions::DEFAULT
+        .with_limits(chamfer_preprocess::Limits::DEFAULT.with_max_input_bytes(limit));
+    let mut ply = b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n\
+                    property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+        .to_vec();
+    ply.extend(std::iter::repeat_n(b' ', 64 << 20));
+    let bomb = gzip(&ply);
+    assert!(bomb.len() < 1 << 20);
+    let text = dropped_refused("bomb.ply.gz", bomb, Vec::new(), options);
+    assert!(text.contains("limit"), "{text}");
+}
+
+#[test]
+fn a_dropped_gzip_declaring_huge_counts_is_refused_from_its_header() {
+    let ply =
+        b"ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\n\
+                property float y\nproperty float z\nend_header\n";
+    let text = dropped_refused("huge.ply.gz", gzip(ply), Vec::new(), BakeOptions::DEFAULT);
+    assert!(text.contains("vert"), "{text}");
+}
+
+#[test]
+fn a_corrupt_dropped_gzip_is_refused() {
+    let mut bytes =
+        gzip(&std::fs::read(chamfer_tests_fixture("shapes/cube-marked-le.ply")).expect("ply"));
+    let middle = bytes.len() / 2;
+    bytes.truncate(middle);
+    dropped_refused("cube.ply.gz", bytes, Vec::new(), BakeOptions::DEFAULT);
 }

@@ -15,6 +15,7 @@ use crate::settings::{BakeSettings, ViewSettings};
 /// A baked asset: the `.chamfer` file's bytes and its `chamfer inspect --json` report (with the
 /// bake's warnings and step times).
 #[wasm_bindgen]
+#[derive(Debug)]
 pub struct Baked {
     asset: Vec<u8>,
     report: String,
@@ -86,9 +87,14 @@ pub fn svg_of(
     view: &ViewSettings,
     size: [u32; 2],
 ) -> Result<String, String> {
-    let asset = Asset::decode(bytes).map_err(|e| format!("{name}: not a valid .chamfer asset: {e}"))?;
+    let asset =
+        Asset::decode(bytes).map_err(|e| format!("{name}: not a valid .chamfer asset: {e}"))?;
     let camera = view.camera([asset.header.bounds_min, asset.header.bounds_max], size);
-    let drawing = hidden_lines(&asset, &camera, &DrawOptions::DEFAULT.with_classes(&view.line_classes()?));
+    let drawing = hidden_lines(
+        &asset,
+        &camera,
+        &DrawOptions::DEFAULT.with_classes(&view.line_classes()?),
+    );
     let mut svg = Vec::new();
     write_svg(&drawing, &SvgOptions::default().with_title(name), &mut svg)
         .map_err(|e| format!("{name}: cannot write the drawing: {e}"))?;
@@ -161,4 +167,92 @@ pub fn techniques() -> String {
         })
         .collect();
     serde_json::Value::from(all).to_string()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn fixture(relative: &str) -> std::path::PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../fixtures")
+            .join(relative)
+    }
+
+    #[test]
+    fn a_dropped_gltf_and_its_buffer_bake_to_chamfer_bakes_bytes() {
+        let gltf = fixture("shapes/two-materials-external.gltf");
+        let files = vec![
+            (
+                "two-materials-external.gltf".to_owned(),
+                std::fs::read(&gltf).expect("gltf"),
+            ),
+            (
+                "two-materials.bin".to_owned(),
+                std::fs::read(fixture("shapes/two-materials.bin")).expect("bin"),
+            ),
+        ];
+        let settings = BakeSettings::from_json(r#"{"compact": true}"#).expect("settings");
+        let mut steps = Vec::new();
+        let baked = bake_files(
+            "two-materials-external.gltf",
+            &files,
+            &settings,
+            &mut |step| steps.push(step.to_owned()),
+        )
+        .expect("baked");
+        let (options, compact) = settings.options().expect("options");
+        let on_disk = chamfer_preprocess::bake_file(&gltf, &options).expect("on disk");
+        let mut expected = Vec::new();
+        compact::encode(&on_disk.asset, compact.as_ref(), &mut expected).expect("encode");
+        assert_eq!(baked.asset, expected);
+        assert_eq!(steps, ["baking", "encoding"]);
+        let report: serde_json::Value = serde_json::from_str(&baked.report).expect("json");
+        assert_eq!(report["bytes"]["total"], expected.len());
+        let inspected: serde_json::Value =
+            serde_json::from_str(&inspect_asset("x.chamfer", &baked.asset).expect("inspect"))
+                .expect("json");
+        assert_eq!(inspected["triangles"], report["triangles"]);
+    }
+
+    #[test]
+    fn refusals_name_the_file() {
+        let files = vec![("part.obj".to_owned(), b"v 0 0 0\nf 1 2 3\n".to_vec())];
+        let settings = BakeSettings::default();
+        let error = bake_files("part.obj", &files, &settings, &mut |_| {}).expect_err("bad");
+        assert!(error.contains("part.obj"), "{error}");
+        let error = bake_files("other.obj", &files, &settings, &mut |_| {}).expect_err("absent");
+        assert!(
+            error.contains("other.obj: not among the given files"),
+            "{error}"
+        );
+        let error = inspect_asset("broken.chamfer", b"CHAMFER?").expect_err("not an asset");
+        assert!(
+            error.starts_with("broken.chamfer: not a valid .chamfer asset"),
+            "{error}"
+        );
+        let error = svg_of("broken.chamfer", b"", &ViewSettings::default(), [64, 64])
+            .expect_err("not an asset");
+        assert!(error.starts_with("broken.chamfer"), "{error}");
+    }
+
+    #[test]
+    fn the_drawing_is_chamfer_draws_svg() {
+        let files = vec![(
+            "cube.obj".to_owned(),
+            std::fs::read(fixture("shapes/cube.obj")).expect("cube"),
+        )];
+        let baked =
+            bake_files("cube.obj", &files, &BakeSettings::default(), &mut |_| {}).expect("baked");
+        let svg = svg_of(
+            "cube.chamfer",
+            &baked.asset,
+            &ViewSettings::default(),
+            [320, 240],
+        )
+        .expect("svg");
+        assert!(svg.starts_with("<?xml") || svg.starts_with("<svg"), "{svg}");
+        assert!(svg.contains("<title>cube.chamfer</title>"), "{svg}");
+        assert!(svg.matches("<polyline").count() + svg.matches("<path").count() > 0);
+    }
 }

@@ -208,13 +208,15 @@ impl ViewSettings {
     }
 
     fn classes(&self) -> Result<EdgeClasses, String> {
-        self.classes.iter().try_fold(EdgeClasses::NONE, |all, name| {
-            let (_, class) = CLASSES
-                .iter()
-                .find(|(known, _)| known == name)
-                .ok_or_else(|| format!("no edge class '{name}'"))?;
-            Ok(EdgeClasses(all.0 | class.0))
-        })
+        self.classes
+            .iter()
+            .try_fold(EdgeClasses::NONE, |all, name| {
+                let (_, class) = CLASSES
+                    .iter()
+                    .find(|(known, _)| known == name)
+                    .ok_or_else(|| format!("no edge class '{name}'"))?;
+                Ok(EdgeClasses(all.0 | class.0))
+            })
     }
 
     /// The drawing's line classes for the classes drawn (ridges and valleys are its creases).
@@ -332,7 +334,10 @@ mod tests {
             (r#"{"classes": ["ridge", "seam"]}"#, "no edge class 'seam'"),
             (r#"{"samples": 3}"#, "samples must be 1 or 4"),
             (r#"{"edge_width": -1}"#, "edge_width must be 0 to 1000"),
-            (r#"{"background": [1, 1, 2, 1]}"#, "colours are four numbers"),
+            (
+                r#"{"background": [1, 1, 2, 1]}"#,
+                "colours are four numbers",
+            ),
             (r#"{"zoom": 2}"#, "unknown field `zoom`"),
             (r#"{"azimuth": "left"}"#, "view settings"),
         ] {

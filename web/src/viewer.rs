@@ -7,8 +7,7 @@ use std::sync::{Arc, Mutex};
 
 use chamfer_runtime::asset::Asset;
 use chamfer_runtime::render::{
-    GpuAsset, Instance, MeshRenderer, OffscreenTarget, Pipelines, SceneRenderer, Target,
-    Technique,
+    GpuAsset, Instance, MeshRenderer, OffscreenTarget, Pipelines, SceneRenderer, Target, Technique,
 };
 use wasm_bindgen::prelude::*;
 

@@ -200,16 +200,14 @@ pub fn annotate_with(
     };
     let mut spans = Vec::new();
     let mesh = match format {
-        Format::Gltf => {
-            load::gltf::parse_with_spans(
-                input,
-                &bytes,
-                Companions::Folder,
-                &options.limits,
-                &mut warnings,
-                &mut spans,
-            )?
-        }
+        Format::Gltf => load::gltf::parse_with_spans(
+            input,
+            &bytes,
+            Companions::Folder,
+            &options.limits,
+            &mut warnings,
+            &mut spans,
+        )?,
         _ => load::ply::parse(input, &bytes, &options.limits, &mut warnings)?,
     };
     mesh.validate().map_err(|source| Error::Mesh {

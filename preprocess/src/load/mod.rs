@@ -152,7 +152,9 @@ pub fn read(path: &Path, limits: &Limits) -> Result<Vec<u8>, Error> {
 /// [`read`] for a file already in memory, named `path`: the same limits and checks, inflated if
 /// the name ends in `.gz`.
 pub fn read_bytes(path: &Path, bytes: &[u8], limits: &Limits) -> Result<Vec<u8>, Error> {
-    files::input_bytes(path, bytes, limits, &|prefix| check_header(path, prefix, limits))
+    files::input_bytes(path, bytes, limits, &|prefix| {
+        check_header(path, prefix, limits)
+    })
 }
 
 /// Checks the counts a header declares from the first inflated bytes of a `.gz`: `Ok(true)` once

@@ -39,16 +39,15 @@ pub(super) fn load<'a>(
                 ),
                 Some(uri) => {
                     let relative = relative_path(uri).map_err(|e| format!("buffer {i}: {e}"))?;
-                    let bytes = read_reference(path, &relative, limits.max_input_bytes, companions).map_err(
-                        |e| match e {
+                    let bytes = read_reference(path, &relative, limits.max_input_bytes, companions)
+                        .map_err(|e| match e {
                             RefusedReference::Missing => {
                                 format!("buffer {i}: uri '{uri}' names a file that does not exist")
                             }
                             RefusedReference::Refused(problem) => {
                                 format!("buffer {i}: uri '{uri}' {problem}")
                             }
-                        },
-                    )?;
+                        })?;
                     Cow::Owned(bytes)
                 }
             };

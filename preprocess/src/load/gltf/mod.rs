@@ -27,8 +27,8 @@ use gltf::json::{self, validation::Checked};
 
 use self::accessor::Accessors;
 use super::SceneMeshes;
-use crate::load::files::Companions;
 use crate::limits::Limited;
+use crate::load::files::Companions;
 use crate::mesh::Mesh;
 use crate::{Error, Limits};
 
@@ -249,7 +249,8 @@ fn with_document<R>(
     limits.check(path, Limited::Vertices, vertices)?;
     limits.check(path, Limited::Triangles, triangles)?;
 
-    let buffers = buffers::load(root, gltf.blob.as_deref(), path, companions, limits).map_err(invalid)?;
+    let buffers =
+        buffers::load(root, gltf.blob.as_deref(), path, companions, limits).map_err(invalid)?;
     let accessors = Accessors {
         root,
         buffers: &buffers,
