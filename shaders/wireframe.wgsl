@@ -79,6 +79,9 @@ fn wire_vertex(@builtin(vertex_index) k: u32, @builtin(instance_index) t: u32) -
 @fragment
 fn wire_fragment(v: WireVarying) -> @location(0) vec4<f32> {
     var coverage = 0.0;
+    // How fast each coordinate changes, taken before any branch: derivatives need uniform control
+    // flow (WebGPU's compilers refuse them inside the loop's `continue`).
+    let ramp = max(fwidth(v.coords), vec3<f32>(1e-6));
     for (var k = 0u; k < 3u; k += 1u) {
         if ((v.shown >> k) & 1u) == 0u {
             continue;
@@ -89,7 +92,7 @@ fn wire_fragment(v: WireVarying) -> @location(0) vec4<f32> {
             on = select(0.0, 1.0, e < params.naive_threshold);
         } else if params.smooth_border == 1u {
             // A one-pixel ramp at the band's inner border, from how fast the coordinate changes.
-            on = clamp((e - 1.0) / max(fwidth(e), 1e-6) + 0.5, 0.0, 1.0);
+            on = clamp((e - 1.0) / ramp[k] + 0.5, 0.0, 1.0);
         } else {
             on = select(0.0, 1.0, e > 1.0);
         }

@@ -33,12 +33,9 @@
 //! BVH's shape: segments are sorted before they are welded and chained.
 
 use std::collections::HashMap;
-use std::time::Duration;
 
 use glam::{DVec3, Vec3};
-use obvhs::BvhBuildParams;
 use obvhs::aabb::Aabb;
-use obvhs::bvh2::builder::build_bvh2;
 use obvhs::bvh2::node::Bvh2Node;
 use rayon::prelude::*;
 
@@ -169,8 +166,7 @@ fn crossing_segments(positions: &[Vec3], triangles: &[[u32; 3]]) -> (Vec<[Vec3; 
             )
         })
         .collect();
-    let mut build_time = Duration::ZERO;
-    let bvh = build_bvh2(&boxes, BvhBuildParams::fast_build(), &mut build_time);
+    let bvh = crate::bvh::build(&boxes);
     let overlaps = SelfOverlaps {
         nodes: &bvh.nodes,
         // The triangles in leaf order, so a leaf's triangles lie together in memory.

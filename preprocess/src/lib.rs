@@ -26,6 +26,7 @@ pub mod adjacency;
 pub mod annotate;
 mod bake;
 pub mod build;
+mod bvh;
 pub mod caps;
 pub mod classify;
 pub mod compact;

@@ -14,3 +14,10 @@ pub mod bake;
 pub mod settings;
 #[cfg(target_arch = "wasm32")]
 mod viewer;
+
+/// Runs when the module is instantiated (in the page and in its worker): panics print their message.
+#[cfg(target_arch = "wasm32")]
+#[wasm_bindgen::prelude::wasm_bindgen(start)]
+fn start() {
+    console_error_panic_hook::set_once();
+}

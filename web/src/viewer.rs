@@ -81,11 +81,18 @@ pub async fn create_viewer(canvas: web_sys::HtmlCanvasElement) -> Result<Viewer,
         }
     }));
     let info = adapter.get_info();
+    let adapter = format!(
+        "{} ({:?}, {:?}; depth {:?})",
+        info.name,
+        info.backend,
+        info.device_type,
+        OffscreenTarget::depth_format(&device)
+    );
     Ok(Viewer {
         device,
         queue,
         surface,
-        adapter: format!("{} ({:?}, {:?})", info.name, info.backend, info.device_type),
+        adapter,
         device_error,
         view: ViewSettings::default(),
         frame: None,

@@ -17,9 +17,7 @@
 pub mod svg;
 
 use glam::{DMat4, DVec3, DVec4, Vec3};
-use obvhs::BvhBuildParams;
 use obvhs::aabb::Aabb;
-use obvhs::bvh2::builder::build_bvh2;
 use rayon::prelude::*;
 
 use chamfer_runtime::asset::{Asset, EdgeFlags};
@@ -371,9 +369,7 @@ impl Occluders {
             .filter_map(|(t, b)| Some((t as u32, b?)))
             .collect();
         let boxes: Vec<Aabb> = bounded.iter().map(|&(_, b)| b).collect();
-        let mut build_time = std::time::Duration::ZERO;
-        let bvh = (!boxes.is_empty())
-            .then(|| build_bvh2(&boxes, BvhBuildParams::fast_build(), &mut build_time));
+        let bvh = (!boxes.is_empty()).then(|| crate::bvh::build(&boxes));
         Self {
             triangles,
             bounded,
