@@ -184,6 +184,23 @@ await check("the page keeps running while a large bake runs in the worker", asyn
 });
 
 await session.close();
+
+await check("without WebGPU the page says why it cannot draw, and still bakes", async () => {
+  const plain = await start({ webgpu: false });
+  try {
+    const page = await openPage(plain);
+    await settled(page, "baked");
+    const [notice, hidden, bytes] = await page.evaluate(() => [
+      document.getElementById("notice").textContent, document.getElementById("notice").hidden,
+      window.chamfer.asset?.bytes.length ?? 0]);
+    expect(!hidden && notice.includes("needs WebGPU") && notice.includes("WebGL2"), `the notice: ${notice}`);
+    expect(bytes > 0, "no asset was baked");
+    console.log(`     ${notice.split(".")[0]}`);
+  } finally {
+    await plain.close();
+  }
+});
+
 if (failures) {
   console.log(`${failures} browser check(s) failed`);
   process.exit(1);

@@ -16,8 +16,9 @@ mkdirSync(outDir, { recursive: true });
 
 const TYPES = { ".html": "text/html", ".js": "text/javascript", ".css": "text/css", ".wasm": "application/wasm" };
 
-/// Serves `webDir` on 127.0.0.1 and opens headless Chromium; returns {browser, origin, close}.
-export async function start() {
+/// Serves `webDir` on 127.0.0.1 and opens headless Chromium (with WebGPU unless `webgpu` is false);
+/// returns {browser, origin, close}.
+export async function start({ webgpu = true } = {}) {
   const server = createServer((request, response) => {
     const path = decodeURIComponent(new URL(request.url, "http://x").pathname);
     const file = join(webDir, path === "/" ? "index.html" : path);
@@ -35,8 +36,8 @@ export async function start() {
   const browser = await puppeteer.launch({
     executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium",
     headless: true,
-    args: ["--no-sandbox", "--enable-unsafe-webgpu", "--enable-features=Vulkan", "--use-vulkan=swiftshader",
-           "--use-angle=swiftshader", "--enable-unsafe-swiftshader"],
+    args: ["--no-sandbox", ...(webgpu ? ["--enable-unsafe-webgpu"] : []), "--enable-features=Vulkan",
+           "--use-vulkan=swiftshader", "--use-angle=swiftshader", "--enable-unsafe-swiftshader"],
   });
   return {
     browser,
@@ -70,6 +71,8 @@ export async function settled(page, state = "drawn") {
 /// Gives `file` to the page's file input and waits until it is baked and drawn.
 export async function upload(page, file) {
   const name = file.split("/").pop();
+  // The same file twice is a change only if the input was emptied in between.
+  await page.evaluate(() => { document.getElementById("files").value = ""; });
   await (await page.$("#files")).uploadFile(file);
   await page.waitForFunction((name) => document.getElementById("status").textContent.startsWith(`${name} `)
     || document.body.dataset.state === "error", { timeout: 180_000 }, name);

@@ -132,13 +132,19 @@ async function openUrl(url) {
   try {
     const main = await fetchFile(url);
     const files = [main];
-    // A .gltf's buffers and an OBJ's material library sit beside it.
-    if (/\.gltf$/i.test(main.name)) {
-      const json = JSON.parse(new TextDecoder().decode(main.bytes));
-      for (const buffer of json.buffers ?? []) {
-        if (buffer.uri && !buffer.uri.startsWith("data:")) {
-          files.push({ ...(await fetchFile(new URL(buffer.uri, new URL(url, location.href)).href)), name: buffer.uri });
-        }
+    // A .gltf's buffers and an OBJ's material libraries sit beside it: fetch them too.
+    const text = () => new TextDecoder().decode(main.bytes);
+    const references = /\.gltf$/i.test(main.name)
+      ? (JSON.parse(text()).buffers ?? []).map((b) => b.uri).filter((uri) => uri && !uri.startsWith("data:"))
+      : /\.obj$/i.test(main.name)
+        ? [...text().matchAll(/^mtllib\s+(.+?)\s*$/gm)].map((m) => m[1])
+        : [];
+    for (const reference of references) {
+      try {
+        const file = await fetchFile(new URL(reference, new URL(url, location.href)).href);
+        files.push({ ...file, name: reference });
+      } catch {
+        // The bake names what is missing (a glTF buffer is an error, an OBJ's materials a warning).
       }
     }
     await open(files);
@@ -179,6 +185,8 @@ function drawNow() {
   state.viewer.setView(JSON.stringify(state.view));
   state.viewer.draw(canvas.width, canvas.height);
   state.framesDrawn++;
+  // Time from the page's start to its first drawn frame, for the benchmarks.
+  state.firstFrameMs ??= performance.now();
 }
 
 function frame() {
@@ -309,9 +317,15 @@ async function start() {
     state.viewer = await createViewer(canvas);
     document.body.dataset.adapter = state.viewer.adapter;
   } catch (e) {
-    showError(`The viewer needs WebGPU: ${e.message}. Every technique draws with compute shaders or ` +
-      "storage buffers read by vertex shaders, which WebGL2 lacks. Baking, inspecting and the " +
-      "downloads still work.");
+    // WebGL2 (OpenGL ES 3.0) has no storage buffers, which every pass of the renderer reads (the
+    // mesh pass its environment, each technique its edges), and no compute shaders, which most
+    // techniques run: none can draw there.
+    const notice = $("notice");
+    notice.textContent = `No drawing here: ${e.message}. Chamfer's renderer needs WebGPU: every ` +
+      "technique reads storage buffers and most run compute shaders, which WebGL2 lacks. Baking, " +
+      "inspecting and the downloads still work.";
+    notice.hidden = false;
+    canvas.hidden = true;
   }
   await openUrl(query.get("url") ?? "fandisk.obj");
 }
