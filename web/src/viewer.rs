@@ -7,7 +7,7 @@ use std::sync::{Arc, Mutex};
 
 use chamfer_runtime::asset::Asset;
 use chamfer_runtime::render::{
-    GpuAsset, Instance, MeshRenderer, OffscreenTarget, Pipelines, SceneRenderer, Target, Technique,
+    GpuAsset, Instance, MeshRenderer, OffscreenTarget, Pipelines, SceneRenderer, Target,
 };
 use wasm_bindgen::prelude::*;
 
@@ -38,9 +38,10 @@ struct Frame {
     edges: SceneRenderer,
 }
 
-/// The asset on screen.
+/// The asset on screen: decoded, and uploaded with what the techniques drawn so far need.
 struct Shown {
-    asset: GpuAsset,
+    asset: Asset,
+    gpu: GpuAsset,
 }
 
 /// Opens WebGPU on `canvas`. Fails with the reason when the browser has no WebGPU adapter.
@@ -112,10 +113,10 @@ impl Viewer {
     pub fn show(&mut self, name: &str, bytes: &[u8]) -> Result<(), JsError> {
         let asset = Asset::decode(bytes)
             .map_err(|e| JsError::new(&format!("{name}: not a valid .chamfer asset: {e}")))?;
-        // Every technique's extras, so switching technique needs no new upload.
-        let asset = GpuAsset::for_techniques(&self.device, &asset, &Technique::all())
+        let technique = self.view.technique().map_err(|e| JsError::new(&e))?;
+        let gpu = GpuAsset::for_techniques(&self.device, &asset, &[technique])
             .map_err(|e| JsError::new(&format!("{name}: cannot upload: {e}")))?;
-        self.shown = Some(Shown { asset });
+        self.shown = Some(Shown { asset, gpu });
         Ok(())
     }
 
@@ -135,7 +136,7 @@ impl Viewer {
         let Some(shown) = &self.shown else {
             return 1.0;
         };
-        let bounds = shown.asset.bounds();
+        let bounds = shown.gpu.bounds();
         let camera = self.view.camera(bounds, [width.max(1), height.max(1)]);
         let [lo, hi] = bounds.map(glam::Vec3::from);
         (camera.eye().truncate() - (lo + hi) * 0.5).length()
@@ -147,12 +148,20 @@ impl Viewer {
         if self.frame.as_ref().is_none_or(|f| f.size != size) {
             self.frame = Some(self.new_frame(size)?);
         }
-        let (Some(frame), Some(shown)) = (&mut self.frame, &self.shown) else {
+        let (Some(frame), Some(shown)) = (&mut self.frame, &mut self.shown) else {
             return Ok(());
         };
         let fail = |what: &str, e: &dyn std::fmt::Display| JsError::new(&format!("{what}: {e}"));
-        let drawn = [Instance::new(&shown.asset)];
-        let bounds = shown.asset.bounds();
+        // A technique that needs more than the upload has (derived on the CPU) uploads again.
+        let needs = self.view.technique().map_err(|e| JsError::new(&e))?.needs();
+        if !shown.gpu.extras().contains(needs) {
+            shown.gpu =
+                GpuAsset::with_extras(&self.device, &shown.asset, shown.gpu.extras() | needs)
+                    .map_err(|e| fail("cannot upload the asset", &e))?;
+        }
+        let shown = &*shown;
+        let drawn = [Instance::new(&shown.gpu)];
+        let bounds = shown.gpu.bounds();
         let camera = self.view.camera(bounds, size);
         frame
             .mesh

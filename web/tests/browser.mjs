@@ -165,21 +165,22 @@ await check("the downloads are the asset on screen and its SVG drawing", async (
 await check("the page keeps running while a large bake runs in the worker", async () => {
   const page = await openPage(session);
   await settled(page);
-  // The longest gap between 10 ms timer ticks on the page's thread while the worker bakes.
+  // The longest gap between 10 ms timer ticks on the page's thread while the worker bakes (a frozen
+  // page would show the whole bake as one gap).
   await page.evaluate(() => {
     window.longestGap = 0;
     let last = performance.now();
     setInterval(() => {
       const now = performance.now();
-      if (document.body.dataset.state === "working") window.longestGap = Math.max(window.longestGap, now - last);
+      if (document.body.dataset.state === "baking") window.longestGap = Math.max(window.longestGap, now - last);
       last = now;
     }, 10);
   });
-  await upload(page, "fixtures/meshes/stanford-bunny.obj");
+  await upload(page, "fixtures/meshes/armadillo.obj");
   await settled(page);
   const [gap, bake] = await page.evaluate(() => [window.longestGap, window.chamfer.asset.report.worker_ms]);
-  console.log(`     bunny baked in the worker in ${bake.toFixed(0)} ms; the page's longest stall ${gap.toFixed(0)} ms`);
-  expect(gap < 250 && gap < bake / 2, `the page stalled for ${gap.toFixed(0)} ms of a ${bake.toFixed(0)} ms bake`);
+  console.log(`     armadillo baked in the worker in ${bake.toFixed(0)} ms; the page's longest stall ${gap.toFixed(0)} ms`);
+  expect(gap < bake / 4, `the page stalled for ${gap.toFixed(0)} ms of a ${bake.toFixed(0)} ms bake`);
   await page.close();
 });
 

@@ -89,8 +89,10 @@ async function open(files) {
     }
     state.source = { name: main.name, files };
     const started = performance.now();
+    document.body.dataset.state = "baking";
     const result = await run({ op: "bake", name: main.name, files, settings: bakeSettings() },
       (step) => { $("status").textContent = `${main.name}: ${step}…`; });
+    document.body.dataset.state = "working";
     const name = main.name.replace(/(\.gz)?$/i, "").replace(/\.[^.]+$/, "") + ".chamfer";
     result.report.page_ms = performance.now() - started;
     result.report.worker_ms = result.ms;
