@@ -43,10 +43,16 @@ if ! command -v cargo >/dev/null; then
     fi
 fi
 
-# The web page (web/, issue 26): the wasm32 target and the wasm-bindgen CLI of exactly the version
-# web/Cargo.toml pins (its output must match the crate's), installed once.
-rustup target list --installed 2>/dev/null | grep -qx wasm32-unknown-unknown \
-    || rustup target add wasm32-unknown-unknown
+# The repository's toolchain (rust-toolchain.toml: 1.97.1, which Bevy 0.20 needs) with the wasm32
+# target of the web page (web/, issue 26), installed once.
+toolchain=$(sed -n 's/^channel = "\(.*\)"/\1/p' "$(dirname "${BASH_SOURCE[0]}")/../rust-toolchain.toml")
+if ! rustup run "$toolchain" rustc --print target-libdir --target wasm32-unknown-unknown >/dev/null 2>&1 \
+    || [[ ! -d "$(rustup run "$toolchain" rustc --print target-libdir --target wasm32-unknown-unknown)" ]]; then
+    echo "setup: installing Rust $toolchain (rust-toolchain.toml)"
+    rustup toolchain install "$toolchain" --profile minimal --component rustfmt,clippy \
+        --target wasm32-unknown-unknown
+fi
+# The wasm-bindgen CLI of exactly the version web/Cargo.toml pins (its output must match the crate's).
 wasm_bindgen_version=0.2.130
 if [[ "$(wasm-bindgen --version 2>/dev/null)" != "wasm-bindgen $wasm_bindgen_version" ]]; then
     echo "setup: installing wasm-bindgen-cli $wasm_bindgen_version"

@@ -22,13 +22,19 @@ if [ -d "$target/debug/.fingerprint" ]; then
     find "$target/debug/.fingerprint" -maxdepth 1 -name 'chamfer-*' -exec rm -rf {} +
 fi
 cargo package --workspace --locked --allow-dirty --exclude chamfer-tests --exclude chamfer-build-script-example \
-    --exclude chamfer-python --exclude chamfer-web  # Python: PyPI (sdist and wheel below); web: the page
+    --exclude chamfer-python --exclude chamfer-web --exclude chamfer-bevy  # Python: PyPI (below); web: the page
+# chamfer-bevy is packed too but not built from its tarball: that would compile Bevy a second time
+# (13 min here, BENCHMARKS.md); the workspace build above is the same code.
+cargo package --locked --allow-dirty --no-verify -p chamfer-bevy -p chamfer-runtime -p chamfer-preprocess \
+    -p chamfer-shaders
 # The Python package (python/, issue 27), as users get it: its sdist, a wheel built from that sdist (into the
 # same target folder, so only our crates compile again) and installed into .venv, then its tests (pytest:
 # the bindings against the chamfer binary cargo test built, and the Dask batch bakes on a LocalCluster).
 rm -rf "$target/wheels/sdist"
 .venv/bin/maturin sdist -m python/Cargo.toml -o "$target/wheels/sdist"
-PATH="$PWD/.venv/bin:$PATH" CARGO_TARGET_DIR="$(cd "$target" && pwd)" .venv/bin/python -m pip wheel -q --disable-pip-version-check --no-deps \
+# The sdist unpacks outside the repository: the repository's toolchain by name, so the dependencies
+# the workspace build compiled are reused.
+PATH="$PWD/.venv/bin:$PATH" RUSTUP_TOOLCHAIN="$toolchain" CARGO_TARGET_DIR="$(cd "$target" && pwd)" .venv/bin/python -m pip wheel -q --disable-pip-version-check --no-deps \
     --no-build-isolation -w "$target/wheels/sdist" "$target"/wheels/sdist/chamfer-*.tar.gz
 .venv/bin/python -m pip install -q --disable-pip-version-check --no-deps --force-reinstall "$target"/wheels/sdist/chamfer-*.whl
 .venv/bin/python -m pytest python/tests -q

@@ -1,0 +1,37 @@
+//! Chamfer in Bevy (issue 25, work in progress): add [`ChamferPlugin`], load a `.chamfer` asset and
+//! put [`ChamferEdges`] on any entity; every 3D camera draws its edges in Bevy's own 3D pass.
+//!
+//! ```no_run
+//! use bevy::prelude::*;
+//! use chamfer_bevy::{ChamferAsset, ChamferEdges, ChamferPlugin};
+//!
+//! fn setup(mut commands: Commands, assets: Res<AssetServer>) {
+//!     let part: Handle<ChamferAsset> = assets.load("part.chamfer");
+//!     commands.spawn((
+//!         Mesh3d(assets.load("part.chamfer#mesh")),
+//!         MeshMaterial3d::<StandardMaterial>::default(),
+//!         ChamferEdges::new(part),
+//!     ));
+//! }
+//! ```
+
+mod asset;
+mod render;
+
+use bevy::prelude::*;
+
+pub use asset::{ChamferAsset, ChamferLoadError, ChamferLoader, render_mesh};
+pub use chamfer_runtime::render::{EdgeClasses, EdgeStyle, Technique};
+pub use render::ChamferEdges;
+
+/// Loads `.chamfer` assets and draws [`ChamferEdges`] in every 3D camera.
+#[derive(Default)]
+pub struct ChamferPlugin;
+
+impl Plugin for ChamferPlugin {
+    fn build(&self, app: &mut App) {
+        app.init_asset::<ChamferAsset>()
+            .init_asset_loader::<ChamferLoader>();
+        render::build(app);
+    }
+}

@@ -1,0 +1,535 @@
+//! The plugin in a headless Bevy app on lavapipe: a camera renders into an `Image` that is read
+//! back; edge pixels are where a frame with the edges differs from the same frame without them.
+
+use std::path::Path;
+use std::sync::{Arc, Mutex};
+
+use bevy::asset::AssetPlugin;
+use bevy::camera::RenderTarget;
+use bevy::prelude::*;
+use bevy::render::RenderPlugin;
+use bevy::render::gpu_readback::{Readback, ReadbackComplete};
+use bevy::render::render_resource::{TextureFormat, TextureUsages};
+use bevy::render::view::{Msaa, Tonemapping};
+use bevy::window::{ExitCondition, WindowPlugin};
+use chamfer_bevy::{ChamferAsset, ChamferEdges, ChamferPlugin};
+use chamfer_preprocess::{BakeOptions, bake_file};
+use chamfer_runtime::render::{
+    Camera as EdgeCamera, EdgeStyle, GpuAsset, Instance, MeshRenderer, MeshStyle, Offscreen, Orbit,
+    Pipelines, SceneRenderer,
+};
+
+const SIZE: [u32; 2] = [320, 240];
+
+fn fixture(relative: &str) -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../fixtures")
+        .join(relative)
+}
+
+/// A folder of assets: `name.chamfer` baked from each fixture.
+fn assets(meshes: &[(&str, &str)]) -> tempfile::TempDir {
+    let dir = tempfile::tempdir().expect("tempdir");
+    for (name, mesh) in meshes {
+        let baked = bake_file(&fixture(mesh), &BakeOptions::DEFAULT).expect("bake");
+        std::fs::write(
+            dir.path().join(format!("{name}.chamfer")),
+            baked.asset.encode_to_vec(),
+        )
+        .expect("write");
+    }
+    dir
+}
+
+/// A headless app with the plugin, its assets read from `folder`.
+fn app(folder: &Path) -> App {
+    let mut app = App::new();
+    app.add_plugins(
+        DefaultPlugins
+            .set(WindowPlugin {
+                primary_window: None,
+                exit_condition: ExitCondition::DontExit,
+                ..default()
+            })
+            .set(AssetPlugin {
+                file_path: folder.to_string_lossy().into_owned(),
+                ..default()
+            })
+            .set(RenderPlugin {
+                synchronous_pipeline_compilation: true,
+                ..default()
+            })
+            // One global logger per test process: the tests make many apps.
+            .disable::<bevy::log::LogPlugin>(),
+    )
+    .add_plugins(ChamferPlugin);
+    app.finish();
+    app.cleanup();
+    app
+}
+
+/// The orbit camera `chamfer render` frames `bounds` with, as a Bevy camera's transform and
+/// projection (the same view and field of view; Bevy's depth is reverse-Z and infinite).
+fn orbit_camera(
+    bounds: [[f32; 3]; 2],
+    azimuth: f32,
+    elevation: f32,
+) -> (Transform, Projection, EdgeCamera) {
+    let orbit = Orbit {
+        azimuth_deg: azimuth,
+        elevation_deg: elevation,
+        ..Orbit::default()
+    };
+    let camera = EdgeCamera::orbit(bounds, &orbit, SIZE);
+    let eye = camera.model_view.inverse().w_axis.truncate();
+    let [lo, hi] = bounds.map(glam::Vec3::from);
+    let center = (lo + hi) * 0.5;
+    let transform = Transform::from_translation(Vec3::from_array(eye.to_array()))
+        .looking_at(Vec3::from_array(center.to_array()), Vec3::Y);
+    let projection = Projection::Perspective(PerspectiveProjection {
+        fov: orbit.fov_y_deg.to_radians(),
+        near: 0.01,
+        ..default()
+    });
+    (transform, projection, camera)
+}
+
+/// Renders frames until the image has been read back after the asset loaded; returns RGBA8 rows
+/// (an HDR target's half floats clamped to 0..1 and sRGB-encoded; alpha too, unused).
+fn render(app: &mut App, image: &Handle<Image>) -> Vec<u8> {
+    let hdr = {
+        let images = app.world().resource::<Assets<Image>>();
+        images.get(image).map(|i| i.texture_descriptor.format) == Some(TextureFormat::Rgba16Float)
+    };
+    let raw = render_raw(app, image, if hdr { 8 } else { 4 });
+    if !hdr {
+        return raw;
+    }
+    // Linear values, encoded as a display would show them (sRGB), so dark faces stay apart from
+    // black edges as in the LDR frames.
+    raw.chunks(2)
+        .map(|h| {
+            let linear = half::f16::from_le_bytes([h[0], h[1]])
+                .to_f32()
+                .clamp(0.0, 1.0);
+            let encoded = if linear <= 0.003_130_8 {
+                12.92 * linear
+            } else {
+                1.055 * linear.powf(1.0 / 2.4) - 0.055
+            };
+            (encoded * 255.0).round() as u8
+        })
+        .collect()
+}
+
+fn render_raw(app: &mut App, image: &Handle<Image>, bytes_per_pixel: usize) -> Vec<u8> {
+    let received: Arc<Mutex<Option<Vec<u8>>>> = Arc::default();
+    for _ in 0..300 {
+        app.update();
+        let loaded = {
+            let world = app.world();
+            !world.resource::<Assets<ChamferAsset>>().is_empty()
+        };
+        if loaded {
+            break;
+        }
+    }
+    // A few frames so the joined technique's lists settle, then one read back.
+    for _ in 0..4 {
+        app.update();
+    }
+    let sink = Arc::clone(&received);
+    app.world_mut()
+        .spawn(Readback::texture(image.clone()))
+        .observe(move |event: On<ReadbackComplete>| {
+            if let Ok(mut slot) = sink.lock() {
+                slot.get_or_insert_with(|| event.data.clone());
+            }
+        });
+    for _ in 0..20 {
+        app.update();
+        if let Some(bytes) = received.lock().ok().and_then(|r| r.clone()) {
+            return unpad(&bytes, bytes_per_pixel);
+        }
+    }
+    panic!("no readback");
+}
+
+/// Rows padded to 256 bytes, as the readback gives them, to tight rows.
+fn unpad(bytes: &[u8], bytes_per_pixel: usize) -> Vec<u8> {
+    let row = bytes_per_pixel * SIZE[0] as usize;
+    let padded = row.next_multiple_of(256);
+    (0..SIZE[1] as usize)
+        .flat_map(|y| bytes[y * padded..y * padded + row].iter().copied())
+        .collect()
+}
+
+fn differing(a: &[u8], b: &[u8]) -> Vec<bool> {
+    a.chunks(4)
+        .zip(b.chunks(4))
+        .map(|(p, q)| (0..3).any(|c| p[c].abs_diff(q[c]) > 40))
+        .collect()
+}
+
+/// Share of `from`'s pixels with a pixel of `to` within one pixel.
+fn covered(from: &[bool], to: &[bool]) -> f64 {
+    let [w, h] = SIZE.map(|v| v as i64);
+    let (mut hits, mut total) = (0u64, 0u64);
+    for y in 0..h {
+        for x in 0..w {
+            if !from[(y * w + x) as usize] {
+                continue;
+            }
+            total += 1;
+            let near = (-1..=1).any(|dy| {
+                (-1..=1).any(|dx| {
+                    let (u, v) = (x + dx, y + dy);
+                    u >= 0 && v >= 0 && u < w && v < h && to[(v * w + u) as usize]
+                })
+            });
+            hits += u64::from(near);
+        }
+    }
+    if total == 0 {
+        0.0
+    } else {
+        hits as f64 / total as f64
+    }
+}
+
+/// `chamfer render`'s picture (mesh + edges, and mesh alone) of `mesh` from `camera`, as the
+/// command draws it (the runtime's renderers on an offscreen target, 4× MSAA).
+fn reference(mesh: &str, camera: &EdgeCamera) -> Vec<bool> {
+    reference_at(mesh, camera, glam::Mat4::IDENTITY)
+}
+
+/// [`reference`] with the mesh moved by `transform`.
+fn reference_at(mesh: &str, camera: &EdgeCamera, transform: glam::Mat4) -> Vec<bool> {
+    let baked = bake_file(&fixture(mesh), &BakeOptions::DEFAULT).expect("bake");
+    let gpu = Offscreen::new().expect("a wgpu adapter (lavapipe)");
+    let target = gpu.target(SIZE[0], SIZE[1], 4).expect("target");
+    let pipelines = Pipelines::new(&gpu.device, &target.formats()).expect("pipelines");
+    let asset = GpuAsset::new(&gpu.device, &baked.asset).expect("upload");
+    let drawn = [Instance::new(&asset).with_transform(transform)];
+    let mut pictures = Vec::new();
+    for with_edges in [true, false] {
+        let mut mesh = MeshRenderer::for_scenes(&pipelines).expect("mesh");
+        mesh.prepare_scene(&gpu.queue, camera, &drawn, &MeshStyle::default());
+        let mut edges = SceneRenderer::new(&pipelines);
+        let mut encoder = gpu.encoder();
+        let prepared = with_edges.then(|| {
+            edges
+                .prepare(
+                    &gpu.queue,
+                    &mut encoder,
+                    camera,
+                    &drawn,
+                    &EdgeStyle::default(),
+                )
+                .expect("prepare")
+        });
+        {
+            let mut pass = target.begin_pass(&mut encoder, [1.0; 4]);
+            mesh.render(&mut pass);
+            if let Some(p) = &prepared {
+                p.render(&mut pass);
+            }
+        }
+        if let Some(p) = &prepared {
+            p.finish(&mut encoder, &target.views()).expect("finish");
+        }
+        gpu.submit(encoder).expect("submit");
+        pictures.push(target.read(&gpu).expect("read").rgba);
+    }
+    differing(&pictures[0], &pictures[1])
+}
+
+/// The scene: `name.chamfer` drawn by Bevy (its mesh, a light) with or without edges, from
+/// `transform`; returns the edge pixels.
+struct Scene {
+    app: App,
+    image: Handle<Image>,
+    part: Entity,
+}
+
+impl Scene {
+    fn new(
+        folder: &Path,
+        name: &str,
+        camera: (Transform, Projection),
+        msaa: Msaa,
+        hdr: bool,
+    ) -> Self {
+        let mut app = app(folder);
+        let world = app.world_mut();
+        let format = if hdr {
+            TextureFormat::Rgba16Float
+        } else {
+            TextureFormat::Rgba8UnormSrgb
+        };
+        let mut target = Image::new_target_texture(SIZE[0], SIZE[1], format, None);
+        target.texture_descriptor.usage |= TextureUsages::COPY_SRC;
+        let image = world.resource_mut::<Assets<Image>>().add(target);
+        let server = world.resource::<AssetServer>().clone();
+        let part: Handle<ChamferAsset> = server.load(format!("{name}.chamfer"));
+        let mesh: Handle<Mesh> = server.load(format!("{name}.chamfer#mesh"));
+        let material = world
+            .resource_mut::<Assets<StandardMaterial>>()
+            .add(StandardMaterial::from(Color::srgb(0.8, 0.8, 0.78)));
+        let part = world
+            .spawn((
+                Mesh3d(mesh),
+                MeshMaterial3d(material),
+                ChamferEdges::new(part),
+            ))
+            .id();
+        world.spawn((
+            DirectionalLight::default(),
+            Transform::from_xyz(1.0, 2.0, 1.5).looking_at(Vec3::ZERO, Vec3::Y),
+        ));
+        let mut camera_entity = world.spawn((
+            Camera3d::default(),
+            RenderTarget::Image(image.clone().into()),
+            Tonemapping::None,
+            msaa,
+            camera.0,
+            camera.1,
+        ));
+        if hdr {
+            camera_entity.insert(bevy::camera::Hdr);
+        }
+        Self { app, image, part }
+    }
+
+    /// The frame with the part's edges and without them.
+    fn edge_pixels(&mut self) -> Vec<bool> {
+        let with = render(&mut self.app, &self.image);
+        let edges = self
+            .app
+            .world_mut()
+            .entity_mut(self.part)
+            .take::<ChamferEdges>()
+            .expect("edges");
+        let without = render(&mut self.app, &self.image);
+        self.app.world_mut().entity_mut(self.part).insert(edges);
+        differing(&with, &without)
+    }
+}
+
+#[test]
+fn the_cube_and_the_fandisk_are_drawn_where_chamfer_render_draws_them() {
+    let folder = assets(&[
+        ("cube", "shapes/cube.obj"),
+        ("fandisk", "meshes/fandisk.obj"),
+    ]);
+    for (name, mesh) in [
+        ("cube", "shapes/cube.obj"),
+        ("fandisk", "meshes/fandisk.obj"),
+    ] {
+        let bounds = {
+            let baked = bake_file(&fixture(mesh), &BakeOptions::DEFAULT).expect("bake");
+            [baked.asset.header.bounds_min, baked.asset.header.bounds_max]
+        };
+        let (transform, projection, camera) = orbit_camera(bounds, -50.0, 30.0);
+        let mut scene = Scene::new(
+            folder.path(),
+            name,
+            (transform, projection),
+            Msaa::Sample4,
+            false,
+        );
+        let bevy = scene.edge_pixels();
+        let cli = reference(mesh, &camera);
+        let (_, _, control_camera) = orbit_camera(bounds, -35.0, 30.0);
+        let control = reference(mesh, &control_camera);
+        let (a, b) = (covered(&bevy, &cli), covered(&cli, &bevy));
+        let (c, d) = (covered(&bevy, &control), covered(&control, &bevy));
+        let count = bevy.iter().filter(|&&e| e).count();
+        eprintln!(
+            "{name}: {count} edge pixels; within 1 px {a:.4} / {b:.4}; control {c:.4} / {d:.4}"
+        );
+        assert!(count > 100, "{name}: {count} edge pixels");
+        assert!(a >= 0.95 && b >= 0.95, "{name}: {a} / {b}");
+        assert!(c.min(d) < 0.95, "{name}: the control passes: {c} / {d}");
+    }
+}
+
+/// The cube's bounds and the test camera (`chamfer render --azimuth -50 --elevation 30`).
+fn cube_view() -> ([[f32; 3]; 2], (Transform, Projection), EdgeCamera) {
+    let baked = bake_file(&fixture("shapes/cube.obj"), &BakeOptions::DEFAULT).expect("bake");
+    let bounds = [baked.asset.header.bounds_min, baked.asset.header.bounds_max];
+    let (transform, projection, camera) = orbit_camera(bounds, -50.0, 30.0);
+    (bounds, (transform, projection), camera)
+}
+
+fn overlaps(bevy: &[bool], reference: &[bool]) -> (f64, f64, usize) {
+    (
+        covered(bevy, reference),
+        covered(reference, bevy),
+        bevy.iter().filter(|&&e| e).count(),
+    )
+}
+
+#[test]
+fn single_sample_and_hdr_cameras_draw_the_same_edges() {
+    let folder = assets(&[("cube", "shapes/cube.obj")]);
+    let (_, view, camera) = cube_view();
+    let cli = reference("shapes/cube.obj", &camera);
+    for (msaa, hdr) in [(Msaa::Off, false), (Msaa::Sample4, true), (Msaa::Off, true)] {
+        let mut scene = Scene::new(folder.path(), "cube", view.clone(), msaa, hdr);
+        let (a, b, count) = overlaps(&scene.edge_pixels(), &cli);
+        eprintln!("{msaa:?} hdr {hdr}: {count} edge pixels, within 1 px {a:.4} / {b:.4}");
+        assert!(
+            count > 100 && a >= 0.95 && b >= 0.95,
+            "{msaa:?} hdr {hdr}: {a} / {b}"
+        );
+    }
+}
+
+#[test]
+fn a_moved_entity_is_drawn_at_its_new_place() {
+    let folder = assets(&[("cube", "shapes/cube.obj")]);
+    let (_, view, camera) = cube_view();
+    let mut scene = Scene::new(folder.path(), "cube", view, Msaa::Sample4, false);
+    let before = scene.edge_pixels();
+    let shift = Vec3::new(0.3, 0.1, -0.2);
+    scene
+        .app
+        .world_mut()
+        .entity_mut(scene.part)
+        .insert(Transform::from_translation(shift));
+    let after = scene.edge_pixels();
+    let moved = reference_at(
+        "shapes/cube.obj",
+        &camera,
+        glam::Mat4::from_translation(glam::Vec3::from_array(shift.to_array())),
+    );
+    let (a, b, count) = overlaps(&after, &moved);
+    let (c, d, _) = overlaps(&after, &before);
+    eprintln!(
+        "moved: {count} edge pixels, within 1 px of the moved reference {a:.4} / {b:.4}, of the old place {c:.4} / {d:.4}"
+    );
+    assert!(a >= 0.95 && b >= 0.95, "{a} / {b}");
+    assert!(c.min(d) < 0.9, "the edges did not move: {c} / {d}");
+}
+
+#[test]
+fn a_hidden_entity_draws_no_edges() {
+    let folder = assets(&[("cube", "shapes/cube.obj")]);
+    let (_, view, _) = cube_view();
+    let mut scene = Scene::new(folder.path(), "cube", view, Msaa::Sample4, false);
+    let shown = scene.edge_pixels().iter().filter(|&&e| e).count();
+    scene
+        .app
+        .world_mut()
+        .entity_mut(scene.part)
+        .insert(Visibility::Hidden);
+    let hidden = scene.edge_pixels().iter().filter(|&&e| e).count();
+    assert!(shown > 100, "{shown} edge pixels when shown");
+    assert_eq!(hidden, 0, "a hidden entity drew {hidden} edge pixels");
+}
+
+#[test]
+fn edges_behind_a_plain_bevy_cube_are_hidden() {
+    let folder = assets(&[("cube", "shapes/cube.obj")]);
+    let (bounds, view, _) = cube_view();
+    let mut scene = Scene::new(folder.path(), "cube", view.clone(), Msaa::Sample4, false);
+    let open = scene.edge_pixels().iter().filter(|&&e| e).count();
+    // A plain Bevy box (not a Chamfer asset) between the camera and the part, filling the view.
+    let [lo, hi] = bounds.map(Vec3::from_array);
+    let center = (lo + hi) * 0.5;
+    let eye = view.0.translation;
+    let between = center + (eye - center) * 0.6;
+    let world = scene.app.world_mut();
+    let mesh = world
+        .resource_mut::<Assets<Mesh>>()
+        .add(Cuboid::new(4.0, 4.0, 0.05));
+    let material = world
+        .resource_mut::<Assets<StandardMaterial>>()
+        .add(StandardMaterial::from(Color::srgb(0.2, 0.4, 0.8)));
+    world.spawn((
+        Mesh3d(mesh),
+        MeshMaterial3d(material),
+        Transform::from_translation(between).looking_at(eye, Vec3::Y),
+    ));
+    let behind = scene.edge_pixels().iter().filter(|&&e| e).count();
+    assert!(open > 100, "{open} edge pixels without the box");
+    assert_eq!(behind, 0, "{behind} edge pixels show through the box");
+}
+
+#[test]
+fn two_cameras_both_draw_the_edges() {
+    let folder = assets(&[("cube", "shapes/cube.obj")]);
+    let (bounds, view, camera) = cube_view();
+    let (other_transform, other_projection, other_camera) = orbit_camera(bounds, 40.0, 20.0);
+    let mut scene = Scene::new(folder.path(), "cube", view, Msaa::Sample4, false);
+    let world = scene.app.world_mut();
+    let mut target =
+        Image::new_target_texture(SIZE[0], SIZE[1], TextureFormat::Rgba8UnormSrgb, None);
+    target.texture_descriptor.usage |= TextureUsages::COPY_SRC;
+    let second = world.resource_mut::<Assets<Image>>().add(target);
+    world.spawn((
+        Camera3d::default(),
+        Camera {
+            order: 1,
+            ..default()
+        },
+        RenderTarget::Image(second.clone().into()),
+        Tonemapping::None,
+        other_transform,
+        other_projection,
+    ));
+    let first_edges = scene.edge_pixels();
+    let with = render(&mut scene.app, &second);
+    let edges = scene
+        .app
+        .world_mut()
+        .entity_mut(scene.part)
+        .take::<ChamferEdges>()
+        .expect("edges");
+    let without = render(&mut scene.app, &second);
+    scene.app.world_mut().entity_mut(scene.part).insert(edges);
+    let second_edges = differing(&with, &without);
+    for (name, pixels, reference) in [
+        (
+            "first",
+            &first_edges,
+            crate::reference("shapes/cube.obj", &camera),
+        ),
+        (
+            "second",
+            &second_edges,
+            crate::reference("shapes/cube.obj", &other_camera),
+        ),
+    ] {
+        let (a, b, count) = overlaps(pixels, &reference);
+        eprintln!("{name} camera: {count} edge pixels, within 1 px {a:.4} / {b:.4}");
+        assert!(count > 100 && a >= 0.95 && b >= 0.95, "{name}: {a} / {b}");
+    }
+}
+
+#[test]
+fn a_broken_asset_is_a_load_error_naming_the_file() {
+    let folder = tempfile::tempdir().expect("tempdir");
+    std::fs::write(
+        folder.path().join("broken.chamfer"),
+        b"CHAMFER but not really",
+    )
+    .expect("write");
+    let mut app = app(folder.path());
+    let handle: Handle<ChamferAsset> = app.world().resource::<AssetServer>().load("broken.chamfer");
+    for _ in 0..200 {
+        app.update();
+        let server = app.world().resource::<AssetServer>();
+        if let Some(bevy::asset::LoadState::Failed(error)) = server.get_load_state(&handle) {
+            let text = error.to_string();
+            assert!(
+                text.contains("broken.chamfer") && text.contains("not a valid .chamfer asset"),
+                "{text}"
+            );
+            return;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    panic!("the broken asset neither failed nor loaded");
+}
