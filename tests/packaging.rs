@@ -61,7 +61,12 @@ fn published_crates_have_full_metadata_and_the_rest_stay_private() {
     published_names.sort();
     assert_eq!(
         published_names,
-        ["chamfer-preprocess", "chamfer-runtime", "chamfer-shaders"],
+        [
+            "chamfer-bevy",
+            "chamfer-preprocess",
+            "chamfer-runtime",
+            "chamfer-shaders"
+        ],
         "only the libraries users depend on are published"
     );
     for name in published_names {
