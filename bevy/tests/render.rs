@@ -533,3 +533,47 @@ fn a_broken_asset_is_a_load_error_naming_the_file() {
     }
     panic!("the broken asset neither failed nor loaded");
 }
+
+#[test]
+fn the_technique_changes_at_run_time() {
+    let folder = assets(&[("fandisk", "meshes/fandisk.obj")]);
+    let baked = bake_file(&fixture("meshes/fandisk.obj"), &BakeOptions::DEFAULT).expect("bake");
+    let bounds = [baked.asset.header.bounds_min, baked.asset.header.bounds_max];
+    let (transform, projection, _) = orbit_camera(bounds, -50.0, 30.0);
+    let mut scene = Scene::new(
+        folder.path(),
+        "fandisk",
+        (transform, projection),
+        Msaa::Sample4,
+        false,
+    );
+    let joined = scene.edge_pixels();
+    for technique in [
+        chamfer_bevy::Technique::Fins {
+            world_thickness: None,
+            z_bias: None,
+        },
+        chamfer_bevy::Technique::from_name("image-sobel").expect("sobel"),
+    ] {
+        scene
+            .app
+            .world_mut()
+            .entity_mut(scene.part)
+            .get_mut::<ChamferEdges>()
+            .expect("edges")
+            .style
+            .technique = technique;
+        let switched = scene.edge_pixels();
+        let count = switched.iter().filter(|&&e| e).count();
+        let changed = joined.iter().zip(&switched).filter(|(a, b)| a != b).count();
+        eprintln!(
+            "{}: {count} edge pixels, {changed} differ from joined",
+            technique.name()
+        );
+        assert!(
+            count > 100 && changed > 100,
+            "{}: {count} / {changed}",
+            technique.name()
+        );
+    }
+}
