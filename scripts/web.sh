@@ -1,8 +1,7 @@
 #!/usr/bin/env bash
 # Builds the web page (web/: the bake and the runtime compiled to wasm32, issue 26) into
 # target/web/ and serves it on 127.0.0.1, printing its URL. `scripts/web.sh build` only builds
-# (the browser tests use that). PROFILE=wasm builds the smaller, slower-to-build variant for hosting
-# (Cargo.toml's [profile.wasm]). Needs what scripts/setup.sh installs (the wasm32 target, clang and
+# (the browser tests use that). Needs what scripts/setup.sh installs (the wasm32 target, clang and
 # llvm-ar for meshoptimizer's encoders, the wasm-bindgen CLI).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -15,12 +14,11 @@ out="$target/web"
 export CC_wasm32_unknown_unknown=clang
 export AR_wasm32_unknown_unknown=llvm-ar
 export CFLAGS_wasm32_unknown_unknown="-include $root/web/meshopt-wasm32.h"
-profile=${PROFILE:-release}
-cargo build --profile "$profile" --locked --target wasm32-unknown-unknown -p chamfer-web
+cargo build --release --locked --target wasm32-unknown-unknown -p chamfer-web
 rm -rf "$out"
 mkdir -p "$out"
 wasm-bindgen --target web --no-typescript --out-dir "$out/pkg" \
-    "$target/wasm32-unknown-unknown/$profile/chamfer_web.wasm"
+    "$target/wasm32-unknown-unknown/release/chamfer_web.wasm"
 cp -r web/www/. "$out/"
 # The bundled model the page opens when it is given none.
 cp fixtures/meshes/fandisk.obj "$out/fandisk.obj"

@@ -3,6 +3,7 @@
 //! input refers to (an OBJ's `mtllib`, a glTF buffer `uri`) only when they resolve, after following
 //! symbolic links, inside the input's own folder.
 
+use std::borrow::Cow;
 use std::fs::{File, Metadata};
 use std::io::{self, Read};
 use std::path::{Component, Path};
@@ -28,8 +29,7 @@ pub(crate) fn read_input(
     };
     let (file, length) = open_regular(path)?;
     limits.check(path, Limited::InputBytes, length)?;
-    let compressed = path.to_string_lossy().to_ascii_lowercase().ends_with(".gz");
-    if !compressed {
+    if !is_gzip(path) {
         return read_capped(file, length, limits.max_input_bytes)
             .map_err(read_error)?
             .ok_or_else(|| over_limit(path, limits));
@@ -38,19 +38,25 @@ pub(crate) fn read_input(
 }
 
 /// [`read_input`] for a file already in memory (a browser's dropped file): the same limits, the
-/// same inflating of a `.gz` with `check_prefix` seeing what has been inflated so far.
-pub(crate) fn input_bytes(
+/// same inflating of a `.gz` with `check_prefix` seeing what has been inflated so far; other files
+/// are borrowed as they are.
+pub(crate) fn input_bytes<'a>(
     path: &Path,
-    bytes: &[u8],
+    bytes: &'a [u8],
     limits: &Limits,
     check_prefix: &dyn Fn(&[u8]) -> Result<bool, Error>,
-) -> Result<Vec<u8>, Error> {
+) -> Result<Cow<'a, [u8]>, Error> {
     limits.check(path, Limited::InputBytes, bytes.len() as u64)?;
-    if path.to_string_lossy().to_ascii_lowercase().ends_with(".gz") {
-        inflate(path, bytes, limits, check_prefix)
+    if is_gzip(path) {
+        inflate(path, bytes, limits, check_prefix).map(Cow::Owned)
     } else {
-        Ok(bytes.to_vec())
+        Ok(Cow::Borrowed(bytes))
     }
+}
+
+/// True if the name ends in `.gz` (any case): the file is inflated as it is read.
+fn is_gzip(path: &Path) -> bool {
+    path.to_string_lossy().to_ascii_lowercase().ends_with(".gz")
 }
 
 fn over_limit(path: &Path, limits: &Limits) -> Error {

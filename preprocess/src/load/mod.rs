@@ -150,8 +150,12 @@ pub fn read(path: &Path, limits: &Limits) -> Result<Vec<u8>, Error> {
 }
 
 /// [`read`] for a file already in memory, named `path`: the same limits and checks, inflated if
-/// the name ends in `.gz`.
-pub fn read_bytes(path: &Path, bytes: &[u8], limits: &Limits) -> Result<Vec<u8>, Error> {
+/// the name ends in `.gz` (other files are borrowed, not copied).
+pub fn read_bytes<'a>(
+    path: &Path,
+    bytes: &'a [u8],
+    limits: &Limits,
+) -> Result<std::borrow::Cow<'a, [u8]>, Error> {
     files::input_bytes(path, bytes, limits, &|prefix| {
         check_header(path, prefix, limits)
     })
