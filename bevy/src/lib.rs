@@ -16,22 +16,28 @@
 //! ```
 
 mod asset;
+mod bake;
 mod render;
 
 use bevy::prelude::*;
 
 pub use asset::{ChamferAsset, ChamferLoadError, ChamferLoader, render_mesh};
-pub use chamfer_runtime::render::{EdgeClasses, EdgeStyle, Technique};
+pub use bake::{BakeError, ChamferBake, bake_to_asset};
+pub use chamfer_preprocess::settings::BakeSettings;
+pub use chamfer_runtime::highlight::ggx::PbrMaterial;
+pub use chamfer_runtime::render::{EdgeClasses, EdgeStyle, Highlight, Light, Shading, Technique};
 pub use render::ChamferEdges;
 
-/// Loads `.chamfer` assets and draws [`ChamferEdges`] in every 3D camera.
+/// Loads `.chamfer` assets, bakes mesh files in the asset processor ([`ChamferBake`]) and draws
+/// [`ChamferEdges`] in every 3D camera.
 #[derive(Default)]
 pub struct ChamferPlugin;
 
 impl Plugin for ChamferPlugin {
     fn build(&self, app: &mut App) {
         app.init_asset::<ChamferAsset>()
-            .init_asset_loader::<ChamferLoader>();
+            .init_asset_loader::<ChamferLoader>()
+            .register_asset_processor(ChamferBake);
         render::build(app);
     }
 }

@@ -18,8 +18,8 @@ use bevy::render::view::{
 use bevy::render::{Extract, ExtractSchedule, Render, RenderApp, RenderSystems};
 use chamfer_runtime::asset::Asset as EdgeAsset;
 use chamfer_runtime::render::{
-    Camera as EdgeCamera, EdgeStyle, FrameViews, GpuAsset, Instance, Pipelines, SceneRenderer,
-    Target,
+    Camera as EdgeCamera, EdgeStyle, FrameViews, GpuAsset, Instance, Light, Pipelines,
+    SceneRenderer, Shading, Target,
 };
 
 use crate::asset::ChamferAsset;
@@ -33,6 +33,12 @@ pub struct ChamferEdges {
     pub asset: Handle<ChamferAsset>,
     /// How its edges are drawn (technique, classes, width, colours, highlight).
     pub style: EdgeStyle,
+    /// Light the chamfer highlight (when the style has one) with the scene's brightest visible
+    /// `DirectionalLight`, as Bevy lights its meshes: the light's linear colour × illuminance
+    /// (lux) × the camera's exposure is the highlight's colour under PBR shading, and that over π
+    /// under the seed's Blinn shading (whose diffuse term has no 1/π). Default true; with false,
+    /// or with no directional light, the style's own light is used (in the entity's model space).
+    pub scene_light: bool,
 }
 
 impl ChamferEdges {
@@ -41,7 +47,13 @@ impl ChamferEdges {
         Self {
             asset,
             style: EdgeStyle::default(),
+            scene_light: true,
         }
+    }
+
+    /// These edges in `style`.
+    pub fn with_style(self, style: EdgeStyle) -> Self {
+        Self { style, ..self }
     }
 }
 
@@ -54,8 +66,12 @@ pub(crate) fn build(app: &mut App) {
     render_app
         .init_resource::<Extracted>()
         .init_resource::<Uploaded>()
+        .init_resource::<ViewRenderers>()
         .add_systems(ExtractSchedule, extract)
-        .add_systems(Render, upload.in_set(RenderSystems::PrepareResources))
+        .add_systems(
+            Render,
+            (upload, forget_views).in_set(RenderSystems::PrepareResources),
+        )
         .add_systems(
             Core3d,
             draw.after(Core3dSystems::MainPass)
@@ -79,20 +95,56 @@ struct Drawn {
     asset: AssetId<ChamferAsset>,
     transform: glam::Mat4,
     style: EdgeStyle,
+    scene_light: bool,
 }
 
-/// This frame's visible entities, and the decoded assets they draw.
+/// The scene's brightest directional light, in world space.
+#[derive(Clone, Copy)]
+struct Sun {
+    /// Towards the light.
+    towards: glam::Vec3,
+    /// Linear colour × illuminance (lux).
+    illuminance: glam::Vec3,
+}
+
+/// This frame's visible entities, the decoded assets they draw and the scene's light.
 #[derive(Resource, Default)]
 struct Extracted {
     drawn: Vec<Drawn>,
     assets: HashMap<AssetId<ChamferAsset>, Arc<EdgeAsset>>,
+    /// Assets changed (re-baked, reloaded) or no longer used since the last frame: their uploads
+    /// go.
+    stale: Vec<AssetId<ChamferAsset>>,
+    sun: Option<Sun>,
 }
 
 fn extract(
     mut extracted: ResMut<Extracted>,
     entities: Extract<Query<(&ChamferEdges, &GlobalTransform, &ViewVisibility)>>,
+    lights: Extract<Query<(&DirectionalLight, &GlobalTransform, &InheritedVisibility)>>,
     assets: Extract<Res<Assets<ChamferAsset>>>,
+    mut events: Extract<MessageReader<AssetEvent<ChamferAsset>>>,
 ) {
+    for event in events.read() {
+        if let AssetEvent::Modified { id }
+        | AssetEvent::Unused { id }
+        | AssetEvent::Removed { id } = *event
+        {
+            extracted.assets.remove(&id);
+            extracted.stale.push(id);
+        }
+    }
+    extracted.sun = lights
+        .iter()
+        .filter(|(_, _, visible)| visible.get())
+        .max_by(|a, b| a.0.illuminance.total_cmp(&b.0.illuminance))
+        .map(|(light, transform, _)| {
+            let color = light.color.to_linear().to_f32_array_no_alpha();
+            Sun {
+                towards: glam::Vec3::from_array((-transform.forward()).to_array()),
+                illuminance: glam::Vec3::from_array(color) * light.illuminance,
+            }
+        });
     extracted.drawn.clear();
     for (edges, transform, visibility) in &entities {
         if !visibility.get() {
@@ -110,6 +162,7 @@ fn extract(
             asset: id,
             transform: to_glam(transform.to_matrix()),
             style: edges.style,
+            scene_light: edges.scene_light,
         });
     }
 }
@@ -120,7 +173,14 @@ struct Uploaded {
     assets: HashMap<AssetId<ChamferAsset>, GpuAsset>,
 }
 
-fn upload(extracted: Res<Extracted>, mut uploaded: ResMut<Uploaded>, device: Res<RenderDevice>) {
+fn upload(
+    mut extracted: ResMut<Extracted>,
+    mut uploaded: ResMut<Uploaded>,
+    device: Res<RenderDevice>,
+) {
+    for id in std::mem::take(&mut extracted.stale) {
+        uploaded.assets.remove(&id);
+    }
     for drawn in &extracted.drawn {
         let needs = drawn.style.technique.needs();
         let current = uploaded.assets.get(&drawn.asset).map(GpuAsset::extras);
@@ -138,6 +198,19 @@ fn upload(extracted: Res<Extracted>, mut uploaded: ResMut<Uploaded>, device: Res
             Err(e) => error!("chamfer: {}: cannot upload: {e}", asset.header.source),
         }
     }
+}
+
+/// Each camera's renderer, by the camera's lasting identity.
+#[derive(Resource, Default)]
+struct ViewRenderers(HashMap<RetainedViewEntity, ViewRenderer>);
+
+/// Drops the renderers of cameras that are gone.
+fn forget_views(mut renderers: ResMut<ViewRenderers>, views: Query<&ExtractedView>) {
+    if renderers.0.is_empty() {
+        return;
+    }
+    let live: Vec<RetainedViewEntity> = views.iter().map(|v| v.retained_view_entity).collect();
+    renderers.0.retain(|view, _| live.contains(view));
 }
 
 /// A camera's renderer: pipelines for its target, a scene renderer per style drawn.
@@ -158,7 +231,7 @@ fn draw(
     extracted: Res<Extracted>,
     uploaded: Res<Uploaded>,
     queue: Res<RenderQueue>,
-    mut renderers: Local<HashMap<RetainedViewEntity, ViewRenderer>>,
+    mut renderers: ResMut<ViewRenderers>,
     mut ctx: RenderContext,
 ) {
     if extracted.drawn.is_empty() {
@@ -172,10 +245,11 @@ fn draw(
     )
     .with_reverse_z(true);
     let device = ctx.render_device().wgpu_device().clone();
-    let renderer = match renderers.get_mut(&view.retained_view_entity) {
+    let renderer = match renderers.0.get_mut(&view.retained_view_entity) {
         Some(r) if r.target == formats => r,
         _ => match Pipelines::new(&device, &formats) {
             Ok(pipelines) => renderers
+                .0
                 .entry(view.retained_view_entity)
                 .insert_entry(ViewRenderer {
                     target: formats,
@@ -195,33 +269,36 @@ fn draw(
         projection: to_glam(view.clip_from_view),
         viewport: [size.x.max(1), size.y.max(1)],
     };
-    // One draw per distinct style, in the order styles first appear.
-    let mut styles: Vec<&EdgeStyle> = Vec::new();
+    // One draw per distinct style (with the scene's light in each entity's model space), in the
+    // order styles first appear.
+    let mut groups: Vec<(EdgeStyle, Vec<Instance<'_>>)> = Vec::new();
     for drawn in &extracted.drawn {
-        if !styles.contains(&&drawn.style) {
-            styles.push(&drawn.style);
+        let Some(gpu) = uploaded.assets.get(&drawn.asset) else {
+            continue;
+        };
+        let style = match extracted.sun {
+            Some(sun) if drawn.scene_light => {
+                lit_by(drawn.style, sun, drawn.transform, camera.exposure)
+            }
+            _ => drawn.style,
+        };
+        let instance = Instance::new(gpu).with_transform(drawn.transform);
+        match groups.iter_mut().find(|(s, _)| *s == style) {
+            Some((_, instances)) => instances.push(instance),
+            None => groups.push((style, vec![instance])),
         }
     }
-    while renderer.scenes.len() < styles.len() {
+    // Scene renderers are kept by position: an entity whose light follows its rotation changes
+    // its group's style every frame, and keeps its renderer's state.
+    renderer.scenes.truncate(groups.len());
+    while renderer.scenes.len() < groups.len() {
         renderer
             .scenes
             .push(SceneRenderer::new(&renderer.pipelines));
     }
     let encoder = ctx.command_encoder();
-    for (style, scene) in styles.iter().zip(&mut renderer.scenes) {
-        let instances: Vec<Instance<'_>> = extracted
-            .drawn
-            .iter()
-            .filter(|d| &&d.style == style)
-            .filter_map(|d| {
-                let gpu = uploaded.assets.get(&d.asset)?;
-                Some(Instance::new(gpu).with_transform(d.transform))
-            })
-            .collect();
-        if instances.is_empty() {
-            continue;
-        }
-        let prepared = match scene.prepare(&queue, encoder, &edge_camera, &instances, style) {
+    for ((style, instances), scene) in groups.iter().zip(&mut renderer.scenes) {
+        let prepared = match scene.prepare(&queue, encoder, &edge_camera, instances, style) {
             Ok(prepared) => prepared,
             Err(e) => {
                 error!("chamfer: cannot draw the edges: {e}");
@@ -254,7 +331,87 @@ fn draw(
     }
 }
 
+/// `style` with its highlight (if any) lit by `sun`, as Bevy lights a `StandardMaterial` seen by a
+/// camera of this `exposure`; the light's direction is taken into the model space of an entity
+/// placed by `transform` (where the runtime's lights live).
+fn lit_by(style: EdgeStyle, sun: Sun, transform: glam::Mat4, exposure: f32) -> EdgeStyle {
+    let Some(mut highlight) = style.highlight else {
+        return style;
+    };
+    let towards = transform
+        .inverse()
+        .transform_vector3(sun.towards)
+        .normalize_or(sun.towards);
+    let scale = match highlight.shading {
+        Shading::Pbr(_) => exposure,
+        Shading::Blinn(_) => exposure / std::f32::consts::PI,
+    };
+    highlight.light = Light::Directional(towards.to_array());
+    highlight.color = (sun.illuminance * scale).to_array();
+    EdgeStyle {
+        highlight: Some(highlight),
+        ..style
+    }
+}
+
 /// Bevy's glam (0.33) to the runtime's (0.34): the same column-major floats.
 fn to_glam(m: Mat4) -> glam::Mat4 {
     glam::Mat4::from_cols_array(&m.to_cols_array())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn highlight(shading: Shading) -> EdgeStyle {
+        EdgeStyle {
+            highlight: Some(chamfer_runtime::render::Highlight {
+                shading,
+                ..Default::default()
+            }),
+            ..EdgeStyle::default()
+        }
+    }
+
+    #[test]
+    fn the_sun_is_mapped_as_bevy_lights_a_standard_material() {
+        let sun = Sun {
+            towards: glam::Vec3::X,
+            illuminance: glam::Vec3::new(10_000.0, 5_000.0, 0.0),
+        };
+        // An entity turned 90° about +Y: its model +Z is world +X, where the light comes from.
+        let turned = glam::Mat4::from_rotation_y(std::f32::consts::FRAC_PI_2);
+        let exposure = 1e-3;
+        let pbr = lit_by(
+            highlight(Shading::Pbr(Default::default())),
+            sun,
+            turned,
+            exposure,
+        );
+        let lit = pbr.highlight.expect("highlight");
+        let Light::Directional(towards) = lit.light else {
+            panic!("directional");
+        };
+        assert!(
+            glam::Vec3::from(towards).abs_diff_eq(glam::Vec3::Z, 1e-6),
+            "{towards:?}"
+        );
+        assert_eq!(lit.color, [10.0, 5.0, 0.0]);
+        let blinn = lit_by(
+            EdgeStyle {
+                highlight: Some(Default::default()), // Blinn
+                ..EdgeStyle::default()
+            },
+            sun,
+            turned,
+            exposure,
+        );
+        let color = blinn.highlight.expect("highlight").color;
+        assert!(
+            (color[0] - 10.0 / std::f32::consts::PI).abs() < 1e-5,
+            "{color:?}"
+        );
+        let plain = EdgeStyle::default();
+        assert_eq!(lit_by(plain, sun, turned, exposure), plain);
+    }
 }

@@ -47,6 +47,7 @@ mod options;
 mod polylines;
 pub mod radii;
 pub mod scene;
+pub mod settings;
 pub mod stitch;
 pub mod weld;
 pub mod write;

@@ -10,7 +10,7 @@ use chamfer_preprocess::{Companions, bake_with_companions, compact};
 use chamfer_runtime::asset::Asset;
 use wasm_bindgen::prelude::*;
 
-use crate::settings::{BakeSettings, ViewSettings};
+use crate::settings::{BakeSettings, ViewSettings, bake_settings};
 
 /// A baked asset: the `.chamfer` file's bytes and its `chamfer inspect --json` report (with the
 /// bake's warnings and step times).
@@ -45,7 +45,7 @@ pub fn bake_files(
     settings: &BakeSettings,
     progress: &mut dyn FnMut(&str),
 ) -> Result<Baked, String> {
-    let (options, compact) = settings.options()?;
+    let (options, compact) = settings.options().map_err(|e| e.to_string())?;
     let (_, bytes) = files
         .iter()
         .find(|(file, _)| file == name)
@@ -126,7 +126,7 @@ pub fn bake(
         .into_iter()
         .zip(contents.iter().map(js_sys::Uint8Array::to_vec))
         .collect();
-    let settings = BakeSettings::from_json(settings).map_err(js_error)?;
+    let settings = bake_settings(settings).map_err(js_error)?;
     let mut report = |step: &str| {
         // A progress listener that throws must not stop the bake.
         let _ = progress.call1(&JsValue::NULL, &JsValue::from_str(step));
@@ -192,7 +192,7 @@ mod tests {
                 std::fs::read(fixture("shapes/two-materials.bin")).expect("bin"),
             ),
         ];
-        let settings = BakeSettings::from_json(r#"{"compact": true}"#).expect("settings");
+        let settings = crate::settings::bake_settings(r#"{"compact": true}"#).expect("settings");
         let mut steps = Vec::new();
         let baked = bake_files(
             "two-materials-external.gltf",

@@ -3,8 +3,7 @@
 //! so the page and the commands make the same asset and the same picture.
 
 use chamfer_preprocess::draw::LineClass;
-use chamfer_preprocess::{BakeOptions, Radius, WeldTolerance};
-use chamfer_runtime::asset::CompactOptions;
+pub use chamfer_preprocess::settings::BakeSettings;
 use chamfer_runtime::highlight::ggx::PbrMaterial;
 use chamfer_runtime::highlight::strip::Material;
 use chamfer_runtime::render::{
@@ -12,67 +11,6 @@ use chamfer_runtime::render::{
     Technique,
 };
 use serde::Deserialize;
-
-/// The bake's settings (`chamfer bake`'s flags of the same names).
-#[derive(Clone, Debug, Deserialize, PartialEq)]
-#[serde(default, deny_unknown_fields)]
-pub struct BakeSettings {
-    /// `--weld-rel`.
-    pub weld_rel: f32,
-    /// `--coplanar-deg`.
-    pub coplanar_deg: f32,
-    /// `--crease-deg`.
-    pub crease_deg: f32,
-    /// `--radius-rel`: give ridges this chamfer radius, a share of the bounding box's diagonal.
-    pub radius_rel: Option<f32>,
-    /// `--compact`, with `--position-bits` and `--normal-bits`.
-    pub compact: bool,
-    /// `--position-bits`.
-    pub position_bits: u32,
-    /// `--normal-bits`.
-    pub normal_bits: u32,
-}
-
-impl Default for BakeSettings {
-    fn default() -> Self {
-        let compact = CompactOptions::default();
-        Self {
-            weld_rel: WeldTolerance::DEFAULT_FRACTION,
-            coplanar_deg: BakeOptions::DEFAULT.coplanar_deg,
-            crease_deg: BakeOptions::DEFAULT.crease_deg,
-            radius_rel: None,
-            compact: false,
-            position_bits: compact.position_bits,
-            normal_bits: compact.normal_bits,
-        }
-    }
-}
-
-impl BakeSettings {
-    /// Reads settings from JSON; an empty string is the defaults.
-    pub fn from_json(json: &str) -> Result<Self, String> {
-        if json.trim().is_empty() {
-            return Ok(Self::default());
-        }
-        serde_json::from_str(json).map_err(|e| format!("bake settings: {e}"))
-    }
-
-    /// The bake options and, with `compact`, the compact encoding's; refused values say why.
-    pub fn options(&self) -> Result<(BakeOptions, Option<CompactOptions>), String> {
-        let options = BakeOptions::DEFAULT
-            .with_weld(WeldTolerance::Relative(self.weld_rel))
-            .with_coplanar_deg(self.coplanar_deg)
-            .with_crease_deg(self.crease_deg)
-            .with_radius(self.radius_rel.map_or(Radius::None, Radius::Relative));
-        options.validate().map_err(|e| e.to_string())?;
-        let compact = CompactOptions {
-            position_bits: self.position_bits,
-            normal_bits: self.normal_bits,
-        };
-        compact.check().map_err(|e| e.to_string())?;
-        Ok((options, self.compact.then_some(compact)))
-    }
-}
 
 /// How the chamfer highlight is shaded, if at all (`chamfer render --style chamfer --shading`).
 #[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
@@ -158,6 +96,14 @@ const PBR: PbrMaterial = PbrMaterial {
     metallic: 0.0,
     roughness: 0.4,
 };
+
+/// Reads bake settings from JSON; an empty string is the defaults.
+pub fn bake_settings(json: &str) -> Result<BakeSettings, String> {
+    if json.trim().is_empty() {
+        return Ok(BakeSettings::default());
+    }
+    serde_json::from_str(json).map_err(|e| format!("bake settings: {e}"))
+}
 
 impl ViewSettings {
     /// Reads settings from JSON and checks them; an empty string is the defaults.
@@ -320,10 +266,10 @@ mod tests {
         assert_eq!(style.technique, Technique::default());
         assert_eq!(style.classes, EdgeClasses::ALL);
         assert_eq!(style.width_px, 2.0);
-        let (options, compact) = BakeSettings::from_json("{}")
-            .and_then(|b| b.options())
+        let (options, compact) = bake_settings("{}")
+            .and_then(|b| b.options().map_err(|e| e.to_string()))
             .expect("bake defaults");
-        assert_eq!(options, BakeOptions::DEFAULT);
+        assert_eq!(options, chamfer_preprocess::BakeOptions::DEFAULT);
         assert!(compact.is_none());
     }
 
@@ -349,8 +295,8 @@ mod tests {
             (r#"{"position_bits": 40}"#, "position"),
             (r#"{"radius": 1}"#, "unknown field `radius`"),
         ] {
-            let error = BakeSettings::from_json(json)
-                .and_then(|b| b.options().map(|_| ()))
+            let error = bake_settings(json)
+                .and_then(|b| b.options().map(|_| ()).map_err(|e| e.to_string()))
                 .expect_err(json);
             assert!(error.contains(expected), "{json}: {error}");
         }
