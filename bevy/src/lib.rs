@@ -1,5 +1,6 @@
-//! Chamfer in Bevy (issue 25, work in progress): add [`ChamferPlugin`], load a `.chamfer` asset and
-//! put [`ChamferEdges`] on any entity; every 3D camera draws its edges in Bevy's own 3D pass.
+//! Chamfer in Bevy: add [`ChamferPlugin`], load a `.chamfer` asset (or a mesh file baked by Bevy's
+//! asset processor with [`ChamferBake`]) and put [`ChamferEdges`] on any entity; every 3D camera
+//! draws its edges in Bevy's own 3D pass.
 //!
 //! ```no_run
 //! use bevy::prelude::*;
@@ -26,7 +27,7 @@ pub use bake::{BakeError, ChamferBake, bake_to_asset};
 pub use chamfer_preprocess::settings::BakeSettings;
 pub use chamfer_runtime::highlight::ggx::PbrMaterial;
 pub use chamfer_runtime::render::{EdgeClasses, EdgeStyle, Highlight, Light, Shading, Technique};
-pub use render::ChamferEdges;
+pub use render::{ChamferEdges, ChamferTimings};
 
 /// Loads `.chamfer` assets, bakes mesh files in the asset processor ([`ChamferBake`]) and draws
 /// [`ChamferEdges`] in every 3D camera.

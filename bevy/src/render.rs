@@ -6,6 +6,9 @@
 
 use std::collections::HashMap;
 use std::sync::Arc;
+use std::time::Duration;
+
+use bevy::platform::time::Instant;
 
 use bevy::core_pipeline::Core3dSystems;
 use bevy::core_pipeline::schedule::Core3d;
@@ -57,6 +60,19 @@ impl ChamferEdges {
     }
 }
 
+/// The CPU time the plugin took in the last frame, in the render world
+/// (`app.sub_app(RenderApp).world().resource::<ChamferTimings>()`): what it adds to a frame
+/// besides the GPU's work.
+#[derive(Resource, Clone, Copy, Debug, Default)]
+pub struct ChamferTimings {
+    /// Copying the visible entities, the scene's light and changed assets out of the main world.
+    pub extract: Duration,
+    /// Uploading assets (first use, or a technique needing more of them) and forgetting stale ones.
+    pub prepare: Duration,
+    /// Recording every camera's edge passes (culling, uniforms, compute and draw commands).
+    pub draw: Duration,
+}
+
 /// Registers the extraction and the per-camera draw.
 pub(crate) fn build(app: &mut App) {
     app.add_systems(PostUpdate, let_edges_read_depth);
@@ -67,6 +83,7 @@ pub(crate) fn build(app: &mut App) {
         .init_resource::<Extracted>()
         .init_resource::<Uploaded>()
         .init_resource::<ViewRenderers>()
+        .init_resource::<ChamferTimings>()
         .add_systems(ExtractSchedule, extract)
         .add_systems(
             Render,
@@ -124,7 +141,9 @@ fn extract(
     lights: Extract<Query<(&DirectionalLight, &GlobalTransform, &InheritedVisibility)>>,
     assets: Extract<Res<Assets<ChamferAsset>>>,
     mut events: Extract<MessageReader<AssetEvent<ChamferAsset>>>,
+    mut timings: ResMut<ChamferTimings>,
 ) {
+    let start = Instant::now();
     for event in events.read() {
         if let AssetEvent::Modified { id }
         | AssetEvent::Unused { id }
@@ -165,6 +184,10 @@ fn extract(
             scene_light: edges.scene_light,
         });
     }
+    *timings = ChamferTimings {
+        extract: start.elapsed(),
+        ..ChamferTimings::default()
+    };
 }
 
 /// The assets on the GPU, with the extras their techniques needed so far.
@@ -177,7 +200,9 @@ fn upload(
     mut extracted: ResMut<Extracted>,
     mut uploaded: ResMut<Uploaded>,
     device: Res<RenderDevice>,
+    mut timings: ResMut<ChamferTimings>,
 ) {
+    let start = Instant::now();
     for id in std::mem::take(&mut extracted.stale) {
         uploaded.assets.remove(&id);
     }
@@ -197,6 +222,22 @@ fn upload(
             }
             Err(e) => error!("chamfer: {}: cannot upload: {e}", asset.header.source),
         }
+    }
+    timings.prepare = start.elapsed();
+}
+
+/// Adds the time from its making to its drop to a total (a system with several ways out).
+struct Timed<'a>(&'a mut Duration, Instant);
+
+impl<'a> Timed<'a> {
+    fn start(total: &'a mut Duration) -> Self {
+        Self(total, Instant::now())
+    }
+}
+
+impl Drop for Timed<'_> {
+    fn drop(&mut self) {
+        *self.0 += self.1.elapsed();
     }
 }
 
@@ -232,8 +273,10 @@ fn draw(
     uploaded: Res<Uploaded>,
     queue: Res<RenderQueue>,
     mut renderers: ResMut<ViewRenderers>,
+    mut timings: ResMut<ChamferTimings>,
     mut ctx: RenderContext,
 ) {
+    let _timed = Timed::start(&mut timings.draw);
     if extracted.drawn.is_empty() {
         return;
     }
