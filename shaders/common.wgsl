@@ -39,6 +39,10 @@ struct Frame {
     // Side planes of the view in model space, widened by an edge's reach in pixels: a point with
     // dot(plane, (p, 1)) > 0 is beyond that side (cull.wgsl). All zero: no frustum test.
     frustum: array<vec4<f32>, 4>,
+    // The highlight's light as this instance sees it, in its model space: `PunctualLight`'s
+    // position and spot axis (the instance's own light, or the style's).
+    light_position: vec4<f32>,
+    light_axis: vec4<f32>,
     // The mesh's index width and triangle count, for the techniques that pull triangles.
     indices_u16: u32,
     triangle_count: u32,
@@ -67,6 +71,9 @@ struct InstanceFrame {
     hi: vec4<f32>,
     // The instance's class colours.
     colors: array<vec4<f32>, COLOR_COUNT>,
+    // The highlight's light in the instance's model space: `PunctualLight`'s position and spot axis.
+    light_position: vec4<f32>,
+    light_axis: vec4<f32>,
     visible: u32,
     _pad0: u32,
     _pad1: u32,

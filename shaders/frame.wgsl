@@ -12,6 +12,16 @@ fn view_eye() -> vec4<f32> {
     return frame.eye;
 }
 
+// The highlight light's position (or direction) and spot axis as the block's instance sees them,
+// in place of the style's `position` and `axis` (see `Frame::light_position`).
+fn view_light_position(position: vec4<f32>) -> vec4<f32> {
+    return frame.light_position;
+}
+
+fn view_light_axis(axis: vec4<f32>) -> vec4<f32> {
+    return vec4<f32>(frame.light_axis.xyz, axis.w);
+}
+
 fn view_frustum(side: u32) -> vec4<f32> {
     return frame.frustum[side];
 }

@@ -185,14 +185,22 @@ fn to_viewer_at(p: vec3<f32>) -> vec3<f32> {
     return normalize(eye.xyz - p * eye.w);
 }
 
+// The style's light as the instance drawn sees it.
+fn view_light() -> PunctualLight {
+    var light = lighting.light;
+    light.position = view_light_position(light.position);
+    light.spot = view_light_axis(light.spot);
+    return light;
+}
+
 fn to_light_at(p: vec3<f32>) -> vec3<f32> {
-    return towards_light(lighting.light, p);
+    return towards_light(view_light(), p);
 }
 
 // What a pixel of the strip shows: its slice's mean radiance under the light (the seed's Blinn or PBR).
 fn strip_radiance(arc: Arc, across: vec3<f32>, middle: vec3<f32>, to_viewer: vec3<f32>, range: vec2<f32>) -> vec3<f32> {
     let to_light = to_light_at(middle);
-    let light = light_radiance(lighting.light, middle);
+    let light = light_radiance(view_light(), middle);
     if (lighting.pbr & SHADE_PBR) != 0u {
         let m = Pbr(lighting.base.rgb, lighting.material.x, lighting.material.y);
         // The ambient term at the slice's middle normal (it varies slowly over the arc).

@@ -377,3 +377,82 @@ fn a_scene_drawn_in_batches_equals_it_drawn_instance_by_instance() {
     }
     assert_eq!(compared, 12);
 }
+
+/// A highlight light given per instance (in each instance's model space) is what lets one draw
+/// light differently turned instances from one scene light: the cube turned a quarter turn about
+/// its vertical axis, lit by that turn's inverse of the light, looks as the unturned cube lit by the
+/// light (the cube is symmetric under the turn); lit by the style's light it does not.
+#[test]
+fn an_instance_lit_by_its_own_light_is_lit_from_the_scene() {
+    let gpu = gpu();
+    let options = chamfer_preprocess::BakeOptions::DEFAULT
+        .with_radius(chamfer_preprocess::Radius::Relative(0.02));
+    let asset = chamfer_preprocess::bake_file(&chamfer_tests::fixture("shapes/cube.obj"), &options)
+        .expect("bake")
+        .asset;
+    let uploaded = GpuAsset::new(&gpu.device, &asset).expect("upload");
+    let camera = cube_camera(240, false);
+    let towards = Vec3::new(0.9, 0.6, 0.2).normalize();
+    let style = |light: Vec3| chamfer_runtime::render::EdgeStyle {
+        highlight: Some(chamfer_runtime::render::Highlight {
+            light: chamfer_runtime::render::Light::Directional(light.to_array()),
+            ..Default::default()
+        }),
+        ..edges_in(RED, 2.0, chamfer_runtime::render::CapMethod::NextIndex)
+    };
+    // A quarter turn about the cube's own vertical axis.
+    let center = (Vec3::from(asset.header.bounds_min) + Vec3::from(asset.header.bounds_max)) * 0.5;
+    let turn = Mat4::from_translation(center)
+        * Mat4::from_rotation_y(std::f32::consts::FRAC_PI_2)
+        * Mat4::from_translation(-center);
+    let picture = |instance: Instance<'_>, light: Vec3| {
+        scene_picture_in(
+            &camera,
+            &[instance],
+            &mut SceneRenderer::new(&chamfer_tests::pipelines(
+                gpu.target(240, 240, 1).expect("target").formats(),
+            )),
+            &style(light),
+        )
+    };
+    let unturned = picture(Instance::new(&uploaded), towards);
+    let seen_from_the_scene = picture(
+        Instance::new(&uploaded).with_transform(turn).with_light(
+            chamfer_runtime::render::Light::Directional(
+                turn.inverse().transform_vector3(towards).to_array(),
+            ),
+        ),
+        // The style's light, which the instance's own replaces.
+        -towards,
+    );
+    let turned_with_it = picture(Instance::new(&uploaded).with_transform(turn), towards);
+    let style_turned = picture(
+        Instance::new(&uploaded).with_transform(turn),
+        turn.inverse().transform_vector3(towards),
+    );
+    eprintln!(
+        "own vs style-with-the-turned-light: {}",
+        differing(&seen_from_the_scene, &style_turned)
+    );
+    chamfer_tests::save_png(
+        &style_turned,
+        std::path::Path::new("/tmp/light-styleturned.png"),
+    );
+    for (name, image) in [
+        ("unturned", &unturned),
+        ("own", &seen_from_the_scene),
+        ("style", &turned_with_it),
+    ] {
+        chamfer_tests::save_png(
+            image,
+            std::path::Path::new(&format!("/tmp/light-{name}.png")),
+        );
+    }
+    let same = differing(&unturned, &seen_from_the_scene);
+    let control = differing(&unturned, &turned_with_it);
+    eprintln!("lit by its own light: {same} pixels differ; by the style's: {control}");
+    assert_eq!(differing(&seen_from_the_scene, &style_turned), 0);
+    // The turned copy rasterizes a few pixels differently (62 measured).
+    assert!(same <= 150, "{same}");
+    assert!(control > 1000, "{control}");
+}

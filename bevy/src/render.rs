@@ -312,27 +312,29 @@ fn draw(
         projection: to_glam(view.clip_from_view),
         viewport: [size.x.max(1), size.y.max(1)],
     };
-    // One draw per distinct style (with the scene's light in each entity's model space), in the
-    // order styles first appear.
+    // One draw per distinct style, in the order styles first appear; the scene's light reaches each
+    // entity in its own model space.
     let mut groups: Vec<(EdgeStyle, Vec<Instance<'_>>)> = Vec::new();
     for drawn in &extracted.drawn {
         let Some(gpu) = uploaded.assets.get(&drawn.asset) else {
             continue;
         };
-        let style = match extracted.sun {
+        let (style, light) = match extracted.sun {
             Some(sun) if drawn.scene_light => {
                 lit_by(drawn.style, sun, drawn.transform, camera.exposure)
             }
-            _ => drawn.style,
+            _ => (drawn.style, None),
         };
-        let instance = Instance::new(gpu).with_transform(drawn.transform);
+        let mut instance = Instance::new(gpu).with_transform(drawn.transform);
+        if let Some(light) = light {
+            instance = instance.with_light(light);
+        }
         match groups.iter_mut().find(|(s, _)| *s == style) {
             Some((_, instances)) => instances.push(instance),
             None => groups.push((style, vec![instance])),
         }
     }
-    // Scene renderers are kept by position: an entity whose light follows its rotation changes
-    // its group's style every frame, and keeps its renderer's state.
+    // Scene renderers are kept by position, so a style changed at run time keeps its state.
     renderer.scenes.truncate(groups.len());
     while renderer.scenes.len() < groups.len() {
         renderer
@@ -374,12 +376,18 @@ fn draw(
     }
 }
 
-/// `style` with its highlight (if any) lit by `sun`, as Bevy lights a `StandardMaterial` seen by a
-/// camera of this `exposure`; the light's direction is taken into the model space of an entity
-/// placed by `transform` (where the runtime's lights live).
-fn lit_by(style: EdgeStyle, sun: Sun, transform: glam::Mat4, exposure: f32) -> EdgeStyle {
+/// `style` with its highlight (if any) lit by `sun` as Bevy lights a `StandardMaterial` seen by a
+/// camera of this `exposure`, and the light as an entity placed by `transform` sees it (in its
+/// model space, where the runtime's lights live): the style is the same for every entity, so
+/// differently turned entities are still drawn together.
+fn lit_by(
+    style: EdgeStyle,
+    sun: Sun,
+    transform: glam::Mat4,
+    exposure: f32,
+) -> (EdgeStyle, Option<Light>) {
     let Some(mut highlight) = style.highlight else {
-        return style;
+        return (style, None);
     };
     let towards = transform
         .inverse()
@@ -389,12 +397,13 @@ fn lit_by(style: EdgeStyle, sun: Sun, transform: glam::Mat4, exposure: f32) -> E
         Shading::Pbr(_) => exposure,
         Shading::Blinn(_) => exposure / std::f32::consts::PI,
     };
-    highlight.light = Light::Directional(towards.to_array());
+    highlight.light = Light::Directional(sun.towards.to_array());
     highlight.color = (sun.illuminance * scale).to_array();
-    EdgeStyle {
+    let style = EdgeStyle {
         highlight: Some(highlight),
         ..style
-    }
+    };
+    (style, Some(Light::Directional(towards.to_array())))
 }
 
 /// Bevy's glam (0.33) to the runtime's (0.34): the same column-major floats.
@@ -425,14 +434,19 @@ mod tests {
         // An entity turned 90° about +Y: its model +Z is world +X, where the light comes from.
         let turned = glam::Mat4::from_rotation_y(std::f32::consts::FRAC_PI_2);
         let exposure = 1e-3;
-        let pbr = lit_by(
+        let (pbr, seen) = lit_by(
             highlight(Shading::Pbr(Default::default())),
             sun,
             turned,
             exposure,
         );
         let lit = pbr.highlight.expect("highlight");
-        let Light::Directional(towards) = lit.light else {
+        assert_eq!(
+            lit.light,
+            Light::Directional([1.0, 0.0, 0.0]),
+            "the style's: world"
+        );
+        let Some(Light::Directional(towards)) = seen else {
             panic!("directional");
         };
         assert!(
@@ -449,12 +463,12 @@ mod tests {
             turned,
             exposure,
         );
-        let color = blinn.highlight.expect("highlight").color;
+        let color = blinn.0.highlight.expect("highlight").color;
         assert!(
             (color[0] - 10.0 / std::f32::consts::PI).abs() < 1e-5,
             "{color:?}"
         );
         let plain = EdgeStyle::default();
-        assert_eq!(lit_by(plain, sun, turned, exposure), plain);
+        assert_eq!(lit_by(plain, sun, turned, exposure), (plain, None));
     }
 }

@@ -152,6 +152,8 @@ pub(crate) struct Frame {
     pub(crate) reverse_z: u32,
     pub(crate) _pad: u32,
     pub(crate) frustum: [[f32; 4]; 4],
+    pub(crate) light_position: [f32; 4],
+    pub(crate) light_axis: [f32; 4],
     pub(crate) indices_u16: u32,
     pub(crate) triangle_count: u32,
     pub(crate) instance: u32,
@@ -174,6 +176,9 @@ pub(crate) struct InstanceFrame {
     pub(crate) lo: [f32; 4],
     pub(crate) hi: [f32; 4],
     pub(crate) colors: [[f32; 4]; drawn::COLOR_COUNT as usize],
+    /// The highlight's light in the instance's model space (`PunctualLight::position`, `spot`).
+    pub(crate) light_position: [f32; 4],
+    pub(crate) light_axis: [f32; 4],
     pub(crate) visible: u32,
     pub(crate) _pad0: u32,
     pub(crate) _pad1: u32,
@@ -354,6 +359,8 @@ pub(crate) fn layouts() -> Vec<Layout> {
                 reverse_z,
                 _pad,
                 frustum,
+                light_position,
+                light_axis,
                 indices_u16,
                 triangle_count,
                 instance,
@@ -368,7 +375,18 @@ pub(crate) fn layouts() -> Vec<Layout> {
             "InstanceFrame",
             InstanceFrame,
             [
-                mvp, eye, frustum, lo, hi, colors, visible, _pad0, _pad1, _pad2
+                mvp,
+                eye,
+                frustum,
+                lo,
+                hi,
+                colors,
+                light_position,
+                light_axis,
+                visible,
+                _pad0,
+                _pad1,
+                _pad2
             ]
         ),
         layout!(

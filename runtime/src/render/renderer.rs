@@ -19,7 +19,7 @@ use glam::{Mat4, Vec3};
 
 use super::layout::MAX_INSTANCES;
 use super::techniques::{self, Drawn, FrameContext, FrameOptions, Module, TechniqueFrame};
-use super::{Camera, EdgeColors, EdgeStyle, GpuAsset, Pipelines, RenderError, Technique};
+use super::{Camera, EdgeColors, EdgeStyle, GpuAsset, Light, Pipelines, RenderError, Technique};
 use crate::highlight::environment::Environment;
 
 /// One drawn copy of an asset: where it is and, optionally, its own colours.
@@ -31,6 +31,10 @@ pub struct Instance<'a> {
     pub transform: Mat4,
     /// This instance's class colours; `None`: the style's.
     pub colors: Option<EdgeColors>,
+    /// The chamfer highlight's light for this instance, in its model space; `None`: the style's
+    /// (`Highlight::light`, also in model space). A scene light reaches differently turned
+    /// instances from different model-space directions: give each its own and draw them together.
+    pub light: Option<Light>,
 }
 
 impl<'a> Instance<'a> {
@@ -40,12 +44,21 @@ impl<'a> Instance<'a> {
             asset,
             transform: Mat4::IDENTITY,
             colors: None,
+            light: None,
         }
     }
 
     /// The same instance at `transform`.
     pub fn with_transform(self, transform: Mat4) -> Self {
         Self { transform, ..self }
+    }
+
+    /// The same instance lit (by the highlight) with `light`, in its model space.
+    pub fn with_light(self, light: Light) -> Self {
+        Self {
+            light: Some(light),
+            ..self
+        }
     }
 
     /// The same instance in `colors`.
@@ -209,6 +222,7 @@ impl SceneRenderer {
                     ..*camera
                 },
                 colors: i.colors.unwrap_or(style.colors),
+                light: i.light,
             })
             .collect();
         if drawn.len() > MAX_INSTANCES as usize - 1 {

@@ -152,6 +152,8 @@ pub(crate) struct Drawn<'a> {
     pub(crate) asset: &'a GpuAsset,
     pub(crate) camera: Camera,
     pub(crate) colors: EdgeColors,
+    /// The highlight's light for this instance (model space); `None`: the style's.
+    pub(crate) light: Option<super::Light>,
 }
 
 /// What a technique's frame is prepared from.
@@ -211,6 +213,12 @@ pub(crate) fn frame_uniform(cx: &FrameContext<'_>, drawn: &Drawn<'_>, index: usi
     } else {
         0.0
     };
+    // Where the highlight's light is for this instance; its colour is the style's (`Lighting`).
+    let light = drawn
+        .light
+        .or(style.highlight.map(|h| h.light))
+        .map(|light| super::lighting::punctual(&light, [0.0; 3], false))
+        .unwrap_or_default();
     Frame {
         mvp: mvp.to_cols_array_2d(),
         eye: camera.eye().to_array(),
@@ -236,6 +244,8 @@ pub(crate) fn frame_uniform(cx: &FrameContext<'_>, drawn: &Drawn<'_>, index: usi
         reverse_z: u32::from(cx.pipelines.target().reverse_z),
         _pad: 0,
         frustum: [[0.0; 4]; 4],
+        light_position: light.position,
+        light_axis: light.spot,
         indices_u16: u32::from(asset.index_format == wgpu::IndexFormat::Uint16),
         triangle_count: asset.index_count / 3,
         instance: index as u32,
@@ -307,6 +317,8 @@ pub(crate) fn instance_view(
         lo: [lo[0], lo[1], lo[2], uniform.depth_ref],
         hi: [hi[0], hi[1], hi[2], 0.0],
         colors: uniform.colors,
+        light_position: uniform.light_position,
+        light_axis: uniform.light_axis,
         visible: 1,
         _pad0: 0,
         _pad1: 0,

@@ -304,18 +304,10 @@ impl Frame {
             } else {
                 [[0.0; 4]; 4]
             };
-            let [lo, hi] = drawn.asset.bounds();
             frames.push(InstanceFrame {
-                mvp: uniform.mvp,
-                eye: uniform.eye,
-                frustum,
-                lo: [lo[0], lo[1], lo[2], uniform.depth_ref],
-                hi: [hi[0], hi[1], hi[2], 0.0],
-                colors: drawn.colors.array(),
+                // The place pass decides.
                 visible: 0,
-                _pad0: 0,
-                _pad1: 0,
-                _pad2: 0,
+                ..super::instance_view(cx, drawn, i, frustum)
             });
         }
         let block = |drawn: &super::Drawn<'_>, first: usize| {
