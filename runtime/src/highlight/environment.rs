@@ -53,6 +53,31 @@ pub struct Environment {
     width: u32,
     height: u32,
     texels: Vec<[f32; 3]>,
+    last_filtered: LastFiltered,
+}
+
+/// The maps last made by [`Environment::prefiltered`]: the mesh pass and the highlight share one
+/// environment and one roughness, so the second asks for what the first made. Not part of the
+/// environment's value (a clone starts empty; equality ignores it).
+#[derive(Default)]
+struct LastFiltered(std::sync::Mutex<Option<(u32, std::sync::Arc<Prefiltered>)>>);
+
+impl Clone for LastFiltered {
+    fn clone(&self) -> Self {
+        Self::default()
+    }
+}
+
+impl PartialEq for LastFiltered {
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
+}
+
+impl std::fmt::Debug for LastFiltered {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("LastFiltered")
+    }
 }
 
 /// An environment filtered for one roughness: what the shaders read.
@@ -102,6 +127,7 @@ impl Environment {
             width,
             height,
             texels,
+            last_filtered: LastFiltered::default(),
         })
     }
 
@@ -153,6 +179,25 @@ impl Environment {
             }
         }
         out
+    }
+
+    /// [`prefilter`](Self::prefilter)'s maps for `alpha`, made once while the same `alpha` is asked
+    /// for again (by every renderer sharing this environment).
+    pub fn prefiltered(&self, alpha: f32) -> std::sync::Arc<Prefiltered> {
+        let key = alpha.to_bits();
+        // A poisoned lock only means a panic elsewhere while it was held: the cache is still valid
+        // or empty.
+        let mut last = self
+            .last_filtered
+            .0
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        if let Some((_, maps)) = last.as_ref().filter(|(held, _)| *held == key) {
+            return maps.clone();
+        }
+        let maps = std::sync::Arc::new(self.prefilter(alpha));
+        *last = Some((key, maps.clone()));
+        maps
     }
 
     /// The maps for GGX `alpha` (`roughness²`); a few tens of milliseconds of CPU.
@@ -240,6 +285,15 @@ mod tests {
     #[test]
     fn bad_environments_are_refused() {
         assert!(Environment::new(0, 1, vec![]).is_err());
+        // Asked twice for one roughness, the maps are made once; another roughness makes new ones.
+        let sky = Environment::new(4, 2, (0..8).map(|i| [i as f32; 3]).collect()).expect("sky");
+        let first = sky.prefiltered(0.25);
+        assert!(std::sync::Arc::ptr_eq(&first, &sky.prefiltered(0.25)));
+        assert_eq!(*first, sky.prefilter(0.25));
+        let other = sky.prefiltered(0.5);
+        assert!(!std::sync::Arc::ptr_eq(&first, &other));
+        assert_eq!(*other, sky.prefilter(0.5));
+        assert_eq!(sky.clone(), sky);
         assert!(Environment::new(2, 2, vec![[0.0; 3]; 3]).is_err());
         assert!(Environment::new(1, 1, vec![[f32::NAN, 0.0, 0.0]]).is_err());
         assert!(Environment::new(1, 1, vec![[-1.0, 0.0, 0.0]]).is_err());

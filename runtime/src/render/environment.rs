@@ -47,7 +47,7 @@ impl EnvironmentBuffer {
             .as_ref()
             .is_some_and(|(held, a)| Arc::ptr_eq(held, environment) && *a == alpha.to_bits());
         if !current {
-            let maps = environment.prefilter(alpha);
+            let maps = environment.prefiltered(alpha);
             // Both maps in one buffer, specular first, as `environment` holds them.
             let texels: Vec<[f32; 4]> = maps
                 .specular
