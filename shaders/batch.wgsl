@@ -29,14 +29,13 @@ fn view_eye() -> vec4<f32> {
 }
 
 // The highlight light's position (or direction) and spot axis as the instance sees them, in its
-// model space (an instance may have a light of its own, or a scene light turned with it), in place
-// of the style's `position` and `axis`.
-fn view_light_position(position: vec4<f32>) -> vec4<f32> {
+// model space (its own light, or the style's).
+fn view_light_position() -> vec4<f32> {
     return instance_frames[viewing].light_position;
 }
 
-fn view_light_axis(axis: vec4<f32>) -> vec4<f32> {
-    return vec4<f32>(instance_frames[viewing].light_axis.xyz, axis.w);
+fn view_light_axis() -> vec3<f32> {
+    return instance_frames[viewing].light_axis.xyz;
 }
 
 fn view_frustum(side: u32) -> vec4<f32> {

@@ -13,13 +13,13 @@ fn view_eye() -> vec4<f32> {
 }
 
 // The highlight light's position (or direction) and spot axis as the block's instance sees them,
-// in place of the style's `position` and `axis` (see `Frame::light_position`).
-fn view_light_position(position: vec4<f32>) -> vec4<f32> {
+// in its model space (its own light, or the style's).
+fn view_light_position() -> vec4<f32> {
     return frame.light_position;
 }
 
-fn view_light_axis(axis: vec4<f32>) -> vec4<f32> {
-    return vec4<f32>(frame.light_axis.xyz, axis.w);
+fn view_light_axis() -> vec3<f32> {
+    return frame.light_axis.xyz;
 }
 
 fn view_frustum(side: u32) -> vec4<f32> {

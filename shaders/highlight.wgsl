@@ -188,8 +188,8 @@ fn to_viewer_at(p: vec3<f32>) -> vec3<f32> {
 // The style's light as the instance drawn sees it.
 fn view_light() -> PunctualLight {
     var light = lighting.light;
-    light.position = view_light_position(light.position);
-    light.spot = view_light_axis(light.spot);
+    light.position = view_light_position();
+    light.spot = vec4<f32>(view_light_axis(), light.spot.w);
     return light;
 }
 

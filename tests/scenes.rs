@@ -456,3 +456,51 @@ fn an_instance_lit_by_its_own_light_is_lit_from_the_scene() {
     assert!(same <= 150, "{same}");
     assert!(control > 1000, "{control}");
 }
+
+/// The mesh pass lights an instance with its own light too, where its style's light is fixed to
+/// the model (the highlight's matching shading): the turned cube of
+/// [`an_instance_lit_by_its_own_light_is_lit_from_the_scene`], mesh alone.
+#[test]
+fn the_mesh_pass_lights_an_instance_with_its_own_light() {
+    let gpu = gpu();
+    let asset = chamfer_tests::bake_fixture("shapes/cube.obj");
+    let uploaded = GpuAsset::new(&gpu.device, &asset).expect("upload");
+    let camera = cube_camera(240, false);
+    let towards = Vec3::new(0.9, 0.6, 0.2).normalize();
+    let center = (Vec3::from(asset.header.bounds_min) + Vec3::from(asset.header.bounds_max)) * 0.5;
+    let turn = Mat4::from_translation(center)
+        * Mat4::from_rotation_y(std::f32::consts::FRAC_PI_2)
+        * Mat4::from_translation(-center);
+    let picture = |instance: Instance<'_>| {
+        let target = gpu.target(240, 240, 1).expect("target");
+        let pipelines = chamfer_tests::pipelines(target.formats());
+        let mut mesh = MeshRenderer::for_scenes(&pipelines).expect("mesh");
+        let style = chamfer_runtime::render::MeshStyle {
+            light: chamfer_runtime::render::MeshLight::Model(
+                chamfer_runtime::render::Light::Directional(towards.to_array()),
+            ),
+            ambient: 0.0,
+            ..grey_mesh()
+        };
+        mesh.prepare_scene(&gpu.queue, &camera, &[instance], &style);
+        let mut encoder = gpu.encoder();
+        {
+            let mut pass = target.begin_pass(&mut encoder, BLUE_BACKGROUND);
+            mesh.render(&mut pass);
+        }
+        gpu.submit(encoder).expect("submit");
+        target.read(gpu).expect("read")
+    };
+    let unturned = picture(Instance::new(&uploaded));
+    let own = picture(Instance::new(&uploaded).with_transform(turn).with_light(
+        chamfer_runtime::render::Light::Directional(
+            turn.inverse().transform_vector3(towards).to_array(),
+        ),
+    ));
+    let styles = picture(Instance::new(&uploaded).with_transform(turn));
+    let (same, control) = (differing(&unturned, &own), differing(&unturned, &styles));
+    eprintln!("mesh lit by its own light: {same} pixels differ; by the style's: {control}");
+    // 0 measured (22,055 for the control).
+    assert!(same <= 20, "{same}");
+    assert!(control > 1000, "{control}");
+}

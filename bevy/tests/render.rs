@@ -29,26 +29,21 @@ fn fixture(relative: &str) -> std::path::PathBuf {
 
 /// A folder of assets: `name.chamfer` baked from each fixture.
 fn assets(meshes: &[(&str, &str)]) -> tempfile::TempDir {
-    let dir = tempfile::tempdir().expect("tempdir");
-    for (name, mesh) in meshes {
-        let baked = bake_file(&fixture(mesh), &BakeOptions::DEFAULT).expect("bake");
-        std::fs::write(
-            dir.path().join(format!("{name}.chamfer")),
-            baked.asset.encode_to_vec(),
-        )
-        .expect("write");
-    }
-    dir
+    assets_baked_with(meshes, &BakeOptions::DEFAULT)
 }
 
 /// [`assets`] baked with chamfer radii (ridges get `radius_rel` of the diagonal), so the
 /// highlight has strips to shade.
 fn rounded_assets(meshes: &[(&str, &str)], radius_rel: f32) -> tempfile::TempDir {
-    let dir = tempfile::tempdir().expect("tempdir");
     let options =
         BakeOptions::DEFAULT.with_radius(chamfer_preprocess::Radius::Relative(radius_rel));
+    assets_baked_with(meshes, &options)
+}
+
+fn assets_baked_with(meshes: &[(&str, &str)], options: &BakeOptions) -> tempfile::TempDir {
+    let dir = tempfile::tempdir().expect("tempdir");
     for (name, mesh) in meshes {
-        let baked = bake_file(&fixture(mesh), &options).expect("bake");
+        let baked = bake_file(&fixture(mesh), options).expect("bake");
         std::fs::write(
             dir.path().join(format!("{name}.chamfer")),
             baked.asset.encode_to_vec(),
@@ -586,19 +581,24 @@ fn a_broken_asset_is_a_load_error_naming_the_file() {
     panic!("the broken asset neither failed nor loaded");
 }
 
-#[test]
-fn the_technique_changes_at_run_time() {
-    let folder = assets(&[("fandisk", "meshes/fandisk.obj")]);
+/// The fandisk of `folder` seen from the side its creases show best, 4× MSAA.
+fn fandisk_scene(folder: &Path) -> Scene {
     let baked = bake_file(&fixture("meshes/fandisk.obj"), &BakeOptions::DEFAULT).expect("bake");
     let bounds = [baked.asset.header.bounds_min, baked.asset.header.bounds_max];
     let (transform, projection, _) = orbit_camera(bounds, -50.0, 30.0);
-    let mut scene = Scene::new(
-        folder.path(),
+    Scene::new(
+        folder,
         "fandisk",
         (transform, projection),
         Msaa::Sample4,
         false,
-    );
+    )
+}
+
+#[test]
+fn the_technique_changes_at_run_time() {
+    let folder = assets(&[("fandisk", "meshes/fandisk.obj")]);
+    let mut scene = fandisk_scene(folder.path());
     let joined = scene.edge_pixels();
     for technique in [
         chamfer_bevy::Technique::Fins {
@@ -633,16 +633,7 @@ fn the_technique_changes_at_run_time() {
 #[test]
 fn the_highlight_takes_its_light_from_the_scenes_directional_light() {
     let folder = rounded_assets(&[("fandisk", "meshes/fandisk.obj")], 0.01);
-    let baked = bake_file(&fixture("meshes/fandisk.obj"), &BakeOptions::DEFAULT).expect("bake");
-    let bounds = [baked.asset.header.bounds_min, baked.asset.header.bounds_max];
-    let (transform, projection, _) = orbit_camera(bounds, -50.0, 30.0);
-    let mut scene = Scene::new(
-        folder.path(),
-        "fandisk",
-        (transform, projection),
-        Msaa::Sample4,
-        false,
-    );
+    let mut scene = fandisk_scene(folder.path());
     let highlight = chamfer_bevy::Highlight {
         shading: chamfer_bevy::Shading::Pbr(chamfer_bevy::PbrMaterial::default()),
         ..chamfer_bevy::Highlight::default()

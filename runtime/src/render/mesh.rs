@@ -182,7 +182,16 @@ impl MeshRenderer {
                     model_view: camera.model_view * instance.transform,
                     ..*camera
                 };
-                let mut frame = mesh_frame(&camera, style);
+                // A light fixed to the model is the instance's own where it has one, as the
+                // highlight's is.
+                let style = match (style.light, instance.light) {
+                    (MeshLight::Model(_), Some(own)) => MeshStyle {
+                        light: MeshLight::Model(own),
+                        ..*style
+                    },
+                    _ => *style,
+                };
+                let mut frame = mesh_frame(&camera, &style);
                 if lit_by_environment {
                     frame.pbr |= SHADE_ENVIRONMENT;
                 }

@@ -32,8 +32,9 @@ pub struct Instance<'a> {
     /// This instance's class colours; `None`: the style's.
     pub colors: Option<EdgeColors>,
     /// The chamfer highlight's light for this instance, in its model space; `None`: the style's
-    /// (`Highlight::light`, also in model space). A scene light reaches differently turned
-    /// instances from different model-space directions: give each its own and draw them together.
+    /// (`Highlight::light`, also in model space). It also replaces a mesh pass's
+    /// `MeshLight::Model`. A scene light reaches differently turned instances from different
+    /// model-space directions: give each its own and draw them together.
     pub light: Option<Light>,
 }
 
