@@ -1,6 +1,20 @@
 // Per frame, after classify, one thread per drawn slot: for each highlighted chamfer edge, what its
 // pixels need (a ChamferRecord, see highlight.wgsl), and its quad widened to the strip's projection.
 
+// The pixels that edge end `end` hands over to a drawn rounded corner at its vertex (0: none, or the
+// end was moved by the near-plane clip); `far` is the edge's other end.
+fn hand_over_at(end: u32, clipped: u32, far: vec3<f32>) -> f32 {
+    if lighting.corners == 0u || clipped != 0u {
+        return 0.0;
+    }
+    let k = corner_of_end(end);
+    if k == 0u {
+        return 0.0;
+    }
+    let c = corner_at(k - 1u);
+    return select(0.0, hand_over(c, far), corner_drawn(c));
+}
+
 @compute @workgroup_size(WORKGROUP)
 fn chamfer_records(@builtin(global_invocation_id) id: vec3<u32>) {
     let first = first_slot();
@@ -50,6 +64,9 @@ fn chamfer_records(@builtin(global_invocation_id) id: vec3<u32>) {
         vec4<f32>(across, distance),
         vec4<f32>(middle, radius),
         vec4<f32>(to_viewer, 0.0),
+        vec4<f32>(hand_over_at(2u * e, s.clipped & 1u, p1), hand_over_at(2u * e + 1u, s.clipped & 2u, p0), 0.0, 0.0),
+        view_light_position(),
+        vec4<f32>(view_light_axis(), 0.0),
     );
     chamfers[slot] = record;
 

@@ -61,7 +61,13 @@ fn edge_fragment(v: EdgeVarying) -> @location(0) vec4<f32> {
     let d = normalize(v.ends.zw - v.ends.xy);
     let pixel = v.position.xy;
     if (v.item.y & DRAWN_HIGHLIGHT) != 0u {
-        return highlight_pixel(chamfers[v.item.x], dot(pixel - v.ends.xy, perp(d)));
+        let record = chamfers[v.item.x];
+        // The pixels near a drawn rounded corner are the corner's (corners.wgsl).
+        let along = dot(pixel - v.ends.xy, d);
+        if along < record.hand_over.x || length(v.ends.zw - v.ends.xy) - along < record.hand_over.y {
+            discard;
+        }
+        return highlight_pixel(record, dot(pixel - v.ends.xy, perp(d)));
     }
     if !on_own_side(pixel - v.ends.xy, d, v.splits.x, v.splits.y)
         || !on_own_side(pixel - v.ends.zw, -d, v.splits.z, v.splits.w) {
@@ -89,7 +95,7 @@ fn highlight_pixel(record: ChamferRecord, across_px: f32) -> vec4<f32> {
     let ta = strip_angle(record, arc, visible, lo);
     let tb = strip_angle(record, arc, visible, hi);
     let range = vec2<f32>(min(ta, tb), max(ta, tb));
-    var color = strip_radiance(arc, record.across.xyz, middle, to_viewer, range);
+    var color = strip_radiance(arc, record.across.xyz, middle, to_viewer, range, record_light(record));
     if (lighting.pbr & SHADE_ENVIRONMENT) != 0u {
         color += strip_environment(arc, record.across.xyz, to_viewer, range);
     }

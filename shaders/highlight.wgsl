@@ -22,6 +22,12 @@ struct ChamferRecord {
     middle: vec4<f32>,
     // Towards the viewer from the middle, unit: the draw pass cannot know the instance's eye.
     viewer: vec4<f32>,
+    // Pixels from end 0 (x) and end 1 (y) along the edge that a drawn rounded corner there takes
+    // over (corners.wgsl); 0 without one.
+    hand_over: vec4<f32>,
+    // The instance's light: its position (or direction) and spot axis, in its model space.
+    light_position: vec4<f32>,
+    light_axis: vec4<f32>,
 }
 
 struct Lighting {
@@ -34,7 +40,8 @@ struct Lighting {
     // SHADE_PBR: glTF's metallic-roughness shading (brdf.wgsl, the GGX arc rule below), else Blinn
     // (seed 000); SHADE_ENVIRONMENT: plus the image-based light (edges.wgsl, `strip_environment`).
     pbr: u32,
-    _pad0: u32,
+    // 1: draw rounded corners where chamfer edges meet (corners.wgsl), 0: the seed's strip ends.
+    corners: u32,
     _pad1: u32,
     _pad2: u32,
 }
@@ -193,14 +200,18 @@ fn view_light() -> PunctualLight {
     return light;
 }
 
-fn to_light_at(p: vec3<f32>) -> vec3<f32> {
-    return towards_light(view_light(), p);
+// The light a strip's record carries (the draw pass draws every instance at once).
+fn record_light(record: ChamferRecord) -> PunctualLight {
+    var light = lighting.light;
+    light.position = record.light_position;
+    light.spot = vec4<f32>(record.light_axis.xyz, light.spot.w);
+    return light;
 }
 
-// What a pixel of the strip shows: its slice's mean radiance under the light (the seed's Blinn or PBR).
-fn strip_radiance(arc: Arc, across: vec3<f32>, middle: vec3<f32>, to_viewer: vec3<f32>, range: vec2<f32>) -> vec3<f32> {
-    let to_light = to_light_at(middle);
-    let light = light_radiance(view_light(), middle);
+// What a pixel of the strip shows: its slice's mean radiance under `punctual` (the seed's Blinn or PBR).
+fn strip_radiance(arc: Arc, across: vec3<f32>, middle: vec3<f32>, to_viewer: vec3<f32>, range: vec2<f32>, punctual: PunctualLight) -> vec3<f32> {
+    let to_light = towards_light(punctual, middle);
+    let light = light_radiance(punctual, middle);
     if (lighting.pbr & SHADE_PBR) != 0u {
         let m = Pbr(lighting.base.rgb, lighting.material.x, lighting.material.y);
         // The ambient term at the slice's middle normal (it varies slowly over the arc).

@@ -138,6 +138,7 @@ fn edge_light(r: f32, light: Light, camera: &Camera) -> Vec<(f64, f64, f64)> {
             shading: Shading::Blinn(MATERIAL),
             ambient: 0.0,
             k: Some(center_distance),
+            ..Highlight::default()
         }),
         ..EdgeStyle::default()
     };
@@ -606,6 +607,10 @@ fn the_pbr_highlight_carries_the_light_of_real_fillets() {
         for radius_px in [3.0f32, 6.0] {
             let r = radius_px / pixels_per_unit;
             let (rounded, sharp) = rounded_and_sharp(shape, r);
+            let corners = GpuAsset::new(&chamfer_tests::gpu().device, &sharp)
+                .expect("upload")
+                .corner_count();
+            println!("{name}, r {radius_px} px: {corners} rounded corners");
             let pixels = pixels_near(&camera, &edges, 1.5 * radius_px + 1.5);
             for roughness in [0.2f32, 0.5, 0.8] {
                 for towards in lights {
@@ -633,6 +638,7 @@ fn the_pbr_highlight_carries_the_light_of_real_fillets() {
                             shading,
                             ambient: 0.0,
                             k: Some(k),
+                            ..Highlight::default()
                         }),
                         ..EdgeStyle::default()
                     };
@@ -805,6 +811,7 @@ fn the_pbr_highlight_catches_the_environment_like_real_fillets() {
                         shading: Shading::Pbr(material),
                         ambient: 0.0,
                         k: Some(k),
+                        ..Highlight::default()
                     }),
                     ..EdgeStyle::default()
                 };
@@ -843,4 +850,186 @@ fn the_pbr_highlight_catches_the_environment_like_real_fillets() {
         plain_worst > 3.0 * worst_mean,
         "the control must differ: {plain_worst}"
     );
+}
+
+/// The pixels within `reach` pixels of where `p` lands.
+fn pixels_around(camera: &Camera, p: Vec3, reach: f32) -> HashSet<(u32, u32)> {
+    let centre = to_pixels(camera, p);
+    let mut pixels = HashSet::new();
+    let r = reach.ceil() as i32;
+    for dy in -r..=r {
+        for dx in -r..=r {
+            let q = Vec2::new(
+                centre.x.floor() + dx as f32 + 0.5,
+                centre.y.floor() + dy as f32 + 0.5,
+            );
+            if q.distance(centre) <= reach {
+                pixels.insert((q.x as u32, q.y as u32));
+            }
+        }
+    }
+    pixels
+}
+
+/// Pixels of `pixels` where `ours` is off the truth by more than a tenth of the truth's lit range
+/// there: a notch (the strips ending short of the corner) or an overlap shows as a cluster of them.
+fn notch_pixels(ours: &Image, truth: &Image, pixels: &HashSet<(u32, u32)>) -> usize {
+    let value = |image: &Image, (x, y): (u32, u32)| {
+        let p = image.pixel(x, y);
+        (f64::from(p[0]) + f64::from(p[1]) + f64::from(p[2])) / (3.0 * 255.0)
+    };
+    let (lo, hi) = pixels.iter().fold((f64::MAX, f64::MIN), |(lo, hi), &p| {
+        (lo.min(value(truth, p)), hi.max(value(truth, p)))
+    });
+    pixels
+        .iter()
+        .filter(|&&p| (value(ours, p) - value(truth, p)).abs() > 0.1 * (hi - lo))
+        .count()
+}
+
+/// Issue 29's rounded corners: the box's corner that faces the camera, where three strips meet,
+/// against the truly rounded box (a sphere octant there; truth supersampled 4 × 4), over the pixels
+/// within the corner's reach ((√3 + 2) r around the vertex, where the strips hand over), under GGX
+/// with two directional lights (one mirrored by the corner's diagonal onto the sphere) and with an
+/// environment alone. Control: the same strips without the corner, which end in the seed's notch.
+#[test]
+fn rounded_corners_meet_their_strips_without_a_notch() {
+    let (orbit, camera) = validation_view();
+    let eye = camera.eye().truncate();
+    let pixels_per_unit = 1.0 / (camera.pixel_scale() * 6.0);
+    let vertex = eye.signum();
+    let diagonal = vertex.normalize();
+    let to_eye = (eye - vertex).normalize();
+    let mirrored = 2.0 * diagonal.dot(to_eye) * diagonal - to_eye;
+    let environment = Arc::new(sky_with_a_light(mirrored));
+    // K as the edge validations set it: strips near the corner blend by their coverage.
+    let k = blend_distance(&box_edges(eye), eye);
+    let (mut worst, mut worst_notches, mut control_best, mut control_notches) =
+        (0.0f64, 0usize, f64::MAX, usize::MAX);
+    println!(
+        "| r (px) | roughness | light | mean error / lit range | pixels off > 10 % | without the corner: mean error | pixels off > 10 % |"
+    );
+    println!("|---:|---:|---|---:|---:|---:|---:|");
+    for radius_px in [3.0f32, 6.0] {
+        let r = radius_px / pixels_per_unit;
+        let (rounded, sharp) = rounded_and_sharp(rounded_box, r);
+        let gpu = chamfer_tests::gpu();
+        assert_eq!(
+            GpuAsset::new(&gpu.device, &sharp)
+                .expect("upload")
+                .corner_count(),
+            8
+        );
+        let pixels = pixels_around(&camera, vertex, (3f32.sqrt() + 2.0) * radius_px + 1.0);
+        for roughness in [0.2f32, 0.5, 0.8] {
+            let material = PbrMaterial {
+                base_color: [0.7; 3],
+                metallic: 0.0,
+                roughness,
+            };
+            for lit_by in ["towards 0.3, 0.9, 0.5", "mirrored", "environment"] {
+                let (to_light, environment) = match lit_by {
+                    "mirrored" => (mirrored, None),
+                    "environment" => (Vec3::Y, Some(&environment)),
+                    _ => (Vec3::new(0.3, 0.9, 0.5).normalize(), None),
+                };
+                let corner_edges = [MeasuredEdge {
+                    points: vec![vertex],
+                    normals: [diagonal, diagonal],
+                }];
+                let intensity = if environment.is_some() {
+                    0.0
+                } else {
+                    (0.9 / peak_radiance(&box_edges(eye), eye, to_light, &material)
+                        .max(peak_radiance(&corner_edges, eye, to_light, &material)))
+                    .min(std::f32::consts::PI)
+                };
+                let light = Light::Directional(to_light.to_array());
+                let mesh_style = MeshStyle {
+                    light: MeshLight::Model(light),
+                    light_color: [intensity; 3],
+                    ambient: 0.0,
+                    pbr: Some(material),
+                    ..MeshStyle::default()
+                };
+                let strips = |rounded_corners| EdgeStyle {
+                    classes: EdgeClasses::NONE,
+                    highlight: Some(Highlight {
+                        light,
+                        color: [intensity; 3],
+                        shading: Shading::Pbr(material),
+                        ambient: 0.0,
+                        k: Some(k),
+                        rounded_corners,
+                    }),
+                    ..EdgeStyle::default()
+                };
+                let truth = render_supersampled(&rounded, &orbit, 360, &mesh_style, 4, environment);
+                let ours = render_lit(
+                    &sharp,
+                    &camera,
+                    &mesh_style,
+                    Some(&strips(true)),
+                    environment,
+                );
+                let notched = render_lit(
+                    &sharp,
+                    &camera,
+                    &mesh_style,
+                    Some(&strips(false)),
+                    environment,
+                );
+                if radius_px == 6.0 && roughness == 0.5 && lit_by == "mirrored" {
+                    for (name, image) in
+                        [("rounded", &truth), ("notch", &notched), ("corner", &ours)]
+                    {
+                        chamfer_tests::save_png(
+                            &crop(image, to_pixels(&camera, vertex), 48),
+                            &std::env::temp_dir().join(format!("chamfer-corner-{name}.png")),
+                        );
+                    }
+                }
+                let (_, mean) = compare(&ours, &truth, &pixels);
+                let (_, notched_mean) = compare(&notched, &truth, &pixels);
+                let notches = notch_pixels(&ours, &truth, &pixels);
+                let notched_notches = notch_pixels(&notched, &truth, &pixels);
+                worst = worst.max(mean);
+                worst_notches = worst_notches.max(notches);
+                control_best = control_best.min(notched_mean);
+                control_notches = control_notches.min(notched_notches);
+                println!(
+                    "| {radius_px} | {roughness} | {lit_by} | {:.2} % | {notches} | {:.2} % | {notched_notches} |",
+                    mean * 100.0,
+                    notched_mean * 100.0,
+                );
+            }
+        }
+    }
+    println!(
+        "worst: mean {:.2} % of the lit range, {worst_notches} pixels off; without corners at best {:.2} %, {control_notches} pixels off",
+        worst * 100.0,
+        control_best * 100.0
+    );
+    assert!(worst <= 0.01, "mean error {:.2} %", worst * 100.0);
+    assert!(
+        control_best > 2.0 * worst && control_notches > 3 * worst_notches.max(1),
+        "the notch must show without corners: {control_best}, {control_notches} pixels"
+    );
+}
+
+/// The `size` × `size` pixels of `image` around `centre`, each drawn as 4 × 4 (for the docs' pictures).
+fn crop(image: &Image, centre: Vec2, size: u32) -> Image {
+    let zoom = 4;
+    let (x0, y0) = (centre.x as u32 - size / 2, centre.y as u32 - size / 2);
+    let mut rgba = Vec::with_capacity((size * size * zoom * zoom * 4) as usize);
+    for y in 0..size * zoom {
+        for x in 0..size * zoom {
+            rgba.extend_from_slice(&image.pixel(x0 + x / zoom, y0 + y / zoom));
+        }
+    }
+    Image {
+        width: size * zoom,
+        height: size * zoom,
+        rgba,
+    }
 }

@@ -10,8 +10,8 @@
 //! about a pixel wide). Every crease gets the radius. Per mesh, six configurations run round-robin
 //! after two warm-up rounds: the mesh alone (Blinn faces), the mesh with Blinn strips, the mesh alone
 //! with PBR faces, the mesh with PBR strips, and the last two again lit by `fixtures/environments/sky.hdr`
-//! too (image-based light); each frame is timed from encoding to the GPU finishing, and the table
-//! shows medians.
+//! too (image-based light), and the PBR strips once more without rounded corners (the seed's strip
+//! ends); each frame is timed from encoding to the GPU finishing, and the table shows medians.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -57,9 +57,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         gpu.info.name, gpu.info.backend, size[0], size[1]
     );
     println!(
-        "| mesh | radius (of diagonal) | chamfer edges | Blinn: mesh ms | Blinn: + strips ms | Blinn strips ms | PBR: mesh ms | PBR: + strips ms | PBR strips ms | PBR strips / Blinn strips | PBR frame / Blinn frame | PBR + environment: mesh ms | + strips ms | strips ms | env strips / Blinn strips |"
+        "| mesh | radius (of diagonal) | chamfer edges | Blinn: mesh ms | Blinn: + strips ms | Blinn strips ms | PBR: mesh ms | PBR: + strips ms | PBR strips ms | PBR strips / Blinn strips | PBR frame / Blinn frame | PBR + environment: mesh ms | + strips ms | strips ms | env strips / Blinn strips | PBR without rounded corners: + strips ms | rounded corners ms |"
     );
-    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!(
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+    );
     let sky = chamfer_preprocess::environment::read_environment(
         &root.join("environments/sky.hdr"),
         &chamfer_preprocess::Limits::DEFAULT,
@@ -102,11 +104,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 shading,
                 ambient: 0.1,
                 k: None,
+                ..Highlight::default()
             }),
             ..EdgeStyle::default()
         };
         let style_blinn = strips(Shading::Blinn(blinn), [1.0; 3]);
         let style_pbr = strips(Shading::Pbr(pbr), [std::f32::consts::PI; 3]);
+        let mut style_pbr_notched = style_pbr;
+        if let Some(highlight) = &mut style_pbr_notched.highlight {
+            highlight.rounded_corners = false;
+        }
         let mut lit = [
             (
                 MeshRenderer::new(&pipelines, &uploaded)?,
@@ -138,7 +145,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             gpu.submit(encoder)?;
             Ok::<f64, Box<dyn std::error::Error>>(start.elapsed().as_secs_f64() * 1e3)
         };
-        let mut times = [(); 6].map(|_| Vec::new());
+        let mut times = [(); 7].map(|_| Vec::new());
         for round in 0..frames + 2 {
             let row = [
                 frame(false, &mesh_blinn, None)?,
@@ -147,6 +154,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 frame(false, &mesh_pbr, Some(&style_pbr))?,
                 frame(true, &mesh_pbr, None)?,
                 frame(true, &mesh_pbr, Some(&style_pbr))?,
+                frame(false, &mesh_pbr, Some(&style_pbr_notched))?,
             ];
             if round >= 2 {
                 for (list, t) in times.iter_mut().zip(row) {
@@ -154,12 +162,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 }
             }
         }
-        let [bm, bs, pm, ps, em, es] = times.map(|mut v| {
+        let [bm, bs, pm, ps, em, es, pn] = times.map(|mut v| {
             v.sort_by(f64::total_cmp);
             v[v.len() / 2]
         });
         println!(
-            "| {} | {:.1} % | {} | {bm:.2} | {bs:.2} | {:.2} | {pm:.2} | {ps:.2} | {:.2} | {:.2}× | {:.2}× | {em:.2} | {es:.2} | {:.2} | {:.2}× |",
+            "| {} | {:.1} % | {} | {bm:.2} | {bs:.2} | {:.2} | {pm:.2} | {ps:.2} | {:.2} | {:.2}× | {:.2}× | {em:.2} | {es:.2} | {:.2} | {:.2}× | {pn:.2} | {:.2} |",
             path.file_name()
                 .map(|n| n.to_string_lossy())
                 .unwrap_or_default(),
@@ -171,6 +179,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             ps / bs,
             es - em,
             (es - em) / (bs - bm).max(1e-3),
+            ps - pn,
         );
     }
     println!(

@@ -413,6 +413,7 @@ impl ApplicationHandler for Viewer {
                         shading,
                         ambient: 0.2,
                         k: None,
+                        ..Highlight::default()
                     };
                     let mesh_style = MeshStyle {
                         color: [material.diffuse, material.diffuse, material.diffuse, 1.0],

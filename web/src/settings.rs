@@ -203,6 +203,7 @@ impl ViewSettings {
             shading,
             ambient: AMBIENT,
             k: None,
+            ..Highlight::default()
         });
         let mut style = EdgeStyle {
             technique: self.technique()?,

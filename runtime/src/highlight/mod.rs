@@ -9,7 +9,9 @@
 //! - [`ggx`]: the same integral under glTF's metallic-roughness shading (GGX, Smith, Schlick, Lambert;
 //!   issue 29), by a substitution that makes the GGX lobe smooth and a 16-point rule.
 //! - [`environment`]: image-based light, an equirectangular environment prefiltered for one roughness.
+//! - `corners`: the rounded corners where chamfer edges of one radius meet (issue 29), found per asset.
 
+pub(crate) mod corners;
 pub mod environment;
 pub mod ggx;
 pub mod strip;

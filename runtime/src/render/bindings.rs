@@ -207,10 +207,13 @@ pub(crate) mod asset {
     pub(crate) const FIN_CORNERS: Binding = Binding::new(13, "fin_corners", Read);
     /// Extra [`AssetExtras::TRIANGLE_EDGES`](crate::render::AssetExtras::TRIANGLE_EDGES).
     pub(crate) const TRIANGLE_EDGES: Binding = Binding::new(14, "triangle_edges", Read);
+    /// The rounded corners of the chamfer highlight and each edge end's corner
+    /// (`shaders/corners.wgsl`).
+    pub(crate) const CORNERS: Binding = Binding::new(31, "corners", Read);
 
     /// Every section binding.
     #[cfg(test)]
-    pub(crate) const ALL: [Binding; 14] = [
+    pub(crate) const ALL: [Binding; 15] = [
         TOPOLOGY,
         EDGE_VERTICES,
         ATTRIBUTES,
@@ -225,6 +228,7 @@ pub(crate) mod asset {
         RENDER_TO_TOPOLOGY,
         FIN_CORNERS,
         TRIANGLE_EDGES,
+        CORNERS,
     ];
 }
 

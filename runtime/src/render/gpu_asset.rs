@@ -65,6 +65,10 @@ pub struct GpuAsset {
     pub(crate) fin_corners: Option<wgpu::Buffer>,
     /// [`AssetExtras::TRIANGLE_EDGES`]: `u32` per triangle.
     pub(crate) triangle_edges: Option<wgpu::Buffer>,
+    /// The highlight's rounded corners and each edge end's corner (`highlight::corners`), for an
+    /// asset with chamfer edges; else a placeholder.
+    pub(crate) corners: wgpu::Buffer,
+    pub(crate) corner_count: u32,
 }
 
 impl GpuAsset {
@@ -196,6 +200,21 @@ impl GpuAsset {
                 limit,
             })?;
         let edge_count = asset.edge_count() as u32;
+        let has_chamfers = asset
+            .edge_attributes
+            .iter()
+            .any(|&w| crate::asset::attribute_flags(w).contains(crate::asset::EdgeFlags::CHAMFER));
+        let corners = if has_chamfers {
+            crate::highlight::corners::Corners::find(asset)
+        } else {
+            Default::default()
+        };
+        let corner_words = if has_chamfers {
+            corners.words()
+        } else {
+            Vec::new()
+        };
+        check("corners", 16 * corner_words.len())?;
         Ok(Self {
             // Vertex and index buffers are storage buffers too, for techniques that pull triangles.
             render_positions: section(
@@ -228,9 +247,7 @@ impl GpuAsset {
             edges_u16: asset.edge_vertices.width() == IndexWidth::U16,
             rings_u16,
             has_rings: !asset.next_ends.is_empty(),
-            has_chamfers: asset.edge_attributes.iter().any(|&w| {
-                crate::asset::attribute_flags(w).contains(crate::asset::EdgeFlags::CHAMFER)
-            }),
+            has_chamfers,
             bounds: [asset.header.bounds_min, asset.header.bounds_max],
             radius_scale: asset.header.radius_scale,
             extras: AssetExtras::NONE,
@@ -246,6 +263,13 @@ impl GpuAsset {
             render_to_topology: None,
             fin_corners: None,
             triangle_edges: None,
+            corners: upload(
+                device,
+                "rounded corners",
+                bytemuck::cast_slice(&corner_words),
+                storage,
+            ),
+            corner_count: corners.corners.len() as u32,
         })
     }
 
@@ -307,6 +331,7 @@ impl GpuAsset {
             &self.cap_heads,
             &self.clusters,
             &self.intersection_segments,
+            &self.corners,
         ]
         .iter()
         .map(|b| b.size())
@@ -341,6 +366,12 @@ impl GpuAsset {
     /// Chamfer radii in the edge attributes are multiples of this (the asset header's `radius_scale`).
     pub fn radius_scale(&self) -> f32 {
         self.radius_scale
+    }
+
+    /// The rounded corners the chamfer highlight draws where chamfer edges of one radius meet
+    /// (issue 29; 0 for an asset without chamfer edges).
+    pub fn corner_count(&self) -> u32 {
+        self.corner_count
     }
 
     /// Number of edges.
@@ -428,6 +459,7 @@ impl GpuAsset {
             RENDER_NORMALS => &self.render_normals,
             MESH_INDICES => &self.mesh_indices,
             SEGMENTS => &self.intersection_segments,
+            CORNERS => &self.corners,
             VERTEX_NORMALS => extra(
                 &self.vertex_normals,
                 technique,

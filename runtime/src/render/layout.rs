@@ -94,6 +94,7 @@ pub(crate) fn constants() -> Vec<(&'static str, u32)> {
         ("ENV_IRRADIANCE_HEIGHT", environment::IRRADIANCE_SIZE[1]),
         ("SHADE_PBR", SHADE_PBR),
         ("SHADE_ENVIRONMENT", SHADE_ENVIRONMENT),
+        ("CORNER_WORDS", crate::highlight::corners::CORNER_WORDS),
     ]
 }
 
@@ -215,7 +216,7 @@ pub(crate) struct Lighting {
     pub(crate) material: [f32; 4],
     pub(crate) base: [f32; 4],
     pub(crate) pbr: u32,
-    pub(crate) _pad0: u32,
+    pub(crate) corners: u32,
     pub(crate) _pad1: u32,
     pub(crate) _pad2: u32,
 }
@@ -286,6 +287,9 @@ pub(crate) struct ChamferRecord {
     pub(crate) across: [f32; 4],
     pub(crate) middle: [f32; 4],
     pub(crate) viewer: [f32; 4],
+    pub(crate) hand_over: [f32; 4],
+    pub(crate) light_position: [f32; 4],
+    pub(crate) light_axis: [f32; 4],
 }
 
 /// The head of `Survivors` in `shaders/cull.wgsl`, before its list of kept clusters: the list's
@@ -397,7 +401,7 @@ pub(crate) fn layouts() -> Vec<Layout> {
         layout!(
             "Lighting",
             Lighting,
-            [light, material, base, pbr, _pad0, _pad1, _pad2]
+            [light, material, base, pbr, corners, _pad1, _pad2]
         ),
         layout!(
             "Post",
@@ -439,7 +443,21 @@ pub(crate) fn layouts() -> Vec<Layout> {
         layout!(
             "ChamferRecord",
             ChamferRecord,
-            [n1, n2, across, middle, viewer]
+            [
+                n1,
+                n2,
+                across,
+                middle,
+                viewer,
+                hand_over,
+                light_position,
+                light_axis
+            ]
+        ),
+        layout!(
+            "Corner",
+            crate::highlight::corners::Corner,
+            [sphere, vertex, normals, far]
         ),
     ]
 }

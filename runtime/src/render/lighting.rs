@@ -55,6 +55,10 @@ pub struct Highlight {
     /// `K` of the blend weight `W = K r_e / (d r_max)` (§3.2); `None`: the camera's distance to the
     /// model's centre, so a strip at that distance blends by exactly the share of the pixel it covers.
     pub k: Option<f32>,
+    /// Where two or three chamfer edges of one radius meet at a convex vertex, draw the corner the
+    /// rounded solid has (a sphere patch, its cylinders meeting it; issue 29) instead of letting the
+    /// strips end in a notch as seed 000 does.
+    pub rounded_corners: bool,
 }
 
 impl Default for Highlight {
@@ -69,6 +73,7 @@ impl Default for Highlight {
             }),
             ambient: 0.0,
             k: None,
+            rounded_corners: true,
         }
     }
 }

@@ -220,6 +220,10 @@ pub struct ViewArgs {
     /// to the model's centre).
     #[arg(long)]
     k: Option<f32>,
+    /// `--style chamfer`: let the strips end in a notch where chamfer edges meet, as seed 000 does,
+    /// instead of drawing the rounded corner (a sphere patch) there.
+    #[arg(long)]
+    sharp_corners: bool,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -405,6 +409,7 @@ impl ViewArgs {
             },
             ambient: self.ambient,
             k: self.k,
+            rounded_corners: !self.sharp_corners,
         });
         EdgeStyle {
             technique: self.technique().unwrap_or_default(),

@@ -100,6 +100,8 @@ pub(crate) const RECORDS: Bindings = Bindings::compute(
         CHAMFERS,
         STARTS,
         INSTANCE_FRAMES,
+        LIGHTING,
+        asset::CORNERS,
     ],
 );
 pub(crate) const ARGS: Bindings = Bindings::compute("edge lists", &[FRAME, OUT, STARTS, DISPATCH]);
@@ -117,6 +119,10 @@ pub(crate) const DRAW: Bindings = Bindings::draw(
         LIGHTING,
         ENVIRONMENT,
     ],
+);
+pub(crate) const CORNER_DRAW: Bindings = Bindings::draw(
+    "rounded corners",
+    &[FRAME, asset::CORNERS, LIGHTING, ENVIRONMENT],
 );
 pub(crate) const SEGMENTS: Bindings =
     Bindings::draw("intersection edges", &[FRAME, asset::SEGMENTS]);

@@ -90,7 +90,7 @@ impl HighlightUniforms {
             material,
             base: [r, g, b, k],
             pbr: shade,
-            _pad0: 0,
+            corners: u32::from(highlight.rounded_corners),
             _pad1: 0,
             _pad2: 0,
         };

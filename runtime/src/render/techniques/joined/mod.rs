@@ -12,7 +12,9 @@
 //! table keyed by (instance, edge); an args pass sizes the indirect join dispatch; joins find each
 //! drawn end's nearest drawn neighbours of the same instance by screen angle (next-index walk or
 //! cap-buffer head), cut overlapping quads apart and emit round caps for outer gaps, so no pixel is
-//! covered twice and translucent colours blend once. The work per frame is a few passes per asset,
+//! covered twice and translucent colours blend once. Highlighted chamfer edges get a record each
+//! (`chamfers.wgsl`) and, where chamfer edges of one radius meet, a rounded corner drawn instance by
+//! instance (`corner_draw.wgsl`) takes over the pixels around the vertex from the strips. The work per frame is a few passes per asset,
 //! whatever the number of its instances; the host writes each instance's camera and colours.
 //!
 //! The folder is split by concern: [`bindings`] (what each pass binds), [`pipelines`], [`lists`]
@@ -82,8 +84,9 @@ struct Frame {
     cache: Cache,
     /// Block 0 is the place pass's (every instance); then one per chunk of each batch.
     blocks: Blocks,
-    /// One per instance of an asset with intersection edges: they are drawn instance by instance.
-    segment_blocks: Blocks,
+    /// One per instance of an asset with intersection edges or (highlighted) rounded corners: they
+    /// are drawn instance by instance.
+    instance_blocks: Blocks,
     lists: Option<Lists>,
     instances: Option<Instances>,
     assets: PerAsset<AssetGroups>,
@@ -94,8 +97,8 @@ struct Frame {
     needed: Needed,
     /// Per batch, what its passes run over.
     batches: Vec<Batch>,
-    /// Per instance with intersection edges: its asset's groups and its segment block.
-    segment_runs: Vec<(usize, u32)>,
+    /// Per instance drawn on its own: its asset's groups and its block.
+    instance_runs: Vec<(usize, u32)>,
     /// The frame's instances.
     instance_count: u32,
     /// Cull clusters before classifying edges.
@@ -169,7 +172,7 @@ impl Frame {
             pipelines: cache.get::<JoinedPipelines>()?,
             cache: cache.clone(),
             blocks: Blocks::new(cache, "edge batches", block),
-            segment_blocks: Blocks::new(cache, "intersection instances", block),
+            instance_blocks: Blocks::new(cache, "instances drawn one by one", block),
             lists: None,
             instances: None,
             assets: PerAsset::default(),
@@ -179,7 +182,7 @@ impl Frame {
             highlight: HighlightUniforms::new(cache),
             needed: Needed::new(cache),
             batches: Vec::new(),
-            segment_runs: Vec::new(),
+            instance_runs: Vec::new(),
             instance_count: 0,
             culling: true,
             highlighted: false,
@@ -384,7 +387,7 @@ fn asset_groups(
     cache: &Cache,
     asset: &GpuAsset,
     shared: &Resources<'_>,
-    segment_blocks: &Blocks,
+    instance_blocks: &Blocks,
 ) -> Result<AssetGroups, RenderError> {
     let device = cache.device();
     let own = Resources {
@@ -412,17 +415,23 @@ fn asset_groups(
     let cull = group(&CULL, &own)?;
     let joins = group(&JOIN, &own)?;
     let records = per_chunk(&RECORDS)?;
+    let one_by_one = Resources {
+        blocks: instance_blocks,
+        ..own
+    };
     let segments = if asset.intersection_count > 0 {
-        let drawn = Resources {
-            blocks: segment_blocks,
-            ..own
-        };
-        Some(group(&SEGMENTS, &drawn)?)
+        Some(group(&SEGMENTS, &one_by_one)?)
+    } else {
+        None
+    };
+    let corners = if asset.corner_count > 0 {
+        Some(group(&CORNER_DRAW, &one_by_one)?)
     } else {
         None
     };
     Ok(AssetGroups {
         segments,
+        corners,
         classify,
         cull,
         joins,
@@ -459,19 +468,23 @@ impl TechniqueFrame for Frame {
         // (The starts list holds one entry per instance, so any split of the batches fits it.)
         let (order, frames, blocks, planned) = self.plan(cx, lists, instances);
         let grown = self.blocks.write(cx.pipelines, cx.queue, &blocks);
-        // Intersection edges are drawn instance by instance, each with its own block.
-        let segment_frames: Vec<(usize, layout::Frame)> = order
+        // Intersection edges and rounded corners are drawn instance by instance, each with its own
+        // block.
+        let one_by_one: Vec<(usize, layout::Frame)> = order
             .iter()
             .enumerate()
-            .filter(|(_, d)| cx.instances[**d].asset.intersection_count > 0)
+            .filter(|(_, d)| {
+                let asset = cx.instances[**d].asset;
+                asset.intersection_count > 0 || (self.highlighted && asset.corner_count > 0)
+            })
             .map(|(i, &d)| (i, super::frame_uniform(cx, &cx.instances[d], i)))
             .collect();
-        let segment_uniforms: Vec<layout::Frame> = segment_frames.iter().map(|(_, f)| *f).collect();
-        let segments_grown = !segment_uniforms.is_empty()
+        let uniforms: Vec<layout::Frame> = one_by_one.iter().map(|(_, f)| *f).collect();
+        let one_by_one_grown = !uniforms.is_empty()
             && self
-                .segment_blocks
-                .write(cx.pipelines, cx.queue, &segment_uniforms);
-        if grown || segments_grown {
+                .instance_blocks
+                .write(cx.pipelines, cx.queue, &uniforms);
+        if grown || one_by_one_grown {
             self.forget_groups();
         }
         let (Some(lists), Some(instances)) = (&self.lists, &self.instances) else {
@@ -515,7 +528,7 @@ impl TechniqueFrame for Frame {
         for batch in &planned {
             let drawn = &cx.instances[order[batch.first]];
             let made = self.assets.index(drawn.asset, |asset| {
-                asset_groups(cx.pipelines, asset, &shared, &self.segment_blocks)
+                asset_groups(cx.pipelines, asset, &shared, &self.instance_blocks)
             })?;
             self.batches.push(Batch {
                 asset: made,
@@ -528,15 +541,15 @@ impl TechniqueFrame for Frame {
                 head_count: drawn.asset.head_count,
             });
         }
-        self.segment_runs.clear();
-        for (k, &(i, _)) in segment_frames.iter().enumerate() {
+        self.instance_runs.clear();
+        for (k, &(i, _)) in one_by_one.iter().enumerate() {
             let made = self.assets.index(cx.instances[order[i]].asset, |_| {
                 Err(RenderError::Internal(
                     "an instance's asset has no groups".into(),
                 ))
             })?;
-            self.segment_runs
-                .push((made, self.segment_blocks.offset(k)));
+            self.instance_runs
+                .push((made, self.instance_blocks.offset(k)));
         }
         // Without rings there is nothing to join by.
         self.caps = if cx.instances.iter().all(|d| d.asset.has_rings) {
@@ -579,12 +592,17 @@ impl TechniqueFrame for Frame {
             pass.set_pipeline(&pipelines.caps);
             pass.draw_indirect(&lists.out, CAP_DRAW_OFFSET);
         }
-        for &(asset, block) in &self.segment_runs {
+        for &(asset, block) in &self.instance_runs {
             let (gpu, groups) = self.assets.get(asset);
             if let Some(segments) = &groups.segments {
                 pass.set_bind_group(0, segments, &[block]);
                 pass.set_pipeline(&pipelines.segments);
                 pass.draw(0..18, 0..gpu.intersection_count);
+            }
+            if let (true, Some(corners)) = (self.highlighted, &groups.corners) {
+                pass.set_bind_group(0, corners, &[block]);
+                pass.set_pipeline(&pipelines.corners);
+                pass.draw(0..6, 0..gpu.corner_count);
             }
         }
     }
@@ -621,7 +639,7 @@ impl TechniqueFrame for Frame {
         lists
             + instances
             + self.blocks.gpu_bytes()
-            + self.segment_blocks.gpu_bytes()
+            + self.instance_blocks.gpu_bytes()
             + self.highlight.gpu_bytes()
     }
 }

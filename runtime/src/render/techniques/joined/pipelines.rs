@@ -2,14 +2,14 @@
 
 use chamfer_shaders as wgsl;
 
-use super::bindings::{ARGS, CLASSIFY, CULL, DRAW, JOIN, PLACE, RECORDS, SEGMENTS};
+use super::bindings::{ARGS, CLASSIFY, CORNER_DRAW, CULL, DRAW, JOIN, PLACE, RECORDS, SEGMENTS};
 use crate::render::modules::{Program, Shader};
 use crate::render::pipelines::{PipelineSet, Raster};
 use crate::render::{Pipelines as Cache, RenderError};
 
 /// Every module the technique compiles: its name, its parts after the shared constants, its
 /// programs.
-const SHADERS: [(&str, &[&str], &[Program]); 8] = [
+const SHADERS: [(&str, &[&str], &[Program]); 9] = [
     // Which instances are in view.
     (
         "instances.wgsl",
@@ -75,6 +75,7 @@ const SHADERS: [(&str, &[&str], &[Program]); 8] = [
             wgsl::HIGHLIGHT,
             wgsl::LISTS,
             wgsl::COMPUTE,
+            wgsl::CORNERS,
             wgsl::CHAMFERS,
         ],
         &[Program::compute("chamfer_records", &RECORDS)],
@@ -105,6 +106,24 @@ const SHADERS: [(&str, &[&str], &[Program]); 8] = [
             wgsl::CAPS,
         ],
         &[Program::draw("cap_vertex_main", "cap_fragment", &DRAW)],
+    ),
+    // The highlight's rounded corners, an instance at a time.
+    (
+        "corner_draw.wgsl",
+        &[
+            wgsl::COMMON,
+            wgsl::FRAME,
+            wgsl::BRDF,
+            wgsl::HIGHLIGHT,
+            wgsl::ENVIRONMENT,
+            wgsl::CORNERS,
+            wgsl::CORNER_DRAW,
+        ],
+        &[Program::draw(
+            "corner_vertex",
+            "corner_fragment",
+            &CORNER_DRAW,
+        )],
     ),
     // Baked intersection edges.
     (
@@ -144,6 +163,7 @@ pub(crate) struct JoinedPipelines {
     pub(crate) chamfer_records: wgpu::ComputePipeline,
     pub(crate) edges: wgpu::RenderPipeline,
     pub(crate) caps: wgpu::RenderPipeline,
+    pub(crate) corners: wgpu::RenderPipeline,
     pub(crate) segments: wgpu::RenderPipeline,
 }
 
@@ -157,6 +177,7 @@ impl PipelineSet for JoinedPipelines {
             chamfers,
             edges,
             caps,
+            corners,
             intersections,
         ] = shaders()
             .try_into()
@@ -188,6 +209,11 @@ impl PipelineSet for JoinedPipelines {
             caps: cache.compile(&caps)?.render(
                 "cap_vertex_main",
                 Some("cap_fragment"),
+                over_mesh(),
+            )?,
+            corners: cache.compile(&corners)?.render(
+                "corner_vertex",
+                Some("corner_fragment"),
                 over_mesh(),
             )?,
             segments: cache.compile(&intersections)?.render(

@@ -18,6 +18,8 @@ pub(super) struct AssetGroups {
     pub(super) records: Vec<wgpu::BindGroup>,
     /// Over the asset's intersection segments, if it has any (drawn instance by instance).
     pub(super) segments: Option<wgpu::BindGroup>,
+    /// Over the asset's rounded corners, if it has any (drawn instance by instance).
+    pub(super) corners: Option<wgpu::BindGroup>,
 }
 
 /// What one batch's passes run over.
