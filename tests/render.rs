@@ -573,6 +573,7 @@ fn a_highlighted_chamfer_sums_to_the_integral_of_its_rounded_strip() {
         shading: Shading::Blinn(material),
         ambient: 0.0,
         k: Some(eye.distance(middle)),
+        ..Highlight::default()
     };
     let style = EdgeStyle {
         highlight: Some(highlight),
