@@ -1,6 +1,6 @@
 // Draws the rounded corners (corners.wgsl) of one instance, one square per corner around its vertex:
 // each pixel the corner owns traces the rounded solid there (the sphere patch and, up to the pixels its
-// strips hand over, their cylinders) at 4 × 4 sub-samples, shades every hit normal as the strips
+// strips hand over, their cylinders) at up to 4 × 4 sub-samples, shades every hit normal as the strips
 // and the mesh are shaded, and blends the mean over the mesh with the strips' weight (§3.2): K / d
 // times the share of sub-samples that hit a rounded part (the flat faces are the mesh's own).
 
@@ -28,8 +28,10 @@ fn corner_vertex(
     let clip = view_mvp() * vec4<f32>(c.vertex.xyz, 1.0);
     let steps = pixel_steps(c.vertex.xyz);
     let per_pixel = 0.5 * (length(steps[0]) + length(steps[1]));
-    // The hand-over reach plus the strips' width on either side of it.
-    let extent = (c.normals[0].w + 2.0 * c.sphere.w) / max(per_pixel, 1e-20) + 1.0;
+    // The hand-over reach along an edge and a rounded edge's reach across it (at most 3 r from the
+    // sharp edge; the sphere lies within).
+    let reach = c.normals[0].w;
+    let extent = sqrt(reach * reach + 9.0 * c.sphere.w * c.sphere.w) / max(per_pixel, 1e-20) + 1.0;
     let corner = vec2<f32>(
         select(-1.0, 1.0, ((0x16u >> vertex) & 1u) == 1u),
         select(-1.0, 1.0, ((0x34u >> vertex) & 1u) == 1u),
@@ -63,8 +65,9 @@ struct Hit {
 
 // The first point where the ray (`origin`, unit `dir`) enters the corner's rounded parts: the sphere
 // where its normal is in the normals' cone, and cylinder k (planes k, k + 1) between its two normals,
-// from the centre up to the followed length, where `owned[k]`. t < 0: none.
-fn trace(c: Corner, origin: vec3<f32>, dir: vec3<f32>, owned: vec3<bool>) -> Hit {
+// from the centre up to the followed length, where `owned[k]`. t < 0: none. `anywhere`: the whole
+// sphere and cylinders, whatever the normal (a bound on where the rounded parts can be).
+fn trace(c: Corner, origin: vec3<f32>, dir: vec3<f32>, owned: vec3<bool>, anywhere: bool) -> Hit {
     var best = Hit(-1.0, vec3<f32>(0.0));
     let center = c.sphere.xyz;
     let r = c.sphere.w;
@@ -74,7 +77,7 @@ fn trace(c: Corner, origin: vec3<f32>, dir: vec3<f32>, owned: vec3<bool>) -> Hit
     if disc >= 0.0 {
         let t = -b - sqrt(disc);
         let n = (oc + t * dir) / r;
-        if t >= 0.0 && in_cone(c, n) {
+        if t >= 0.0 && (anywhere || in_cone(c, n)) {
             best = Hit(t, n);
         }
     }
@@ -100,7 +103,7 @@ fn trace(c: Corner, origin: vec3<f32>, dir: vec3<f32>, owned: vec3<bool>) -> Hit
         let p = oc + t * dir;
         let along = dot(p, axis);
         let n = (p - along * axis) / r;
-        if t >= 0.0 && along >= 0.0 && along <= c.vertex.w && in_arc(n, na, nb) && (best.t < 0.0 || t < best.t) {
+        if t >= 0.0 && along >= 0.0 && along <= c.vertex.w && (anywhere || in_arc(n, na, nb)) && (best.t < 0.0 || t < best.t) {
             best = Hit(t, n);
         }
     }
@@ -130,6 +133,15 @@ fn surface_radiance(n: vec3<f32>, p: vec3<f32>, to_viewer: vec3<f32>) -> vec3<f3
 
 const SUBSAMPLES: u32 = 4u;
 
+// The ray (origin, unit direction) through the screen point `q` (pixels): through the plane of constant
+// depth at the vertex (where `steps` are the model-space pixel steps), starting `back` before it.
+fn pixel_ray(vertex: vec3<f32>, vertex_px: vec2<f32>, steps: array<vec3<f32>, 2>, eye: vec4<f32>, back: f32, q: vec2<f32>) -> array<vec3<f32>, 2> {
+    let d = q - vertex_px;
+    let on_plane = vertex + steps[0] * d.x + steps[1] * d.y;
+    let dir = select(-normalize(eye.xyz), normalize(on_plane - eye.xyz), eye.w > 0.0);
+    return array<vec3<f32>, 2>(on_plane - back * dir, dir);
+}
+
 @fragment
 fn corner_fragment(v: CornerVarying) -> @location(0) vec4<f32> {
     let c = corner_at(v.corner);
@@ -150,15 +162,32 @@ fn corner_fragment(v: CornerVarying) -> @location(0) vec4<f32> {
     let steps = pixel_steps(vertex);
     let eye = view_eye();
     let back = 4.0 * (c.normals[0].w + c.sphere.w);
+    // Most of the square sees flat faces only: a pixel whose centre's ray misses the sphere and the
+    // owned cylinders, whole and grown by a pixel and a half, is left to the mesh without tracing its
+    // sub-samples.
+    var grown = c;
+    grown.sphere.w += 0.75 * (length(steps[0]) + length(steps[1]));
+    let centre = pixel_ray(vertex, vertex_px, steps, eye, back, pixel);
+    if trace(grown, centre[0], centre[1], owned, true).t < 0.0 {
+        discard;
+    }
+    // Sub-samples a side: enough that neighbouring ones' normals differ by at most half the lobe's
+    // width (the normal turns by a pixel over r across the pixel), so a wide corner is not shaded 16
+    // times a pixel where its light hardly changes.
+    let turn = 0.5 * (length(steps[0]) + length(steps[1])) / c.sphere.w;
+    var lobe = inverseSqrt(lighting.material.z + 1.0);
+    if (lighting.pbr & SHADE_PBR) != 0u {
+        lobe = max(lighting.material.y, 0.05);
+    }
+    let side = u32(clamp(ceil(2.0 * turn / lobe), 1.0, f32(SUBSAMPLES)));
     var sum = vec3<f32>(0.0);
     var hits = 0u;
-    for (var i = 0u; i < SUBSAMPLES * SUBSAMPLES; i += 1u) {
-        let offset = (vec2<f32>(f32(i % SUBSAMPLES), f32(i / SUBSAMPLES)) + 0.5) / f32(SUBSAMPLES) - 0.5;
-        let q = pixel + offset - vertex_px;
-        let on_plane = vertex + steps[0] * q.x + steps[1] * q.y;
-        let dir = select(-normalize(eye.xyz), normalize(on_plane - eye.xyz), eye.w > 0.0);
-        let origin = on_plane - back * dir;
-        let hit = trace(c, origin, dir, owned);
+    for (var i = 0u; i < side * side; i += 1u) {
+        let offset = (vec2<f32>(f32(i % side), f32(i / side)) + 0.5) / f32(side) - 0.5;
+        let sample = pixel_ray(vertex, vertex_px, steps, eye, back, pixel + offset);
+        let origin = sample[0];
+        let dir = sample[1];
+        let hit = trace(c, origin, dir, owned, false);
         if hit.t >= 0.0 {
             let p = origin + hit.t * dir;
             sum += surface_radiance(hit.normal, p, to_viewer_at(p));
@@ -170,6 +199,6 @@ fn corner_fragment(v: CornerVarying) -> @location(0) vec4<f32> {
     }
     let distance = select(0.0, length(eye.xyz - vertex), eye.w > 0.0);
     let k_over_d = select(1.0, lighting.base.w / distance, distance > 0.0);
-    let coverage = f32(hits) / f32(SUBSAMPLES * SUBSAMPLES);
+    let coverage = f32(hits) / f32(side * side);
     return vec4<f32>(sum / f32(hits), clamp(k_over_d * coverage, 0.0, 1.0));
 }

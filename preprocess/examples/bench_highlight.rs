@@ -57,7 +57,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         gpu.info.name, gpu.info.backend, size[0], size[1]
     );
     println!(
-        "| mesh | radius (of diagonal) | chamfer edges | Blinn: mesh ms | Blinn: + strips ms | Blinn strips ms | PBR: mesh ms | PBR: + strips ms | PBR strips ms | PBR strips / Blinn strips | PBR frame / Blinn frame | PBR + environment: mesh ms | + strips ms | strips ms | env strips / Blinn strips | PBR without rounded corners: + strips ms | rounded corners ms |"
+        "| mesh | radius (of diagonal) | chamfer edges | rounded corners | Blinn: mesh ms | Blinn: + strips ms | Blinn strips ms | PBR: mesh ms | PBR: + strips ms | PBR strips ms | PBR strips / Blinn strips | PBR frame / Blinn frame | PBR + environment: mesh ms | + strips ms | strips ms | env strips / Blinn strips | PBR without rounded corners: + strips ms | rounded corners ms |"
     );
     println!(
         "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
@@ -167,12 +167,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             v[v.len() / 2]
         });
         println!(
-            "| {} | {:.1} % | {} | {bm:.2} | {bs:.2} | {:.2} | {pm:.2} | {ps:.2} | {:.2} | {:.2}× | {:.2}× | {em:.2} | {es:.2} | {:.2} | {:.2}× | {pn:.2} | {:.2} |",
+            "| {} | {:.1} % | {} | {} | {bm:.2} | {bs:.2} | {:.2} | {pm:.2} | {ps:.2} | {:.2} | {:.2}× | {:.2}× | {em:.2} | {es:.2} | {:.2} | {:.2}× | {pn:.2} | {:.2} |",
             path.file_name()
                 .map(|n| n.to_string_lossy())
                 .unwrap_or_default(),
             radius * 100.0,
             asset.header.stats.chamfer.edges,
+            uploaded.corner_count(),
             bs - bm,
             ps - pm,
             (ps - pm) / (bs - bm).max(1e-3),
