@@ -178,6 +178,9 @@ fn corner_at(asset: &Asset, ring: &[u32]) -> Option<Corner> {
         return None;
     }
     let center = vertex - radius * w;
+    if !center.is_finite() {
+        return None;
+    }
     let normals = [n0, n1, n2];
     let mut far = [[0.0; 4]; 3];
     for (pair, end) in edges {
@@ -272,6 +275,16 @@ mod tests {
         assert!(sharp.corners.is_empty() && sharp.ends.iter().all(|&e| e == 0));
         let varied = Corners::find(&box_corner([0.1, 0.1, 0.2], [true; 3]));
         assert!(varied.corners.is_empty());
+    }
+
+    #[test]
+    fn a_vertex_with_non_finite_positions_is_no_corner() {
+        let mut asset = box_corner([0.1; 3], [true; 3]);
+        asset.topology_positions[0] = [f32::NAN, 1.0, 1.0];
+        assert!(Corners::find(&asset).corners.is_empty());
+        let mut asset = box_corner([0.1; 3], [true; 3]);
+        asset.topology_positions[1] = [f32::INFINITY, 1.0, 1.0];
+        assert!(Corners::find(&asset).corners.is_empty());
     }
 
     #[test]
