@@ -149,14 +149,15 @@ fn corner_fragment(v: CornerVarying) -> @location(0) vec4<f32> {
     let mvp = view_mvp();
     let vertex_px = to_pixels(mvp * vec4<f32>(vertex, 1.0));
     let pixel = v.position.xy;
-    // Cylinder k is this corner's where the pixel is short of its strip's hand-over (no strip: all).
+    // Cylinder k is this corner's where the pixel is short of its strip's hand-over (no strip: all;
+    // a strip whose far end is behind the camera hands nothing over).
     var owned = vec3<bool>(true);
     for (var k = 0u; k < 3u; k += 1u) {
         let far = c.far[k];
-        let clip = mvp * vec4<f32>(far.xyz, 1.0);
-        if far.w > 0.0 && clip.w > 0.0 {
+        if far.w > 0.0 {
+            let clip = mvp * vec4<f32>(far.xyz, 1.0);
             let along = normalize(to_pixels(clip) - vertex_px);
-            owned[k] = dot(pixel - vertex_px, along) < hand_over(c, far.xyz);
+            owned[k] = clip.w > 0.0 && dot(pixel - vertex_px, along) < hand_over(c, far.xyz);
         }
     }
     let steps = pixel_steps(vertex);

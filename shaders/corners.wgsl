@@ -75,7 +75,8 @@ fn pixel_steps(p: vec3<f32>) -> array<vec3<f32>, 2> {
 }
 
 // How many pixels from the vertex, along the edge to `far`, a strip hands over to the corner: the
-// corner's reach on screen, at most half the edge (the corner at the far end takes the other half).
+// corner's reach on screen, at most half the edge (the corner at the far end takes the other half);
+// none where `far` is behind the camera (the strip keeps its seed ends, the corner leaves it alone).
 fn hand_over(c: Corner, far: vec3<f32>) -> f32 {
     let mvp = view_mvp();
     let v = to_pixels(mvp * vec4<f32>(c.vertex.xyz, 1.0));
@@ -84,7 +85,7 @@ fn hand_over(c: Corner, far: vec3<f32>) -> f32 {
     let reach = c.normals[0].w / max(per_pixel, 1e-20);
     let clip = mvp * vec4<f32>(far, 1.0);
     if clip.w <= 0.0 {
-        return reach;
+        return 0.0;
     }
     return min(reach, 0.5 * length(to_pixels(clip) - v));
 }
