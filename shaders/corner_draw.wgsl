@@ -11,6 +11,17 @@
 struct CornerVarying {
     @builtin(position) position: vec4<f32>,
     @location(0) @interpolate(flat) corner: u32,
+    // What every pixel of the corner shares, worked out once here: the vertex on screen (xy) and the
+    // sub-samples a side (z).
+    @location(1) @interpolate(flat) vertex_px: vec3<f32>,
+    // The model-space steps of one pixel right and down at the vertex (pixel_steps).
+    @location(2) @interpolate(flat) step_x: vec3<f32>,
+    @location(3) @interpolate(flat) step_y: vec3<f32>,
+    // Per plane pair k, its strip's hand-over line: the edge's direction on screen (xy) and how far along
+    // it the corner owns the cylinder (z); z < 0: the whole cylinder (no strip), w = 0: none of it.
+    @location(4) @interpolate(flat) line0: vec4<f32>,
+    @location(5) @interpolate(flat) line1: vec4<f32>,
+    @location(6) @interpolate(flat) line2: vec4<f32>,
 }
 
 @vertex
@@ -25,19 +36,46 @@ fn corner_vertex(
         v.position = NOWHERE;
         return v;
     }
-    let clip = view_mvp() * vec4<f32>(c.vertex.xyz, 1.0);
+    let mvp = view_mvp();
+    let clip = mvp * vec4<f32>(c.vertex.xyz, 1.0);
+    let vertex_px = to_pixels(clip);
     let steps = pixel_steps(c.vertex.xyz);
-    let per_pixel = 0.5 * (length(steps[0]) + length(steps[1]));
+    let per_pixel = pixel_size(steps);
+    var lines: array<vec4<f32>, 3>;
+    for (var pair = 0u; pair < 3u; pair += 1u) {
+        lines[pair] = vec4<f32>(0.0, 0.0, -1.0, 1.0);
+        let far = c.far[pair];
+        if far.w > 0.0 {
+            // A strip whose far end is behind the camera hands nothing over (hand_over).
+            let far_clip = mvp * vec4<f32>(far.xyz, 1.0);
+            let along = normalize(to_pixels(far_clip) - vertex_px);
+            lines[pair] = vec4<f32>(along, hand_over(c, far.xyz), select(0.0, 1.0, far_clip.w > 0.0));
+        }
+    }
+    // Sub-samples a side: enough that neighbouring ones' normals differ by at most half the lobe's
+    // width (the normal turns by a pixel over r across the pixel), so a wide corner is not shaded 16
+    // times a pixel where its light hardly changes.
+    var lobe = inverseSqrt(lighting.material.z + 1.0);
+    if (lighting.pbr & SHADE_PBR) != 0u {
+        lobe = max(lighting.material.y, 0.05);
+    }
+    let side = clamp(ceil(2.0 * per_pixel / c.sphere.w / lobe), 1.0, f32(SUBSAMPLES));
+    v.vertex_px = vec3<f32>(vertex_px, side);
+    v.step_x = steps[0];
+    v.step_y = steps[1];
+    v.line0 = lines[0];
+    v.line1 = lines[1];
+    v.line2 = lines[2];
     // The hand-over reach along an edge and a rounded edge's reach across it (at most 3 r from the
     // sharp edge; the sphere lies within).
     let reach = c.normals[0].w;
-    let extent = sqrt(reach * reach + 9.0 * c.sphere.w * c.sphere.w) / max(per_pixel, 1e-20) + 1.0;
+    let extent = sqrt(reach * reach + 9.0 * c.sphere.w * c.sphere.w) / per_pixel + 1.0;
     let corner = vec2<f32>(
         select(-1.0, 1.0, ((0x16u >> vertex) & 1u) == 1u),
         select(-1.0, 1.0, ((0x34u >> vertex) & 1u) == 1u),
     );
     let depth = biased_depth_by(clip, frame.bias_px + extent);
-    v.position = from_pixels(to_pixels(clip) + corner * extent, depth, clip.w);
+    v.position = from_pixels(vertex_px + corner * extent, depth, clip.w);
     return v;
 }
 
@@ -146,41 +184,28 @@ fn pixel_ray(vertex: vec3<f32>, vertex_px: vec2<f32>, steps: array<vec3<f32>, 2>
 fn corner_fragment(v: CornerVarying) -> @location(0) vec4<f32> {
     let c = corner_at(v.corner);
     let vertex = c.vertex.xyz;
-    let mvp = view_mvp();
-    let vertex_px = to_pixels(mvp * vec4<f32>(vertex, 1.0));
+    let vertex_px = v.vertex_px.xy;
     let pixel = v.position.xy;
-    // Cylinder k is this corner's where the pixel is short of its strip's hand-over (no strip: all;
-    // a strip whose far end is behind the camera hands nothing over).
+    // Cylinder k is this corner's where the pixel is short of its strip's hand-over.
+    let lines = array<vec4<f32>, 3>(v.line0, v.line1, v.line2);
     var owned = vec3<bool>(true);
     for (var k = 0u; k < 3u; k += 1u) {
-        let far = c.far[k];
-        if far.w > 0.0 {
-            let clip = mvp * vec4<f32>(far.xyz, 1.0);
-            let along = normalize(to_pixels(clip) - vertex_px);
-            owned[k] = clip.w > 0.0 && dot(pixel - vertex_px, along) < hand_over(c, far.xyz);
-        }
+        let line = lines[k];
+        owned[k] = line.w > 0.0 && (line.z < 0.0 || dot(pixel - vertex_px, line.xy) < line.z);
     }
-    let steps = pixel_steps(vertex);
+    let steps = array<vec3<f32>, 2>(v.step_x, v.step_y);
     let eye = view_eye();
     let back = 4.0 * (c.normals[0].w + c.sphere.w);
     // Most of the square sees flat faces only: a pixel whose centre's ray misses the sphere and the
     // owned cylinders, whole and grown by a pixel and a half, is left to the mesh without tracing its
     // sub-samples.
     var grown = c;
-    grown.sphere.w += 0.75 * (length(steps[0]) + length(steps[1]));
+    grown.sphere.w += 1.5 * pixel_size(steps);
     let centre = pixel_ray(vertex, vertex_px, steps, eye, back, pixel);
     if trace(grown, centre[0], centre[1], owned, true).t < 0.0 {
         discard;
     }
-    // Sub-samples a side: enough that neighbouring ones' normals differ by at most half the lobe's
-    // width (the normal turns by a pixel over r across the pixel), so a wide corner is not shaded 16
-    // times a pixel where its light hardly changes.
-    let turn = 0.5 * (length(steps[0]) + length(steps[1])) / c.sphere.w;
-    var lobe = inverseSqrt(lighting.material.z + 1.0);
-    if (lighting.pbr & SHADE_PBR) != 0u {
-        lobe = max(lighting.material.y, 0.05);
-    }
-    let side = u32(clamp(ceil(2.0 * turn / lobe), 1.0, f32(SUBSAMPLES)));
+    let side = u32(v.vertex_px.z);
     var sum = vec3<f32>(0.0);
     var hits = 0u;
     for (var i = 0u; i < side * side; i += 1u) {

@@ -74,15 +74,18 @@ fn pixel_steps(p: vec3<f32>) -> array<vec3<f32>, 2> {
     return array<vec3<f32>, 2>((pv.y * u - pu.y * v) / det, (pu.x * v - pv.x * u) / det);
 }
 
+// The model-space size of a pixel with these steps (pixel_steps).
+fn pixel_size(steps: array<vec3<f32>, 2>) -> f32 {
+    return max(0.5 * (length(steps[0]) + length(steps[1])), 1e-20);
+}
+
 // How many pixels from the vertex, along the edge to `far`, a strip hands over to the corner: the
 // corner's reach on screen, at most half the edge (the corner at the far end takes the other half);
 // none where `far` is behind the camera (the strip keeps its seed ends, the corner leaves it alone).
 fn hand_over(c: Corner, far: vec3<f32>) -> f32 {
     let mvp = view_mvp();
     let v = to_pixels(mvp * vec4<f32>(c.vertex.xyz, 1.0));
-    let steps = pixel_steps(c.vertex.xyz);
-    let per_pixel = 0.5 * (length(steps[0]) + length(steps[1]));
-    let reach = c.normals[0].w / max(per_pixel, 1e-20);
+    let reach = c.normals[0].w / pixel_size(pixel_steps(c.vertex.xyz));
     let clip = mvp * vec4<f32>(far, 1.0);
     if clip.w <= 0.0 {
         return 0.0;

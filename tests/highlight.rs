@@ -668,6 +668,40 @@ fn blinn_stand_in(material: &PbrMaterial) -> Material {
     }
 }
 
+/// The faces under GGX `material`, lit by `light` of `intensity` and no ambient light.
+fn pbr_faces(light: Light, intensity: f32, material: PbrMaterial) -> MeshStyle {
+    MeshStyle {
+        light: MeshLight::Model(light),
+        light_color: [intensity; 3],
+        ambient: 0.0,
+        pbr: Some(material),
+        ..MeshStyle::default()
+    }
+}
+
+/// Highlight strips alone (no edge lines) shaded by `shading` under `light` of `intensity`, with
+/// blend distance `k` and rounded corners or not.
+fn strips_lit(
+    light: Light,
+    intensity: f32,
+    shading: Shading,
+    k: f32,
+    rounded_corners: bool,
+) -> EdgeStyle {
+    EdgeStyle {
+        classes: EdgeClasses::NONE,
+        highlight: Some(Highlight {
+            light,
+            color: [intensity; 3],
+            shading,
+            ambient: 0.0,
+            k: Some(k),
+            rounded_corners,
+        }),
+        ..EdgeStyle::default()
+    }
+}
+
 #[test]
 fn the_pbr_highlight_carries_the_light_of_real_fillets() {
     let (orbit, camera) = validation_view();
@@ -720,25 +754,8 @@ fn the_pbr_highlight_carries_the_light_of_real_fillets() {
                     let intensity = (0.9 / peak_radiance(&edges, eye, to_light, &material))
                         .min(std::f32::consts::PI);
                     let light = Light::Directional(to_light.to_array());
-                    let mesh_style = MeshStyle {
-                        light: MeshLight::Model(light),
-                        light_color: [intensity; 3],
-                        ambient: 0.0,
-                        pbr: Some(material),
-                        ..MeshStyle::default()
-                    };
-                    let highlighted = |shading| EdgeStyle {
-                        classes: EdgeClasses::NONE,
-                        highlight: Some(Highlight {
-                            light,
-                            color: [intensity; 3],
-                            shading,
-                            ambient: 0.0,
-                            k: Some(k),
-                            ..Highlight::default()
-                        }),
-                        ..EdgeStyle::default()
-                    };
+                    let mesh_style = pbr_faces(light, intensity, material);
+                    let highlighted = |shading| strips_lit(light, intensity, shading, k, true);
                     let truth = render_supersampled(&rounded, &orbit, 360, &mesh_style, 4, None);
                     let ours = render(
                         &sharp,
@@ -902,24 +919,9 @@ fn the_pbr_highlight_catches_the_environment_like_real_fillets() {
                     roughness,
                 };
                 // No punctual light: the environment alone.
-                let mesh_style = MeshStyle {
-                    light_color: [0.0; 3],
-                    ambient: 0.0,
-                    pbr: Some(material),
-                    ..MeshStyle::default()
-                };
-                let strips = EdgeStyle {
-                    classes: EdgeClasses::NONE,
-                    highlight: Some(Highlight {
-                        light: Light::Directional([0.0, 1.0, 0.0]),
-                        color: [0.0; 3],
-                        shading: Shading::Pbr(material),
-                        ambient: 0.0,
-                        k: Some(k),
-                        ..Highlight::default()
-                    }),
-                    ..EdgeStyle::default()
-                };
+                let light = Light::Directional([0.0, 1.0, 0.0]);
+                let mesh_style = pbr_faces(light, 0.0, material);
+                let strips = strips_lit(light, 0.0, Shading::Pbr(material), k, true);
                 let truth =
                     render_supersampled(&rounded, &orbit, 360, &mesh_style, 4, Some(&environment));
                 let ours = render_lit(
@@ -1050,24 +1052,9 @@ fn rounded_corners_meet_their_strips_without_a_notch() {
                     .min(std::f32::consts::PI)
                 };
                 let light = Light::Directional(to_light.to_array());
-                let mesh_style = MeshStyle {
-                    light: MeshLight::Model(light),
-                    light_color: [intensity; 3],
-                    ambient: 0.0,
-                    pbr: Some(material),
-                    ..MeshStyle::default()
-                };
-                let strips = |rounded_corners| EdgeStyle {
-                    classes: EdgeClasses::NONE,
-                    highlight: Some(Highlight {
-                        light,
-                        color: [intensity; 3],
-                        shading: Shading::Pbr(material),
-                        ambient: 0.0,
-                        k: Some(k),
-                        rounded_corners,
-                    }),
-                    ..EdgeStyle::default()
+                let mesh_style = pbr_faces(light, intensity, material);
+                let strips = |rounded_corners| {
+                    strips_lit(light, intensity, Shading::Pbr(material), k, rounded_corners)
                 };
                 let truth = render_supersampled(&rounded, &orbit, 360, &mesh_style, 4, environment);
                 let ours = render_lit(

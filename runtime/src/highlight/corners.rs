@@ -209,8 +209,8 @@ mod tests {
     use super::*;
     use crate::asset::{Header, Indices, pack_attributes};
 
-    /// A cube [-1, 1]³ as the bake writes it would be tedious by hand; the tests read the fixture's
-    /// bake through the preprocess crate in tests/, here only hand-made rings of one vertex.
+    /// One corner of the box [-1, 1]³, built by hand as the bake would write it: its vertex's ring
+    /// of three edges (the real bakes are tested in tests/highlight.rs).
     fn box_corner(radius: [f32; 3], chamfer: [bool; 3]) -> Asset {
         // The corner (1, 1, 1) with its three edges along −x, −y, −z, and one face triangle per
         // side: x = 1, y = 1, z = 1.
