@@ -8,6 +8,8 @@ use std::path::PathBuf;
 
 use chamfer_preprocess::mesh::Mesh;
 
+pub mod rounded;
+
 /// A file under `fixtures/`.
 pub fn fixture(relative: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
