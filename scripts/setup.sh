@@ -1,56 +1,23 @@
 #!/usr/bin/env bash
-# Installs what building and testing Chamfer needs on a fresh Debian/Ubuntu machine: a C toolchain,
-# the Vulkan loader and Mesa's software Vulkan driver (lavapipe, for headless wgpu), Node.js (the glTF-Validator)
-# and Rust.
-# Sourced by demo.sh and test.sh; safe to run again (installs only what is missing).
+# Installs what building and testing all of Chamfer needs on a fresh Debian/Ubuntu machine: what the CLI needs
+# (setup-cli.sh), then clang/llvm and the wasm32 target (the web page's build), Chromium (its tests), Node.js
+# (the glTF-Validator), wasm-bindgen-cli and the Python venv with the package built into it.
+# Sourced by test.sh; safe to run again (installs only what is missing).
 set -euo pipefail
-# Mesa's device-select layer prints harmless XDG_RUNTIME_DIR warnings without this.
-export NODEVICE_SELECT=1
+source "$(dirname "${BASH_SOURCE[0]}")/setup-cli.sh"
 
 # clang and llvm (llvm-ar) compile meshoptimizer's encoders for the web page's wasm32 build; chromium
 # runs the page's tests (headless, WebGPU on its own SwiftShader).
-apt_packages=(build-essential pkg-config curl ca-certificates libvulkan1 mesa-vulkan-drivers clang llvm chromium)
-
-missing=()
-for p in "${apt_packages[@]}"; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if ((${#missing[@]})); then
-    sudo=""
-    [[ $(id -u) -ne 0 ]] && sudo="sudo"
-    echo "setup: installing ${missing[*]}"
-    $sudo apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}" >/dev/null
-fi
+apt_install_missing clang llvm chromium
 
 # Node.js and npm, for the Khronos glTF-Validator (scripts/validate-gltf.sh), only when npm is missing
 # (a nodesource nodejs already brings npm and must not be mixed with Debian's npm package).
-if ! command -v npm >/dev/null; then
-    sudo=""
-    [[ $(id -u) -ne 0 ]] && sudo="sudo"
-    echo "setup: installing nodejs npm"
-    $sudo apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq nodejs npm >/dev/null
-fi
+command -v npm >/dev/null || apt_install_missing nodejs npm
 
-if ! command -v cargo >/dev/null; then
-    if [[ -x "$HOME/.cargo/bin/cargo" ]]; then
-        export PATH="$HOME/.cargo/bin:$PATH"
-    else
-        echo "setup: installing Rust (rustup, stable)"
-        curl --proto '=https' --tlsv1.2 -sSf https://sh.rustup.rs | sh -s -- -y --profile minimal
-        export PATH="$HOME/.cargo/bin:$PATH"
-    fi
-fi
-
-# The repository's toolchain (rust-toolchain.toml: 1.97.1, which Bevy 0.20 needs) with the wasm32
-# target of the web page (web/, issue 26), installed once.
-toolchain=$(sed -n 's/^channel = "\(.*\)"/\1/p' "$(dirname "${BASH_SOURCE[0]}")/../rust-toolchain.toml")
-if ! rustup run "$toolchain" rustc --print target-libdir --target wasm32-unknown-unknown >/dev/null 2>&1 \
-    || [[ ! -d "$(rustup run "$toolchain" rustc --print target-libdir --target wasm32-unknown-unknown)" ]]; then
-    echo "setup: installing Rust $toolchain (rust-toolchain.toml)"
-    rustup toolchain install "$toolchain" --profile minimal --component rustfmt,clippy \
-        --target wasm32-unknown-unknown
+# The web page's target (web/, issue 26).
+if [[ ! -d "$(rustup run "$toolchain" rustc --print target-libdir --target wasm32-unknown-unknown 2>/dev/null)" ]]; then
+    echo "setup: adding the wasm32-unknown-unknown target to Rust $toolchain"
+    rustup target add --toolchain "$toolchain" wasm32-unknown-unknown
 fi
 # The wasm-bindgen CLI of exactly the version web/Cargo.toml pins (its output must match the crate's).
 wasm_bindgen_version=0.2.130

@@ -1,5 +1,6 @@
 // Per frame, after classify, one thread per drawn slot: for each highlighted chamfer edge, what its
-// pixels need (a ChamferRecord, see highlight.wgsl), and its quad widened to the strip's projection.
+// pixels need (a ChamferRecord, see highlight.wgsl), and its quad widened to the strip's projection
+// and, at a silhouette, to the sharp edge (the pixels the outline pass trims, outline.wgsl).
 
 // The pixels that edge end `end` hands over to a drawn rounded corner at its vertex (0: none, or the
 // end was moved by the near-plane clip); `far` is the edge's other end.
@@ -13,6 +14,22 @@ fn hand_over_at(end: u32, clipped: u32, far: vec3<f32>) -> f32 {
     }
     let c = corner_at(k - 1u);
     return select(0.0, hand_over(c, far), corner_drawn(c));
+}
+
+// The edge's model-space points at the ends of its screen quad: the near plane moved the clipped
+// ends, as `edge_screen` moved them in clip space (which is linear in the model's).
+fn quad_ends(p0: vec3<f32>, p1: vec3<f32>, clipped: u32) -> array<vec3<f32>, 2> {
+    let mvp = view_mvp();
+    let f0 = in_front(mvp * vec4<f32>(p0, 1.0));
+    let f1 = in_front(mvp * vec4<f32>(p1, 1.0));
+    var ends = array<vec3<f32>, 2>(p0, p1);
+    if (clipped & 1u) != 0u {
+        ends[0] = mix(p0, p1, f0 / (f0 - f1));
+    }
+    if (clipped & 2u) != 0u {
+        ends[1] = mix(p1, p0, f1 / (f1 - f0));
+    }
+    return ends;
 }
 
 @compute @workgroup_size(WORKGROUP)
@@ -41,57 +58,47 @@ fn chamfer_records(@builtin(global_invocation_id) id: vec3<u32>) {
         position(edge_vertex(4u * e + 3u)),
         attributes[e] & 0xffffu,
     );
-    let n1 = normalize(normals[0]);
-    let n2 = normalize(normals[1]);
-    let middle = 0.5 * (p0 + p1);
-    let to_viewer = to_viewer_at(middle);
-    var across = normalize(cross(to_viewer, normalize(p1 - p0)));
     let s = from_record(screen[slot], item.y);
-    let mvp = view_mvp();
-    let c = mvp * vec4<f32>(middle, 1.0);
-    let pixel = frame.pixel_scale * c.w;
-    // P must point along the quad's left normal on screen.
-    let nudged = mvp * vec4<f32>(middle + across * pixel, 1.0);
-    if dot(to_pixels(nudged) - to_pixels(c), perp(s.d)) < 0.0 {
-        across = -across;
-    }
+    let middle = 0.5 * (p0 + p1);
     let radius = unpack2x16float(attributes[e] >> 16u).x * frame.radius_scale;
     let eye = view_eye();
     let distance = select(0.0, length(eye.xyz - middle), eye.w > 0.0);
+    let ends = quad_ends(p0, p1, s.clipped);
     let record = ChamferRecord(
-        vec4<f32>(n1, radius / pixel),
-        vec4<f32>(n2, dot(across, n1 + n2) / (1.0 + dot(n1, n2))),
-        vec4<f32>(across, distance),
-        vec4<f32>(middle, radius),
-        vec4<f32>(to_viewer, 0.0),
+        vec4<f32>(normalize(normals[0]), radius),
+        vec4<f32>(normalize(normals[1]), distance),
+        vec4<f32>(ends[0], 0.0),
+        vec4<f32>(ends[1], 0.0),
+        eye,
         vec4<f32>(hand_over_at(2u * e, s.clipped & 1u, p1), hand_over_at(2u * e + 1u, s.clipped & 2u, p0), 0.0, 0.0),
         view_light_position(),
         vec4<f32>(view_light_axis(), 0.0),
     );
     chamfers[slot] = record;
 
-    // The quad covers the visible strip plus a pixel, on whichever side of the sharp edge it lies,
-    // and sits that much further forward in depth so the faces it overlaps do not hide it.
-    let arc = arc_of(n1, n2);
-    let visible = visible_range(arc, to_viewer);
+    // The quad covers the sharp edge and the visible strip, on whichever side of the edge it lies,
+    // plus a pixel and a half (the sections between the ends and the middle move a little off the
+    // straight line between theirs), and sits that much further forward in depth so the faces it
+    // overlaps do not hide it.
+    let mvp = view_mvp();
+    let quad = vec4<f32>(s.s0, s.s1);
     var left = 0.0;
     var right = 0.0;
-    if visible.x < visible.y {
-        let a = strip_offset(record, arc, visible.x);
-        let b = strip_offset(record, arc, visible.y);
-        left = max(max(a, b), 0.0) + 1.0;
-        right = max(-min(a, b), 0.0) + 1.0;
+    for (var k = 0u; k < 3u; k += 1u) {
+        let section = section_at(record, mvp, quad, mix(s.s0, s.s1, 0.5 * f32(k)));
+        if section.visible.x < section.visible.y {
+            left = max(left, max(section.offsets.x, section.offsets.y));
+            right = max(right, -min(section.offsets.x, section.offsets.y));
+        }
     }
+    left += 1.5;
+    right += 1.5;
     var r = screen[slot];
     r.extents = vec4<f32>(left, left, right, right);
-    let c0 = mvp * vec4<f32>(p0, 1.0);
-    let c1 = mvp * vec4<f32>(p1, 1.0);
+    let c0 = mvp * vec4<f32>(ends[0], 1.0);
+    let c1 = mvp * vec4<f32>(ends[1], 1.0);
     let bias = frame.bias_px + max(left, right);
-    if (s.clipped & 1u) == 0u {
-        r.depth_w.x = biased_depth_by(c0, bias);
-    }
-    if (s.clipped & 2u) == 0u {
-        r.depth_w.y = biased_depth_by(c1, bias);
-    }
+    r.depth_w.x = biased_depth_by(c0, bias);
+    r.depth_w.y = biased_depth_by(c1, bias);
     screen[slot] = r;
 }

@@ -48,8 +48,13 @@ fn classify_edge(e: u32) {
     let flags = attributes[e] & 0xffffu;
     let front = faces_front(e, flags);
     var word = NOT_DRAWN;
-    if frame.highlight != 0u && (flags & CHAMFER) != 0u && front.x && front.y {
-        word = COLOR_RIDGE | DRAWN_HIGHLIGHT;
+    // With the highlight, a chamfer edge with a face towards the camera is drawn as its strip, never
+    // as a line; one on the silhouette (a face turned away) as the visible part of its strip, whose
+    // outline the outline pass rounds (outline.wgsl).
+    let seen_chamfer = (flags & CHAMFER) != 0u && (flags & (BOUNDARY | NON_MANIFOLD)) == 0u
+        && (front.x || front.y);
+    if frame.highlight != 0u && seen_chamfer {
+        word = COLOR_RIDGE | DRAWN_HIGHLIGHT | select(0u, DRAWN_SILHOUETTE, front.x != front.y);
     } else {
         word = drawn_word(flags, front.x, front.y);
     }

@@ -346,6 +346,17 @@ fn from_record(r: ScreenRecord, word: u32) -> EdgeScreen {
     return s;
 }
 
+// Vertex `vertex` (of 6) of an edge's quad: two triangles, (end, side) = (0,-) (1,-) (1,+) /
+// (0,-) (1,+) (0,+).
+fn quad_vertex(s: EdgeScreen, vertex: u32) -> vec4<f32> {
+    let k = (0x16u >> vertex) & 1u;
+    let side_left = ((0x34u >> vertex) & 1u) == 1u;
+    if k == 1u {
+        return from_pixels(s.s1 + perp(s.d) * select(-s.right.y, s.left.y, side_left), s.depth.y, s.w.y);
+    }
+    return from_pixels(s.s0 + perp(s.d) * select(-s.right.x, s.left.x, side_left), s.depth.x, s.w.x);
+}
+
 // One end of an edge seen from that end: its point, its direction away from it, and the quad's
 // extents on the left and right of that direction.
 struct EdgeEnd {

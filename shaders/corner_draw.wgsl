@@ -36,22 +36,12 @@ fn corner_vertex(
         v.position = NOWHERE;
         return v;
     }
+    let square = corner_square(c, vertex, 0.0);
     let mvp = view_mvp();
-    let clip = mvp * vec4<f32>(c.vertex.xyz, 1.0);
-    let vertex_px = to_pixels(clip);
-    let steps = pixel_steps(c.vertex.xyz);
+    let vertex_px = square.vertex_px;
+    let steps = square.steps;
     let per_pixel = pixel_size(steps);
-    var lines: array<vec4<f32>, 3>;
-    for (var pair = 0u; pair < 3u; pair += 1u) {
-        lines[pair] = vec4<f32>(0.0, 0.0, -1.0, 1.0);
-        let far = c.far[pair];
-        if far.w > 0.0 {
-            // A strip whose far end is behind the camera hands nothing over (hand_over).
-            let far_clip = mvp * vec4<f32>(far.xyz, 1.0);
-            let along = normalize(to_pixels(far_clip) - vertex_px);
-            lines[pair] = vec4<f32>(along, hand_over(c, far.xyz), select(0.0, 1.0, far_clip.w > 0.0));
-        }
-    }
+    let lines = hand_over_lines(c, vertex_px);
     // Sub-samples a side: enough that neighbouring ones' normals differ by at most half the lobe's
     // width (the normal turns by a pixel over r across the pixel), so a wide corner is not shaded 16
     // times a pixel where its light hardly changes.
@@ -66,86 +56,8 @@ fn corner_vertex(
     v.line0 = lines[0];
     v.line1 = lines[1];
     v.line2 = lines[2];
-    // The hand-over reach along an edge and a rounded edge's reach across it (at most 3 r from the
-    // sharp edge; the sphere lies within).
-    let reach = c.normals[0].w;
-    let extent = sqrt(reach * reach + 9.0 * c.sphere.w * c.sphere.w) / per_pixel + 1.0;
-    let corner = vec2<f32>(
-        select(-1.0, 1.0, ((0x16u >> vertex) & 1u) == 1u),
-        select(-1.0, 1.0, ((0x34u >> vertex) & 1u) == 1u),
-    );
-    let depth = biased_depth_by(clip, frame.bias_px + extent);
-    v.position = from_pixels(vertex_px + corner * extent, depth, clip.w);
+    v.position = square.position;
     return v;
-}
-
-// Whether unit `n` lies in the arc from `a` to `b` (less than a half turn).
-fn in_arc(n: vec3<f32>, a: vec3<f32>, b: vec3<f32>) -> bool {
-    let axis = cross(a, b);
-    return dot(cross(a, n), axis) >= 0.0 && dot(cross(n, b), axis) >= 0.0;
-}
-
-// Whether unit `n` lies in the cone spanned by the corner's three normals.
-fn in_cone(c: Corner, n: vec3<f32>) -> bool {
-    for (var k = 0u; k < 3u; k += 1u) {
-        let m = cross(c.normals[(k + 1u) % 3u].xyz, c.normals[(k + 2u) % 3u].xyz);
-        if dot(n, m) * dot(c.normals[k].xyz, m) < 0.0 {
-            return false;
-        }
-    }
-    return true;
-}
-
-struct Hit {
-    t: f32,
-    normal: vec3<f32>,
-}
-
-// The first point where the ray (`origin`, unit `dir`) enters the corner's rounded parts: the sphere
-// where its normal is in the normals' cone, and cylinder k (planes k, k + 1) between its two normals,
-// from the centre up to the followed length, where `owned[k]`. t < 0: none. `anywhere`: the whole
-// sphere and cylinders, whatever the normal (a bound on where the rounded parts can be).
-fn trace(c: Corner, origin: vec3<f32>, dir: vec3<f32>, owned: vec3<bool>, anywhere: bool) -> Hit {
-    var best = Hit(-1.0, vec3<f32>(0.0));
-    let center = c.sphere.xyz;
-    let r = c.sphere.w;
-    let oc = origin - center;
-    let b = dot(oc, dir);
-    let disc = b * b - (dot(oc, oc) - r * r);
-    if disc >= 0.0 {
-        let t = -b - sqrt(disc);
-        let n = (oc + t * dir) / r;
-        if t >= 0.0 && (anywhere || in_cone(c, n)) {
-            best = Hit(t, n);
-        }
-    }
-    for (var k = 0u; k < 3u; k += 1u) {
-        if !owned[k] {
-            continue;
-        }
-        let na = c.normals[k].xyz;
-        let nb = c.normals[(k + 1u) % 3u].xyz;
-        var axis = normalize(cross(na, nb));
-        // The edge runs from the centre away from the third plane.
-        axis = select(axis, -axis, dot(axis, c.normals[(k + 2u) % 3u].xyz) > 0.0);
-        let oc_perp = oc - dot(oc, axis) * axis;
-        let d_perp = dir - dot(dir, axis) * axis;
-        let qa = dot(d_perp, d_perp);
-        let qb = dot(oc_perp, d_perp);
-        let qc = dot(oc_perp, oc_perp) - r * r;
-        let q = qb * qb - qa * qc;
-        if qa < 1e-12 || q < 0.0 {
-            continue;
-        }
-        let t = (-qb - sqrt(q)) / qa;
-        let p = oc + t * dir;
-        let along = dot(p, axis);
-        let n = (p - along * axis) / r;
-        if t >= 0.0 && along >= 0.0 && along <= c.vertex.w && (anywhere || in_arc(n, na, nb)) && (best.t < 0.0 || t < best.t) {
-            best = Hit(t, n);
-        }
-    }
-    return best;
 }
 
 // What a point of the rounded surface with normal `n` at `p` sends to the viewer: the strips' model
@@ -171,17 +83,14 @@ fn surface_radiance(n: vec3<f32>, p: vec3<f32>, to_viewer: vec3<f32>) -> vec3<f3
 
 const SUBSAMPLES: u32 = 4u;
 
-// The ray (origin, unit direction) through the screen point `q` (pixels): through the plane of constant
-// depth at the vertex (where `steps` are the model-space pixel steps), starting `back` before it.
-fn pixel_ray(vertex: vec3<f32>, vertex_px: vec2<f32>, steps: array<vec3<f32>, 2>, eye: vec4<f32>, back: f32, q: vec2<f32>) -> array<vec3<f32>, 2> {
-    let d = q - vertex_px;
-    let on_plane = vertex + steps[0] * d.x + steps[1] * d.y;
-    let dir = select(-normalize(eye.xyz), normalize(on_plane - eye.xyz), eye.w > 0.0);
-    return array<vec3<f32>, 2>(on_plane - back * dir, dir);
+struct CornerPixel {
+    @location(0) color: vec4<f32>,
+    // At the sharp corner under the pixel (corner_depth), not at the square's.
+    @builtin(frag_depth) depth: f32,
 }
 
 @fragment
-fn corner_fragment(v: CornerVarying) -> @location(0) vec4<f32> {
+fn corner_fragment(v: CornerVarying) -> CornerPixel {
     let c = corner_at(v.corner);
     let vertex = c.vertex.xyz;
     let vertex_px = v.vertex_px.xy;
@@ -195,36 +104,44 @@ fn corner_fragment(v: CornerVarying) -> @location(0) vec4<f32> {
     }
     let steps = array<vec3<f32>, 2>(v.step_x, v.step_y);
     let eye = view_eye();
-    let back = 4.0 * (c.normals[0].w + c.sphere.w);
+    let back = ray_start(c);
     // Most of the square sees flat faces only: a pixel whose centre's ray misses the sphere and the
     // owned cylinders, whole and grown by a pixel and a half, is left to the mesh without tracing its
     // sub-samples.
     var grown = c;
     grown.sphere.w += 1.5 * pixel_size(steps);
     let centre = pixel_ray(vertex, vertex_px, steps, eye, back, pixel);
-    if trace(grown, centre[0], centre[1], owned, true).t < 0.0 {
+    if enter(grown, centre[0], centre[1], owned, true).t < 0.0 {
         discard;
     }
     let side = u32(v.vertex_px.z);
+    // Samples beyond the rounded outline count only where the corner's solid is the mesh's.
+    let local = local_at(c, lines, vertex_px, pixel, pixel_size(steps));
     var sum = vec3<f32>(0.0);
     var hits = 0u;
+    var missed = 0u;
     for (var i = 0u; i < side * side; i += 1u) {
         let offset = (vec2<f32>(f32(i % side), f32(i / side)) + 0.5) / f32(side) - 0.5;
         let sample = pixel_ray(vertex, vertex_px, steps, eye, back, pixel + offset);
         let origin = sample[0];
         let dir = sample[1];
-        let hit = trace(c, origin, dir, owned, false);
-        if hit.t >= 0.0 {
+        let hit = enter(c, origin, dir, owned, false);
+        if hit.part == ROUNDED {
             let p = origin + hit.t * dir;
             sum += surface_radiance(hit.normal, p, to_viewer_at(p));
             hits += 1u;
+        } else if hit.part == MISSED && local {
+            missed += 1u;
         }
     }
     if hits == 0u {
         discard;
     }
+    // Blended over the mesh by the share it covers of what the sharp mesh shows there: the samples
+    // beyond the rounded outline are the outline pass's to trim (outline.wgsl).
     let distance = select(0.0, length(eye.xyz - vertex), eye.w > 0.0);
-    let k_over_d = select(1.0, lighting.base.w / distance, distance > 0.0);
-    let coverage = f32(hits) / f32(side * side);
-    return vec4<f32>(sum / f32(hits), clamp(k_over_d * coverage, 0.0, 1.0));
+    let k_over_d = select(1.0, lighting.base.w / distance, lighting.base.w > 0.0 && distance > 0.0);
+    let coverage = f32(hits) / f32(side * side - missed);
+    let color = vec4<f32>(sum / f32(hits), clamp(k_over_d * coverage, 0.0, 1.0));
+    return CornerPixel(color, corner_depth(c, centre[0], centre[1]));
 }

@@ -1,4 +1,5 @@
-// Bindings of the draw passes (edges, caps): the lists the compute passes wrote this frame, read-only.
+// Bindings of the draw passes (edges, caps, the outline): the lists the compute passes wrote this frame,
+// read-only.
 
 @group(0) @binding(17) var<storage, read> drawn: array<vec2<u32>>;
 @group(0) @binding(18) var<storage, read> joins: array<vec2<u32>>;
@@ -8,6 +9,8 @@
 @group(0) @binding(22) var<storage, read> cos_power: array<f32>;
 @group(0) @binding(23) var<uniform> lighting: Lighting;
 @group(0) @binding(30) var<storage, read> environment: array<vec4<f32>>;
+// Per drawn instance, its camera in its model space (the highlight's sections project with it).
+@group(0) @binding(29) var<storage, read> instance_frames: array<InstanceFrame>;
 
 struct Cap {
     end: u32,

@@ -1,5 +1,7 @@
 // Draws each drawn edge as a screen-space quad (thesis §8.3): six vertices per instance, pulled from
 // the compact list. The fragment shader cuts the quad where it meets its neighbours (see joins.wgsl).
+// Highlighted chamfer edges are drawn by a second pipeline over the same list (strip_vertex,
+// strip_fragment): the lit rounded strips of seed 000 (highlight.wgsl), at their faces' depth.
 
 struct EdgeVarying {
     @builtin(position) position: vec4<f32>,
@@ -12,33 +14,16 @@ struct EdgeVarying {
     @location(3) @interpolate(flat) item: vec2<u32>,
 }
 
-@vertex
-fn edge_vertex_main(
-    @builtin(vertex_index) vertex: u32,
-    @builtin(instance_index) slot: u32,
-) -> EdgeVarying {
+// The quad of slot `slot` if its edge is drawn as a highlight strip (`strips`) or as a line (not).
+fn edge_varying(vertex: u32, slot: u32, strips: bool) -> EdgeVarying {
     var v: EdgeVarying;
     let item = drawn[slot];
     let s = from_record(screen[slot], item.y);
-    if !s.visible {
+    if !s.visible || ((item.y & DRAWN_HIGHLIGHT) != 0u) != strips {
         v.position = NOWHERE;
         return v;
     }
-    // Two triangles: (end, side) = (0,-) (1,-) (1,+) / (0,-) (1,+) (0,+).
-    let k = (0x16u >> vertex) & 1u;
-    let side_left = ((0x34u >> vertex) & 1u) == 1u;
-    let n = perp(s.d);
-    var p = s.s0;
-    var extent = select(-s.right.x, s.left.x, side_left);
-    var depth = s.depth.x;
-    var w = s.w.x;
-    if k == 1u {
-        p = s.s1;
-        extent = select(-s.right.y, s.left.y, side_left);
-        depth = s.depth.y;
-        w = s.w.y;
-    }
-    v.position = from_pixels(p + n * extent, depth, w);
+    v.position = quad_vertex(s, vertex);
     v.color = drawn_color(item.y);
     v.ends = vec4<f32>(s.s0, s.s1);
     let j0 = joins[2u * slot];
@@ -46,6 +31,22 @@ fn edge_vertex_main(
     v.splits = vec4<u32>(j0.x, j0.y, j1.x, j1.y);
     v.item = vec2<u32>(slot, item.y);
     return v;
+}
+
+@vertex
+fn edge_vertex_main(
+    @builtin(vertex_index) vertex: u32,
+    @builtin(instance_index) slot: u32,
+) -> EdgeVarying {
+    return edge_varying(vertex, slot, false);
+}
+
+@vertex
+fn strip_vertex(
+    @builtin(vertex_index) vertex: u32,
+    @builtin(instance_index) slot: u32,
+) -> EdgeVarying {
+    return edge_varying(vertex, slot, true);
 }
 
 // False if `q` (relative to the end's point) lies on the neighbour's side of a split line.
@@ -60,15 +61,6 @@ fn on_own_side(q: vec2<f32>, a: vec2<f32>, split_left: u32, split_right: u32) ->
 fn edge_fragment(v: EdgeVarying) -> @location(0) vec4<f32> {
     let d = normalize(v.ends.zw - v.ends.xy);
     let pixel = v.position.xy;
-    if (v.item.y & DRAWN_HIGHLIGHT) != 0u {
-        let record = chamfers[v.item.x];
-        // The pixels near a drawn rounded corner are the corner's (corners.wgsl).
-        let along = dot(pixel - v.ends.xy, d);
-        if along < record.hand_over.x || length(v.ends.zw - v.ends.xy) - along < record.hand_over.y {
-            discard;
-        }
-        return highlight_pixel(record, dot(pixel - v.ends.xy, perp(d)));
-    }
     if !on_own_side(pixel - v.ends.xy, d, v.splits.x, v.splits.y)
         || !on_own_side(pixel - v.ends.zw, -d, v.splits.z, v.splits.w) {
         discard;
@@ -76,32 +68,50 @@ fn edge_fragment(v: EdgeVarying) -> @location(0) vec4<f32> {
     return v.color;
 }
 
-// The pixel `across_px` pixels across the sharp edge integrates the slice of the strip it covers.
-fn highlight_pixel(record: ChamferRecord, across_px: f32) -> vec4<f32> {
-    let arc = arc_of(record.n1.xyz, record.n2.xyz);
-    let middle = record.middle.xyz;
-    let to_viewer = record.viewer.xyz;
-    let visible = visible_range(arc, to_viewer);
-    if visible.x >= visible.y {
+struct StripPixel {
+    @location(0) color: vec4<f32>,
+    // At the sharp face under the pixel (strip_depth), not at the quad's.
+    @builtin(frag_depth) depth: f32,
+}
+
+@fragment
+fn strip_fragment(v: EdgeVarying) -> StripPixel {
+    let d = normalize(v.ends.zw - v.ends.xy);
+    let pixel = v.position.xy;
+    let record = chamfers[v.item.x];
+    // The pixels near a drawn rounded corner are the corner's (corners.wgsl).
+    let along = dot(pixel - v.ends.xy, d);
+    if along < record.hand_over.x || length(v.ends.zw - v.ends.xy) - along < record.hand_over.y {
         discard;
     }
-    let a = strip_offset(record, arc, visible.x);
-    let b = strip_offset(record, arc, visible.y);
-    let lo = max(min(a, b), across_px - 0.5);
-    let hi = min(max(a, b), across_px + 0.5);
-    if hi <= lo {
+    let mvp = instance_frames[v.item.y >> INSTANCE_SHIFT].mvp;
+    let s = section_at(record, mvp, v.ends, pixel);
+    let x = dot(pixel - v.ends.xy, perp(d));
+    let h = highlight_pixel(record, s, x);
+    return StripPixel(h, strip_depth(record, mvp, s, pixel, x));
+}
+
+// What the pixel shows of the strip: the slice of its section (section_at) that the pixel covers,
+// integrated (seed 000), blended over the mesh by the share it covers of what the sharp mesh shows
+// there (the part beyond the rounded outline is the outline pass's to trim).
+fn highlight_pixel(record: ChamferRecord, s: Section, x: f32) -> vec4<f32> {
+    let shares = section_shares(s, x);
+    if shares.x <= 0.0 {
         discard;
     }
-    let ta = strip_angle(record, arc, visible, lo);
-    let tb = strip_angle(record, arc, visible, hi);
+    let lo = max(min(s.offsets.x, s.offsets.y), x - 0.5);
+    let hi = min(max(s.offsets.x, s.offsets.y), x + 0.5);
+    let ta = section_angle(s, lo);
+    let tb = section_angle(s, hi);
     let range = vec2<f32>(min(ta, tb), max(ta, tb));
-    var color = strip_radiance(arc, record.across.xyz, middle, to_viewer, range, record_light(record));
+    var color = strip_radiance(s.arc, s.across, s.point, s.to_viewer, range, record_light(record));
     if (lighting.pbr & SHADE_ENVIRONMENT) != 0u {
-        color += strip_environment(arc, record.across.xyz, to_viewer, range);
+        color += strip_environment(s.arc, s.across, s.to_viewer, range);
     }
-    // W = K r_e / (d r_max) (§3.2): r_e / r_max is the share of the pixel the strip covers.
-    let k_over_d = select(1.0, lighting.base.w / record.across.w, record.across.w > 0.0);
-    let weight = clamp(k_over_d * (hi - lo), 0.0, 1.0);
+    // W = K r_e / (d r_max) (§3.2) with K given; r_e / r_max is the share of the pixel the strip
+    // covers, here of the part the sharp mesh covers and the rounded solid too.
+    let k_over_d = select(1.0, lighting.base.w / record.n2.w, lighting.base.w > 0.0 && record.n2.w > 0.0);
+    let weight = clamp(k_over_d * shares.x / max(1.0 - shares.y, shares.x), 0.0, 1.0);
     return vec4<f32>(color, weight);
 }
 

@@ -9,19 +9,18 @@
 // Shared by the compute side (chamfer_records, after classify) and the edge fragment shader; each
 // module that includes it declares `chamfers`, `cos_power` and `lighting` (compute.wgsl or draw.wgsl).
 
-// Per drawn slot of a highlighted edge, in model space.
+// Per drawn slot of a highlighted edge, in the model space of its instance.
 struct ChamferRecord {
-    // Face normals (unit); `n1.w` is the radius in pixels at the edge's middle.
+    // Face normals (unit); `n1.w` is the radius in mesh units.
     n1: vec4<f32>,
-    // `n2.w`: the sharp edge's offset from the strip, P·(N1 + N2) / (1 + N1·N2).
+    // `n2.w`: the distance from the eye to the edge's middle, for the blend's K / d (0: orthographic).
     n2: vec4<f32>,
-    // The screen's across direction P (unit, perpendicular to the edge and the view); `w`: the
-    // distance from the eye to the edge's middle.
-    across: vec4<f32>,
-    // The edge's middle; `w`: the radius in mesh units.
-    middle: vec4<f32>,
-    // Towards the viewer from the middle, unit: the draw pass cannot know the instance's eye.
-    viewer: vec4<f32>,
+    // The edge's points at the two ends of its quad on screen (where the near plane may have moved
+    // them).
+    end0: vec4<f32>,
+    end1: vec4<f32>,
+    // The instance's eye: a point (w = 1), or the direction towards the viewer (w = 0).
+    eye: vec4<f32>,
     // Pixels from end 0 (x) and end 1 (y) along the edge that a drawn rounded corner there takes
     // over (corners.wgsl); 0 without one.
     hand_over: vec4<f32>,
@@ -83,10 +82,15 @@ fn angle_in(arc: Arc, v: vec3<f32>) -> vec2<f32> {
     return vec2<f32>(atan2(y, x), length(vec2<f32>(x, y)));
 }
 
+// [a, b] clipped to the arc of half-width `half` (at most a half turn) centred on c; empty when x >= y.
+fn clip_arc(range: vec2<f32>, c: f32, half: f32) -> vec2<f32> {
+    let centre = select(c, c + 2.0 * PI, c < -half);
+    return vec2<f32>(max(range.x, centre - half), min(range.y, centre + half));
+}
+
 // [a, b] clipped to the half-turn lobe centred on c; empty when x >= y.
 fn clip_lobe(range: vec2<f32>, c: f32) -> vec2<f32> {
-    let centre = select(c, c + 2.0 * PI, c < -0.5 * PI);
-    return vec2<f32>(max(range.x, centre - 0.5 * PI), min(range.y, centre + 0.5 * PI));
+    return clip_arc(range, c, 0.5 * PI);
 }
 
 // ∫ (N·v)₊^m (P·T) dθ over `range`; `closed_f` picks F(·, 2) in closed form (diffuse, m = 1).
@@ -182,11 +186,6 @@ fn arc_intensity(arc: Arc, across: vec3<f32>, to_light: vec3<f32>, to_viewer: ve
     return max(lit, 0.0);
 }
 
-// The visible arc: where the strip's normal faces the viewer.
-fn visible_range(arc: Arc, to_viewer: vec3<f32>) -> vec2<f32> {
-    return clip_lobe(vec2<f32>(0.0, arc.span), angle_in(arc, to_viewer).x);
-}
-
 fn to_viewer_at(p: vec3<f32>) -> vec3<f32> {
     let eye = view_eye();
     return normalize(eye.xyz - p * eye.w);
@@ -226,16 +225,87 @@ fn strip_radiance(arc: Arc, across: vec3<f32>, middle: vec3<f32>, to_viewer: vec
     return light * arc_intensity(arc, across, to_light, to_viewer, range) + vec3<f32>(ambient);
 }
 
-// Screen offset (pixels, along the quad's left normal) of the strip's point with normal angle θ.
-fn strip_offset(record: ChamferRecord, arc: Arc, theta: f32) -> f32 {
-    let normal = arc.ex * cos(theta) + arc.ey * sin(theta);
-    return record.n1.w * (dot(record.across.xyz, normal) - record.n2.w);
+// The strip's cross-section through a pixel (issue 39), exact where it matters at the outline: the
+// edge's point whose projection is the pixel's foot on the edge, the part of the arc the eye sees
+// there (where the strip's normal faces the eye: of a cylinder seen from a point, a little less than
+// a half turn), where that part's two ends land across the sharp edge (their projections), and which
+// end, if any, is the rounded outline (the horizon, where a face turned away would begin).
+struct Section {
+    arc: Arc,
+    // The visible angles, from n1 towards n2; empty when x >= y.
+    visible: vec2<f32>,
+    // Pixels across the sharp edge, along the quad's left normal, of the points at visible.x and .y.
+    offsets: vec2<f32>,
+    // 1 where visible.x (bit 0) or visible.y (bit 1) is the outline.
+    outline: u32,
+    // P: perpendicular to the edge and to the view at `point` (seed 000's projection direction).
+    across: vec3<f32>,
+    point: vec3<f32>,
+    to_viewer: vec3<f32>,
+    // P·N at visible.x and .y: between the two ends the offset follows P·N (the projection across a
+    // pixel is affine), pinned to the exact offsets at the ends.
+    shape: vec2<f32>,
 }
 
-// The angle on the visible arc whose point lies `offset` pixels across (inverse of strip_offset).
-fn strip_angle(record: ChamferRecord, arc: Arc, visible: vec2<f32>, offset: f32) -> f32 {
-    let p = angle_in(arc, record.across.xyz);
-    let c = clamp((offset / record.n1.w + record.n2.w) / max(p.y, 1e-6), -1.0, 1.0);
+// Pixels across the line from `ends.xy` to `ends.zw` (along its left normal) where `p` lands.
+fn across_of(mvp: mat4x4<f32>, ends: vec4<f32>, p: vec3<f32>) -> f32 {
+    let c = mvp * vec4<f32>(p, 1.0);
+    let d = normalize(ends.zw - ends.xy);
+    return dot(to_pixels(vec4<f32>(c.xyz, max(c.w, 1e-20))) - ends.xy, perp(d));
+}
+
+// The section of the strip of `record` (its quad from `ends.xy` to `ends.zw` on screen, drawn with
+// `mvp`) at the point whose projection is `pixel`'s foot on the edge.
+fn section_at(record: ChamferRecord, mvp: mat4x4<f32>, ends: vec4<f32>, pixel: vec2<f32>) -> Section {
+    var s: Section;
+    let n1 = record.n1.xyz;
+    let n2 = record.n2.xyz;
+    let r = record.n1.w;
+    s.arc = arc_of(n1, n2);
+    let along = ends.zw - ends.xy;
+    let u = clamp(dot(pixel - ends.xy, along) / max(dot(along, along), 1e-20), 0.0, 1.0);
+    // The screen's u is the edge's t after the perspective divide.
+    let w0 = (mvp * vec4<f32>(record.end0.xyz, 1.0)).w;
+    let w1 = (mvp * vec4<f32>(record.end1.xyz, 1.0)).w;
+    let t = u * w0 / max((1.0 - u) * w1 + u * w0, 1e-20);
+    s.point = mix(record.end0.xyz, record.end1.xyz, t);
+    let axis = normalize(record.end1.xyz - record.end0.xyz);
+    let eye = record.eye;
+    s.to_viewer = normalize(eye.xyz - s.point * eye.w);
+    // The cylinder's axis at this section: r inside both faces.
+    let centre = s.point - r * (n1 + n2) / (1.0 + dot(n1, n2));
+    var towards = eye.xyz;
+    var half = 0.5 * PI;
+    if eye.w > 0.0 {
+        let rel = eye.xyz - centre;
+        towards = rel - axis * dot(rel, axis);
+        half = acos(clamp(r / max(length(towards), 1e-20), 0.0, 1.0));
+    }
+    s.visible = clip_arc(vec2<f32>(0.0, s.arc.span), angle_in(s.arc, towards).x, half);
+    s.outline = select(0u, 1u, s.visible.x > 1e-5) | select(0u, 2u, s.visible.y < s.arc.span - 1e-5);
+    s.across = normalize(cross(s.to_viewer, axis));
+    let normal_x = s.arc.ex * cos(s.visible.x) + s.arc.ey * sin(s.visible.x);
+    let normal_y = s.arc.ex * cos(s.visible.y) + s.arc.ey * sin(s.visible.y);
+    s.offsets = vec2<f32>(
+        across_of(mvp, ends, centre + r * normal_x),
+        across_of(mvp, ends, centre + r * normal_y),
+    );
+    s.shape = vec2<f32>(dot(s.across, normal_x), dot(s.across, normal_y));
+    return s;
+}
+
+// Whether the section shows any strip: a visible part that is not seen edge-on.
+fn section_shows(s: Section) -> bool {
+    return s.visible.x < s.visible.y && abs(s.offsets.y - s.offsets.x) > 1e-4
+        && abs(s.shape.y - s.shape.x) > 1e-7;
+}
+
+// The angle on the visible arc whose point lies `offset` pixels across (inverse of the section's
+// offsets).
+fn section_angle(s: Section, offset: f32) -> f32 {
+    let lin = s.shape.x + (offset - s.offsets.x) * (s.shape.y - s.shape.x) / (s.offsets.y - s.offsets.x);
+    let p = angle_in(s.arc, s.across);
+    let c = clamp(lin / max(p.y, 1e-6), -1.0, 1.0);
     let a = p.x + acos(c);
     let b = p.x - acos(c);
     // One of the two solutions (mod 2π) lies on the visible arc.
@@ -243,11 +313,80 @@ fn strip_angle(record: ChamferRecord, arc: Arc, visible: vec2<f32>, offset: f32)
     var best = candidates[0];
     var best_miss = 1e9;
     for (var k = 0u; k < 4u; k += 1u) {
-        let miss = max(visible.x - candidates[k], 0.0) + max(candidates[k] - visible.y, 0.0);
+        let miss = max(s.visible.x - candidates[k], 0.0) + max(candidates[k] - s.visible.y, 0.0);
         if miss < best_miss {
             best_miss = miss;
             best = candidates[k];
         }
     }
-    return clamp(best, visible.x, visible.y);
+    return clamp(best, s.visible.x, s.visible.y);
+}
+
+// The shares of the pixel `x` pixels across the sharp edge that the strip covers (x) and that lie
+// beyond the rounded outline (y): what the sharp mesh covers there and the rounded solid does not.
+fn section_shares(s: Section, x: f32) -> vec2<f32> {
+    var shares = vec2<f32>(0.0);
+    if !section_shows(s) {
+        return shares;
+    }
+    let lo = min(s.offsets.x, s.offsets.y);
+    let hi = max(s.offsets.x, s.offsets.y);
+    shares.x = max(min(x + 0.5, hi) - max(x - 0.5, lo), 0.0);
+    if (s.outline & 1u) != 0u {
+        shares.y = max(shares.y, clamp(sign(s.offsets.x - s.offsets.y) * (x - s.offsets.x) + 0.5, 0.0, 1.0));
+    }
+    if (s.outline & 2u) != 0u {
+        shares.y = max(shares.y, clamp(sign(s.offsets.y - s.offsets.x) * (x - s.offsets.y) + 0.5, 0.0, 1.0));
+    }
+    return shares;
+}
+
+// The depth where the plane through `p` spanned by `u` and `w` covers `pixel` (a plane's depth is
+// affine on screen), and how much it changes from one pixel to the next (x + y).
+fn plane_depth(mvp: mat4x4<f32>, p: vec3<f32>, u: vec3<f32>, w: vec3<f32>, pixel: vec2<f32>) -> vec2<f32> {
+    let c0 = mvp * vec4<f32>(p, 1.0);
+    let c1 = mvp * vec4<f32>(p + u, 1.0);
+    let c2 = mvp * vec4<f32>(p + w, 1.0);
+    let s0 = to_pixels(c0);
+    let e1 = to_pixels(c1) - s0;
+    let e2 = to_pixels(c2) - s0;
+    let z0 = c0.z / c0.w;
+    let dz1 = c1.z / c1.w - z0;
+    let dz2 = c2.z / c2.w - z0;
+    let det = cross2(e1, e2);
+    if abs(det) < 1e-12 {
+        return vec2<f32>(z0, 1.0);
+    }
+    let d = pixel - s0;
+    let depth = z0 + (cross2(d, e2) * dz1 + cross2(e1, d) * dz2) / det;
+    let gx = (dz1 * e2.y - dz2 * e1.y) / det;
+    let gy = (dz2 * e1.x - dz1 * e2.x) / det;
+    return vec2<f32>(depth, abs(gx) + abs(gy));
+}
+
+// The face of the section on the pixel's side of the sharp edge `x` pixels across (the one that looks
+// at the camera on a silhouette): its normal and the offset from the edge, in its plane, to where the
+// strip meets it.
+fn section_face(record: ChamferRecord, s: Section, x: f32) -> array<vec3<f32>, 2> {
+    let n1 = record.n1.xyz;
+    let n2 = record.n2.xyz;
+    let r = record.n1.w;
+    // visible.x's end is where n1's face begins, unless it is the outline; visible.y's is n2's.
+    var second = (s.outline & 1u) != 0u;
+    if s.outline == 0u {
+        second = sign(x) != sign(s.offsets.x);
+    }
+    let normal = select(n1, n2, second);
+    let centre = s.point - r * (n1 + n2) / (1.0 + dot(n1, n2));
+    return array<vec3<f32>, 2>(normal, centre + r * normal - s.point);
+}
+
+// The depth a strip's pixel is drawn at: the sharp face's under it (the rounded surface lies inside
+// the solid, behind it), brought forward by the edges' bias, so it wins against its own faces and
+// loses against anything in front of them.
+fn strip_depth(record: ChamferRecord, mvp: mat4x4<f32>, s: Section, pixel: vec2<f32>, x: f32) -> f32 {
+    let face = section_face(record, s, x);
+    let depth = plane_depth(mvp, s.point, record.end1.xyz - record.end0.xyz, face[1], pixel);
+    let w = (mvp * vec4<f32>(s.point, 1.0)).w;
+    return biased_depth_by(from_pixels(pixel, depth.x, w), frame.bias_px);
 }

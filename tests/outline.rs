@@ -31,6 +31,11 @@ const FACTOR: u32 = 4;
 /// Random views per shape.
 const VIEWS: usize = 50;
 const WHITE: [f64; 4] = [1.0; 4];
+/// A truth pixel is covered when more than half its samples are, not covered when fewer than half; at
+/// exactly half the rounded outline crosses the pixel's middle within the samples' spacing, a tie that
+/// counts neither way.
+const TRUTH_COVERED: f64 = (0.5 * (FACTOR * FACTOR) as f64 + 0.5) / (FACTOR * FACTOR) as f64;
+const TRUTH_UNCOVERED: f64 = (0.5 * (FACTOR * FACTOR) as f64 - 0.5) / (FACTOR * FACTOR) as f64;
 
 const BLINN: Material = Material {
     diffuse: 0.55,
@@ -68,7 +73,7 @@ impl Lit {
     }
 
     /// The faces' style and the strips' under light `towards`.
-    fn styles(self, towards: Vec3, k: f32) -> (MeshStyle, EdgeStyle) {
+    fn styles(self, towards: Vec3) -> (MeshStyle, EdgeStyle) {
         let light = Light::Directional(towards.to_array());
         let (mesh, shading, intensity) = match self {
             Lit::Blinn => (
@@ -109,7 +114,7 @@ impl Lit {
                 color: [intensity; 3],
                 shading,
                 ambient: 0.0,
-                k: Some(k),
+                k: None,
                 ..Highlight::default()
             }),
             ..EdgeStyle::default()
@@ -260,6 +265,8 @@ struct Tally {
     /// Per lighting: every per-pixel error, and the worst view's mean.
     errors: [Vec<f64>; 3],
     worst_view: [f64; 3],
+    /// The view with the most pixels covered by ours and not the truth: (pixels, view).
+    worst_overhang: (usize, usize),
 }
 
 /// The box of radius `r` from `chamfer render`'s default camera direction, rounded and sharp with the
@@ -272,10 +279,7 @@ fn save_pictures(r: f32) {
     };
     let camera = Camera::orbit([[-1.0; 3], [1.0; 3]], &orbit, [SIZE; 2]);
     let (rounded, sharp) = rounded_and_sharp(rounded_box, r);
-    let (mesh, edges) = Lit::Pbr.styles(
-        Vec3::new(0.3, 0.9, 0.5).normalize(),
-        camera.eye().truncate().length(),
-    );
+    let (mesh, edges) = Lit::Pbr.styles(Vec3::new(0.3, 0.9, 0.5).normalize());
     let truth = render_supersampled_on(&rounded, &orbit, SIZE, &mesh, FACTOR, None, WHITE);
     let ours = render_lit_on(&sharp, &camera, &mesh, Some(&edges), None, WHITE);
     let corner = to_pixels(&camera, Vec3::new(-1.0, 1.0, 1.0));
@@ -349,10 +353,8 @@ fn whole_frames_of_the_highlight_match_the_rounded_solids() {
             if pixels.is_empty() {
                 continue;
             }
-            let k_blend = camera.eye().truncate().length().max(1.0);
-            let k_blend = if camera.eye().w == 0.0 { 1.0 } else { k_blend };
             for (l, lit) in Lit::ALL.into_iter().enumerate() {
-                let (mesh, edges) = lit.styles(*towards, k_blend);
+                let (mesh, edges) = lit.styles(*towards);
                 let env = (lit == Lit::Environment).then_some(&environment);
                 let truth = render_supersampled_on(rounded, orbit, SIZE, &mesh, FACTOR, env, BLACK);
                 let ours = render_lit_on(sharp, &camera, &mesh, Some(&edges), env, BLACK);
@@ -360,14 +362,17 @@ fn whole_frames_of_the_highlight_match_the_rounded_solids() {
                     let truth_white =
                         render_supersampled_on(rounded, orbit, SIZE, &mesh, FACTOR, env, WHITE);
                     let ours_white = render_lit_on(sharp, &camera, &mesh, Some(&edges), env, WHITE);
+                    let mut overhang = 0;
                     for &p in &pixels {
                         let (o, t) = (
                             coverage(&ours, &ours_white, p),
                             coverage(&truth, &truth_white, p),
                         );
-                        tally.overhang += usize::from(o >= 0.5 && t < 0.5);
-                        tally.missing += usize::from(t >= 0.5 && o < 0.5);
+                        overhang += usize::from(o >= 0.5 && t < TRUTH_UNCOVERED);
+                        tally.missing += usize::from(t > TRUTH_COVERED && o < 0.5);
                     }
+                    tally.overhang += overhang;
+                    tally.worst_overhang = tally.worst_overhang.max((overhang, k));
                     tally.pixels += pixels.len();
                 }
                 let e = errors(&ours, &truth, &pixels);
@@ -378,6 +383,8 @@ fn whole_frames_of_the_highlight_match_the_rounded_solids() {
         }
         all_pixels += tally.pixels;
         all_overhang += tally.overhang;
+        let (over, view) = tally.worst_overhang;
+        println!("{name}: the most pixels covered by ours and not the truth, {over}, in view {view}: {:?}", views[view].0);
         for (l, lit) in Lit::ALL.into_iter().enumerate() {
             let e = &mut tally.errors[l];
             let mean = e.iter().sum::<f64>() / e.len().max(1) as f64;
@@ -405,4 +412,53 @@ fn whole_frames_of_the_highlight_match_the_rounded_solids() {
         worst_mean[1] * 100.0,
         worst_mean[2] * 100.0
     );
+    assert!(
+        overhang <= 0.001,
+        "{:.3} % of the pixels near chamfer edges are covered by ours and not the rounded truth (at most 0.1 %)",
+        overhang * 100.0
+    );
+    for (l, lit) in Lit::ALL.into_iter().enumerate() {
+        assert!(
+            worst_mean[l] <= 0.01,
+            "{}: a shape's mean error is {:.2} % of the lit range (at most 1 %)",
+            lit.name(),
+            worst_mean[l] * 100.0
+        );
+    }
+}
+
+/// Issue 39: every asset renders with the highlight on (an empty corner buffer used to fail the
+/// frame): a box baked without a radius (no chamfer edges: the frame is the one without the
+/// highlight), the cylinder (chamfer edges, no corner where three rounded edges meet) and the box
+/// with a radius (rounded corners).
+#[test]
+fn the_highlight_renders_with_and_without_chamfer_edges_and_corners() {
+    let r = 0.1;
+    let plain = chamfer_preprocess::bake(rounded_box(0.0), "plain", &chamfer_preprocess::BakeOptions::DEFAULT)
+        .expect("bake")
+        .asset;
+    let (_, cylinder) = rounded_and_sharp(rounded_cylinder, r);
+    let (_, rounded) = rounded_and_sharp(rounded_box, r);
+    let orbit = Orbit::default();
+    let camera = Camera::orbit([[-1.0; 3], [1.0; 3]], &orbit, [120, 90]);
+    let (mesh, edges) = Lit::Pbr.styles(Vec3::new(0.3, 0.9, 0.5).normalize());
+    let without = EdgeStyle {
+        highlight: None,
+        ..edges
+    };
+    for (name, asset, strips) in [
+        ("no chamfer edges", &plain, false),
+        ("chamfer edges, no corners", &cylinder, true),
+        ("corners", &rounded, true),
+    ] {
+        let lit = render_lit_on(asset, &camera, &mesh, Some(&edges), None, BLACK);
+        let unlit = render_lit_on(asset, &camera, &mesh, Some(&without), None, BLACK);
+        let changed = lit.rgba.chunks(4).zip(unlit.rgba.chunks(4)).filter(|(a, b)| a != b).count();
+        eprintln!("{name}: {changed} pixels changed by the highlight");
+        if strips {
+            assert!(changed > 100, "{name}: {changed} pixels");
+        } else {
+            assert_eq!(changed, 0, "{name}");
+        }
+    }
 }

@@ -13,7 +13,8 @@ use std::sync::Arc;
 
 use bevy::asset::AsyncWriteExt;
 use bevy::asset::io::{AssetReaderError, AssetWriterError, Writer};
-use bevy::asset::processor::{Process, ProcessContext, ProcessError};
+use bevy::asset::AssetPath;
+use bevy::asset::processor::{AssetProcessor, Process, ProcessContext, ProcessError};
 use bevy::reflect::TypePath;
 use bevy::tasks::futures_lite::AsyncReadExt;
 use chamfer_preprocess::settings::{BakeSettings, SettingsError};
@@ -32,8 +33,38 @@ use crate::asset::ChamferLoader;
 ///     ),
 /// )
 /// ```
+///
+/// A file that fails to bake leaves no processed file behind (Bevy opens the processed file before
+/// the processor runs, so it would be left empty): its processed file and `.meta` are removed, so
+/// loading it is an error naming the path, never an empty asset.
 #[derive(Default, TypePath)]
-pub struct ChamferBake;
+pub struct ChamferBake {
+    /// The app's processor, whose processed sources the failed files are removed from.
+    processor: Option<AssetProcessor>,
+}
+
+impl ChamferBake {
+    /// The processor for an app whose asset processor (if it has one) is `processor`.
+    pub fn new(processor: Option<AssetProcessor>) -> Self {
+        Self { processor }
+    }
+
+    /// Removes what Bevy began writing for `path` (and its stale `.meta`).
+    async fn leave_nothing(&self, path: &AssetPath<'static>) {
+        let Some(processor) = &self.processor else {
+            return;
+        };
+        let Ok(source) = processor.get_source(path.source().clone()) else {
+            return;
+        };
+        let Ok(writer) = source.processed_writer() else {
+            return;
+        };
+        // Either may be missing already; the failure itself is what Bevy reports.
+        let _ = writer.remove(path.path()).await;
+        let _ = writer.remove_meta(path.path()).await;
+    }
+}
 
 /// Why a file was not baked; the message names the file.
 #[derive(Debug, thiserror::Error)]
@@ -93,25 +124,39 @@ impl Process for ChamferBake {
         writer: &mut Writer,
     ) -> Result<(), ProcessError> {
         let asset_path = context.path().clone();
-        // One byte past the input limit is enough for the bake to refuse the file by name.
-        let limit = Limits::DEFAULT.max_input_bytes.saturating_add(1);
-        let mut bytes = Vec::new();
-        AsyncReadExt::take(context.asset_reader(), limit)
-            .read_to_end(&mut bytes)
-            .await
-            .map_err(|err| ProcessError::AssetReaderError {
-                path: asset_path.clone(),
-                err: AssetReaderError::Io(Arc::new(err)),
-            })?;
-        let asset = bake_to_asset(asset_path.path(), &bytes, settings)
-            .map_err(|e| ProcessError::AssetTransformError(Box::new(e)))?;
-        writer
-            .write_all(&asset)
-            .await
-            .map_err(|err| ProcessError::AssetWriterError {
-                path: asset_path,
-                err: AssetWriterError::Io(err),
-            })?;
-        Ok(())
+        let result = bake_into(context, settings, writer).await;
+        if result.is_err() {
+            self.leave_nothing(&asset_path).await;
+        }
+        result
     }
+}
+
+/// Reads the file `context` processes, bakes it with `settings` and writes the asset to `writer`.
+async fn bake_into(
+    context: &mut ProcessContext<'_>,
+    settings: &BakeSettings,
+    writer: &mut Writer,
+) -> Result<(), ProcessError> {
+    let asset_path = context.path().clone();
+    // One byte past the input limit is enough for the bake to refuse the file by name.
+    let limit = Limits::DEFAULT.max_input_bytes.saturating_add(1);
+    let mut bytes = Vec::new();
+    AsyncReadExt::take(context.asset_reader(), limit)
+        .read_to_end(&mut bytes)
+        .await
+        .map_err(|err| ProcessError::AssetReaderError {
+            path: asset_path.clone(),
+            err: AssetReaderError::Io(Arc::new(err)),
+        })?;
+    let asset = bake_to_asset(asset_path.path(), &bytes, settings)
+        .map_err(|e| ProcessError::AssetTransformError(Box::new(e)))?;
+    writer
+        .write_all(&asset)
+        .await
+        .map_err(|err| ProcessError::AssetWriterError {
+            path: asset_path,
+            err: AssetWriterError::Io(err),
+        })?;
+    Ok(())
 }

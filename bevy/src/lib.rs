@@ -36,9 +36,13 @@ pub struct ChamferPlugin;
 
 impl Plugin for ChamferPlugin {
     fn build(&self, app: &mut App) {
+        let processor = app
+            .world()
+            .get_resource::<bevy::asset::processor::AssetProcessor>()
+            .cloned();
         app.init_asset::<ChamferAsset>()
             .init_asset_loader::<ChamferLoader>()
-            .register_asset_processor(ChamferBake);
+            .register_asset_processor(ChamferBake::new(processor));
         render::build(app);
     }
 }

@@ -36,11 +36,14 @@ pub struct ChamferEdges {
     pub asset: Handle<ChamferAsset>,
     /// How its edges are drawn (technique, classes, width, colours, highlight).
     pub style: EdgeStyle,
-    /// Light the chamfer highlight (when the style has one) with the scene's brightest visible
-    /// `DirectionalLight`, as Bevy lights its meshes: the light's linear colour × illuminance
-    /// (lux) × the camera's exposure is the highlight's colour under PBR shading, and that over π
-    /// under the seed's Blinn shading (whose diffuse term has no 1/π). Default true; with false,
-    /// or with no directional light, the style's own light is used (in the entity's model space).
+    /// Light the chamfer highlight (when the style has one) with the visible `DirectionalLight`,
+    /// `PointLight` or `SpotLight` that lights the entity's origin most, as Bevy lights its meshes:
+    /// the light's linear colour × its illuminance (lux; a point or spot light's lumens / 4π, the
+    /// candela Bevy's shaders use, falling off as 1/d²) × the camera's exposure is the highlight's
+    /// colour under PBR shading, and that over π under the seed's Blinn shading (whose diffuse
+    /// term has no 1/π; its point and spot lights do not fall off, so they take their strength at
+    /// the entity's origin). Default true; with false, or with no light, the style's own light is
+    /// used (in the entity's model space).
     pub scene_light: bool,
 }
 
@@ -115,13 +118,43 @@ struct Drawn {
     scene_light: bool,
 }
 
-/// The scene's brightest directional light, in world space.
-#[derive(Clone, Copy)]
-struct Sun {
-    /// Towards the light.
-    towards: glam::Vec3,
-    /// Linear colour × illuminance (lux).
-    illuminance: glam::Vec3,
+/// A visible light of the scene, in world space.
+#[derive(Clone, Copy, Debug)]
+struct SceneLight {
+    /// Which and where: towards a directional light, a point light's position, a spot's position,
+    /// direction and cone (degrees).
+    light: Light,
+    /// Linear colour × strength: illuminance (lux) for a directional light, luminous intensity
+    /// (candela: lumens / 4π, as Bevy's shaders take it) for a point or spot light.
+    strength: glam::Vec3,
+}
+
+impl SceneLight {
+    /// Linear colour × illuminance (lux) at `point`: a point or spot light's falls off as 1/d²
+    /// (Bevy's range cut-off aside), a spot's also over its cone as KHR_lights_punctual's.
+    fn illuminance_at(&self, point: glam::Vec3) -> glam::Vec3 {
+        let falloff = |position: [f32; 3]| {
+            1.0 / glam::Vec3::from(position).distance_squared(point).max(1e-12)
+        };
+        match self.light {
+            Light::Directional(_) => self.strength,
+            Light::Point(position) => self.strength * falloff(position),
+            Light::Spot {
+                position,
+                direction,
+                inner_deg,
+                outer_deg,
+            } => {
+                let to_point = (point - glam::Vec3::from(position)).normalize_or_zero();
+                let (cos_inner, cos_outer) =
+                    (inner_deg.to_radians().cos(), outer_deg.to_radians().cos());
+                let cone = ((to_point.dot(glam::Vec3::from(direction)) - cos_outer)
+                    / (cos_inner - cos_outer).max(1e-4))
+                .clamp(0.0, 1.0);
+                self.strength * falloff(position) * cone * cone
+            }
+        }
+    }
 }
 
 /// This frame's visible entities, the decoded assets they draw and the scene's light.
@@ -132,13 +165,15 @@ struct Extracted {
     /// Assets changed (re-baked, reloaded) or no longer used since the last frame: their uploads
     /// go.
     stale: Vec<AssetId<ChamferAsset>>,
-    sun: Option<Sun>,
+    lights: Vec<SceneLight>,
 }
 
 fn extract(
     mut extracted: ResMut<Extracted>,
     entities: Extract<Query<(&ChamferEdges, &GlobalTransform, &ViewVisibility)>>,
-    lights: Extract<Query<(&DirectionalLight, &GlobalTransform, &InheritedVisibility)>>,
+    suns: Extract<Query<(&DirectionalLight, &GlobalTransform, &InheritedVisibility)>>,
+    points: Extract<Query<(&PointLight, &GlobalTransform, &InheritedVisibility)>>,
+    spots: Extract<Query<(&SpotLight, &GlobalTransform, &InheritedVisibility)>>,
     assets: Extract<Res<Assets<ChamferAsset>>>,
     mut events: Extract<MessageReader<AssetEvent<ChamferAsset>>>,
     mut timings: ResMut<ChamferTimings>,
@@ -153,17 +188,31 @@ fn extract(
             extracted.stale.push(id);
         }
     }
-    extracted.sun = lights
-        .iter()
-        .filter(|(_, _, visible)| visible.get())
-        .max_by(|a, b| a.0.illuminance.total_cmp(&b.0.illuminance))
-        .map(|(light, transform, _)| {
-            let color = light.color.to_linear().to_f32_array_no_alpha();
-            Sun {
-                towards: glam::Vec3::from_array((-transform.forward()).to_array()),
-                illuminance: glam::Vec3::from_array(color) * light.illuminance,
-            }
-        });
+    let linear = |color: Color| glam::Vec3::from_array(color.to_linear().to_f32_array_no_alpha());
+    let at = |transform: &GlobalTransform| glam::Vec3::from_array(transform.translation().to_array());
+    let forward = |transform: &GlobalTransform| glam::Vec3::from_array(transform.forward().to_array());
+    let candela = 1.0 / (4.0 * std::f32::consts::PI);
+    extracted.lights.clear();
+    let suns = suns.iter().filter(|(_, _, visible)| visible.get());
+    extracted.lights.extend(suns.map(|(light, transform, _)| SceneLight {
+        light: Light::Directional((-forward(transform)).to_array()),
+        strength: linear(light.color) * light.illuminance,
+    }));
+    let points = points.iter().filter(|(_, _, visible)| visible.get());
+    extracted.lights.extend(points.map(|(light, transform, _)| SceneLight {
+        light: Light::Point(at(transform).to_array()),
+        strength: linear(light.color) * light.intensity * candela,
+    }));
+    let spots = spots.iter().filter(|(_, _, visible)| visible.get());
+    extracted.lights.extend(spots.map(|(light, transform, _)| SceneLight {
+        light: Light::Spot {
+            position: at(transform).to_array(),
+            direction: forward(transform).to_array(),
+            inner_deg: light.inner_angle.to_degrees(),
+            outer_deg: light.outer_angle.to_degrees(),
+        },
+        strength: linear(light.color) * light.intensity * candela,
+    }));
     extracted.drawn.clear();
     for (edges, transform, visibility) in &entities {
         if !visibility.get() {
@@ -319,9 +368,9 @@ fn draw(
         let Some(gpu) = uploaded.assets.get(&drawn.asset) else {
             continue;
         };
-        let (style, light) = match extracted.sun {
-            Some(sun) if drawn.scene_light => {
-                lit_by(drawn.style, sun, drawn.transform, camera.exposure)
+        let (style, light) = match brightest_at(&extracted.lights, drawn.transform) {
+            Some(light) if drawn.scene_light => {
+                lit_by(drawn.style, light, drawn.transform, camera.exposure)
             }
             _ => (drawn.style, None),
         };
@@ -376,34 +425,69 @@ fn draw(
     }
 }
 
-/// `style` with its highlight (if any) lit by `sun` as Bevy lights a `StandardMaterial` seen by a
-/// camera of this `exposure`, and the light as an entity placed by `transform` sees it (in its
-/// model space, where the runtime's lights live): the style is the same for every entity, so
-/// differently turned entities are still drawn together.
+/// Of `lights`, the one that lights the origin of an entity placed by `transform` most (by the sum
+/// of its colour channels).
+fn brightest_at(lights: &[SceneLight], transform: glam::Mat4) -> Option<SceneLight> {
+    let origin = transform.w_axis.truncate();
+    let strength = |light: &SceneLight| light.illuminance_at(origin).element_sum();
+    lights
+        .iter()
+        .max_by(|a, b| strength(a).total_cmp(&strength(b)))
+        .copied()
+}
+
+/// `style` with its highlight (if any) lit by `light` as Bevy lights a `StandardMaterial` seen by
+/// a camera of this `exposure`, and the light as an entity placed by `transform` sees it (in its
+/// model space, where the runtime's lights live): the style is the same for every entity lit alike,
+/// so differently turned entities are still drawn together.
 fn lit_by(
     style: EdgeStyle,
-    sun: Sun,
+    light: SceneLight,
     transform: glam::Mat4,
     exposure: f32,
 ) -> (EdgeStyle, Option<Light>) {
     let Some(mut highlight) = style.highlight else {
         return (style, None);
     };
-    let towards = transform
-        .inverse()
-        .transform_vector3(sun.towards)
-        .normalize_or(sun.towards);
-    let scale = match highlight.shading {
-        Shading::Pbr(_) => exposure,
-        Shading::Blinn(_) => exposure / std::f32::consts::PI,
+    let model = transform.inverse();
+    let direction = |d: [f32; 3]| {
+        let d = glam::Vec3::from(d);
+        model.transform_vector3(d).normalize_or(d).to_array()
     };
-    highlight.light = Light::Directional(sun.towards.to_array());
-    highlight.color = (sun.illuminance * scale).to_array();
+    let point = |p: [f32; 3]| model.transform_point3(glam::Vec3::from(p)).to_array();
+    let seen = match light.light {
+        Light::Directional(towards) => Light::Directional(direction(towards)),
+        Light::Point(position) => Light::Point(point(position)),
+        Light::Spot {
+            position,
+            direction: along,
+            inner_deg,
+            outer_deg,
+        } => Light::Spot {
+            position: point(position),
+            direction: direction(along),
+            inner_deg,
+            outer_deg,
+        },
+    };
+    let color = match (highlight.shading, light.light) {
+        (Shading::Pbr(_), Light::Directional(_)) => light.strength * exposure,
+        // The runtime's 1/d² is in model units: a scaled entity's are not the world's.
+        (Shading::Pbr(_), _) => {
+            let scale = transform.determinant().abs().cbrt().max(1e-12);
+            light.strength * exposure / (scale * scale)
+        }
+        (Shading::Blinn(_), _) => {
+            light.illuminance_at(transform.w_axis.truncate()) * exposure / std::f32::consts::PI
+        }
+    };
+    highlight.light = light.light;
+    highlight.color = color.to_array();
     let style = EdgeStyle {
         highlight: Some(highlight),
         ..style
     };
-    (style, Some(Light::Directional(towards.to_array())))
+    (style, Some(seen))
 }
 
 /// Bevy's glam (0.33) to the runtime's (0.34): the same column-major floats.
@@ -427,9 +511,9 @@ mod tests {
 
     #[test]
     fn the_sun_is_mapped_as_bevy_lights_a_standard_material() {
-        let sun = Sun {
-            towards: glam::Vec3::X,
-            illuminance: glam::Vec3::new(10_000.0, 5_000.0, 0.0),
+        let sun = SceneLight {
+            light: Light::Directional([1.0, 0.0, 0.0]),
+            strength: glam::Vec3::new(10_000.0, 5_000.0, 0.0),
         };
         // An entity turned 90° about +Y: its model +Z is world +X, where the light comes from.
         let turned = glam::Mat4::from_rotation_y(std::f32::consts::FRAC_PI_2);
@@ -470,5 +554,85 @@ mod tests {
         );
         let plain = EdgeStyle::default();
         assert_eq!(lit_by(plain, sun, turned, exposure), (plain, None));
+    }
+
+    #[test]
+    fn a_point_light_is_placed_in_model_space_and_falls_off_with_the_worlds_distance() {
+        let bulb = SceneLight {
+            light: Light::Point([0.0, 0.0, 4.0]),
+            strength: glam::Vec3::splat(1000.0),
+        };
+        // Moved 2 along +X and scaled 2: the bulb is at (-1, 0, 2) in model units, 4.47 world
+        // units from the entity's origin.
+        let placed = glam::Mat4::from_scale_rotation_translation(
+            glam::Vec3::splat(2.0),
+            glam::Quat::IDENTITY,
+            glam::Vec3::new(2.0, 0.0, 0.0),
+        );
+        let (pbr, seen) = lit_by(highlight(Shading::Pbr(Default::default())), bulb, placed, 1.0);
+        let Some(Light::Point(position)) = seen else {
+            panic!("point: {seen:?}");
+        };
+        assert!(glam::Vec3::from(position).abs_diff_eq(glam::Vec3::new(-1.0, 0.0, 2.0), 1e-5));
+        // PBR: the runtime's 1/d² over model units, d_model = d_world / 2, so the colour is a
+        // quarter of the candela for the same illuminance.
+        let color = pbr.highlight.expect("highlight").color;
+        assert!((color[0] - 250.0).abs() < 1e-2, "{color:?}");
+        // Blinn has no falloff: the illuminance at the origin, over π.
+        let (blinn, _) = lit_by(highlight(chamfer_runtime::render::Highlight::default().shading), bulb, placed, 1.0);
+        let color = blinn.highlight.expect("highlight").color;
+        let expected = 1000.0 / 20.0 / std::f32::consts::PI;
+        assert!((color[0] - expected).abs() < 1e-3, "{color:?} vs {expected}");
+    }
+
+    #[test]
+    fn a_spot_light_keeps_its_cone_and_lights_only_inside_it() {
+        let spot = SceneLight {
+            light: Light::Spot {
+                position: [0.0, 5.0, 0.0],
+                direction: [0.0, -1.0, 0.0],
+                inner_deg: 10.0,
+                outer_deg: 20.0,
+            },
+            strength: glam::Vec3::splat(500.0),
+        };
+        let turned = glam::Mat4::from_rotation_z(std::f32::consts::FRAC_PI_2);
+        let (style, seen) = lit_by(highlight(Shading::Pbr(Default::default())), spot, turned, 1.0);
+        let Some(Light::Spot {
+            position,
+            direction,
+            inner_deg,
+            outer_deg,
+        }) = seen
+        else {
+            panic!("spot: {seen:?}");
+        };
+        // World +Y is the turned entity's model +X.
+        assert!(glam::Vec3::from(position).abs_diff_eq(glam::Vec3::new(5.0, 0.0, 0.0), 1e-5));
+        assert!(glam::Vec3::from(direction).abs_diff_eq(glam::Vec3::new(-1.0, 0.0, 0.0), 1e-5));
+        assert_eq!((inner_deg, outer_deg), (10.0, 20.0));
+        assert_eq!(style.highlight.expect("highlight").color, [500.0; 3]);
+        // Under the spot it lights 500 / 25 lux; beside it (45° off its axis) nothing.
+        assert!((spot.illuminance_at(glam::Vec3::ZERO).x - 20.0).abs() < 1e-3);
+        assert_eq!(spot.illuminance_at(glam::Vec3::new(5.0, 0.0, 0.0)).x, 0.0);
+    }
+
+    #[test]
+    fn the_light_that_lights_an_entity_most_is_chosen() {
+        let sun = SceneLight {
+            light: Light::Directional([0.0, 1.0, 0.0]),
+            strength: glam::Vec3::splat(100.0),
+        };
+        let bulb = SceneLight {
+            light: Light::Point([0.0, 1.0, 0.0]),
+            strength: glam::Vec3::splat(1000.0),
+        };
+        let lights = [sun, bulb];
+        let near = glam::Mat4::IDENTITY; // 1,000 lux from the bulb
+        let far = glam::Mat4::from_translation(glam::Vec3::new(0.0, 1.0, 10.0)); // 10 lux
+        let chosen = |transform| brightest_at(&lights, transform).map(|l| l.light);
+        assert_eq!(chosen(near), Some(bulb.light));
+        assert_eq!(chosen(far), Some(sun.light));
+        assert_eq!(brightest_at(&[], near).map(|l| l.light), None);
     }
 }

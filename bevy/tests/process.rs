@@ -211,9 +211,11 @@ fn a_broken_file_or_bad_settings_fail_to_process_and_say_why() {
     assert_eq!(status(&app, "truncated.glb"), ProcessStatus::Failed);
     assert_eq!(status(&app, "part.glb"), ProcessStatus::Failed);
     for name in ["truncated.glb", "part.glb"] {
-        // Bevy leaves an empty file where processing failed: no asset decodes from it.
-        let left = std::fs::read(folders.processed.join(name)).unwrap_or_default();
-        assert!(Asset::decode(&left).is_err(), "{name}: no asset");
+        // Nothing is left where processing failed (Bevy had opened an empty file there).
+        let left = folders.processed.join(name);
+        assert!(!left.exists(), "{}: left behind", left.display());
+        let meta = folders.processed.join(format!("{name}.meta"));
+        assert!(!meta.exists(), "{}: left behind", meta.display());
     }
     // The others still bake.
     assert_eq!(status(&app, "good.glb"), ProcessStatus::Processed);

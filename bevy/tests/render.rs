@@ -630,8 +630,9 @@ fn the_technique_changes_at_run_time() {
     }
 }
 
-#[test]
-fn the_highlight_takes_its_light_from_the_scenes_directional_light() {
+/// Moves the scene's only light (`light`, put where `from` is and looking at the part) from one side to
+/// the other: lit by the scene, the strips change; with the style's own light, they stay.
+fn strips_follow_the_scenes_light<L: Component + Clone>(light: L) {
     let folder = rounded_assets(&[("fandisk", "meshes/fandisk.obj")], 0.01);
     let mut scene = fandisk_scene(folder.path());
     let highlight = chamfer_bevy::Highlight {
@@ -640,6 +641,14 @@ fn the_highlight_takes_its_light_from_the_scenes_directional_light() {
     };
     {
         let world = scene.app.world_mut();
+        let suns: Vec<Entity> = world
+            .query_filtered::<Entity, With<DirectionalLight>>()
+            .iter(world)
+            .collect();
+        for sun in suns {
+            world.despawn(sun);
+        }
+        world.spawn((light, Transform::default()));
         let mut edges = world.entity_mut(scene.part);
         let mut edges = edges.get_mut::<ChamferEdges>().expect("edges");
         edges.style.highlight = Some(highlight);
@@ -658,7 +667,7 @@ fn the_highlight_takes_its_light_from_the_scenes_directional_light() {
             .get_mut::<ChamferEdges>()
             .expect("edges")
             .scene_light = scene_light;
-        let mut lights = world.query_filtered::<&mut Transform, With<DirectionalLight>>();
+        let mut lights = world.query_filtered::<&mut Transform, With<L>>();
         for mut light in lights.iter_mut(world) {
             *light = Transform::from_translation(from).looking_at(Vec3::ZERO, Vec3::Y);
         }
@@ -682,11 +691,71 @@ fn the_highlight_takes_its_light_from_the_scenes_directional_light() {
     let own_right = frame_lit_from(&mut scene, Vec3::new(2.0, 1.0, -0.5), false);
     let own_moved = differ(&own_left, &own_right, &strips);
     eprintln!(
-        "{strip_count} strip pixels; the scene's light moved: {moved} differ lit by it, {own_moved} with the style's own light"
+        "{}: {strip_count} strip pixels; the scene's light moved: {moved} differ lit by it, {own_moved} with the style's own light",
+        std::any::type_name::<L>()
     );
     assert!(strip_count > 500, "{strip_count}");
     assert!(moved > strip_count / 4, "{moved} of {strip_count}");
     assert!(own_moved * 50 < moved, "{own_moved} vs {moved}");
+}
+
+#[test]
+fn the_highlight_takes_its_light_from_the_scenes_directional_light() {
+    strips_follow_the_scenes_light(DirectionalLight::default());
+}
+
+#[test]
+fn the_highlight_takes_its_light_from_the_scenes_point_light() {
+    strips_follow_the_scenes_light(PointLight::default());
+}
+
+#[test]
+fn the_highlight_takes_its_light_from_the_scenes_spot_light() {
+    strips_follow_the_scenes_light(SpotLight {
+        outer_angle: 1.0,
+        inner_angle: 0.8,
+        ..SpotLight::default()
+    });
+}
+
+/// Issue 39: the highlight draws on every asset: a cube baked without a radius (no chamfer edges:
+/// the frame is the one without the highlight), a cylinder (chamfer edges without corners) and the
+/// cube with a radius (corners).
+#[test]
+fn the_highlight_draws_with_and_without_chamfer_edges_and_corners() {
+    let plain = assets(&[("cube", "shapes/cube.obj")]);
+    let rounded = rounded_assets(
+        &[("cube", "shapes/cube.obj"), ("cylinder", "meshes/cylinder.obj")],
+        0.02,
+    );
+    for (folder, name, strips) in [
+        (plain.path(), "cube", false),
+        (rounded.path(), "cylinder", true),
+        (rounded.path(), "cube", true),
+    ] {
+        let bytes = std::fs::read(folder.join(format!("{name}.chamfer"))).expect("asset");
+        let asset = chamfer_runtime::asset::Asset::decode(&bytes).expect("decode");
+        let bounds = [asset.header.bounds_min, asset.header.bounds_max];
+        let (transform, projection, _) = orbit_camera(bounds, 35.0, 25.0);
+        let mut scene = Scene::new(folder, name, (transform, projection), Msaa::Sample4, false);
+        let plain_frame = render(&mut scene.app, &scene.image);
+        scene
+            .app
+            .world_mut()
+            .entity_mut(scene.part)
+            .get_mut::<ChamferEdges>()
+            .expect("edges")
+            .style
+            .highlight = Some(chamfer_bevy::Highlight::default());
+        let lit = render(&mut scene.app, &scene.image);
+        let changed = differing(&plain_frame, &lit).iter().filter(|&&d| d).count();
+        eprintln!("{name}: {changed} pixels changed by the highlight");
+        if strips {
+            assert!(changed > 100, "{name}: {changed}");
+        } else {
+            assert_eq!(changed, 0, "{name}");
+        }
+    }
 }
 
 fn edges_material(world: &World, part: Entity) -> Handle<StandardMaterial> {

@@ -579,6 +579,50 @@ fn render_writes_a_png_of_a_mesh_or_an_asset() {
     }
 }
 
+/// Issue 39: the highlight renders on every asset, chamfer edges or not (an empty corner buffer used
+/// to fail the frame). Each mesh fixture (public meshes, a CAD part, a cylinder without corners) is
+/// rendered with `--style chamfer` without a radius, with one, and baked first then rendered; the
+/// strips must show where there are chamfer edges, and a bake with none draws the plain frame.
+#[test]
+fn the_highlight_renders_on_every_mesh_fixture_with_or_without_a_radius() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mut meshes: Vec<PathBuf> = std::fs::read_dir(fixture("meshes"))
+        .expect("meshes")
+        .map(|entry| entry.expect("entry").path())
+        .filter(|path| path.extension().is_some_and(|e| e != "md"))
+        .collect();
+    meshes.extend([fixture("shapes/cube.obj"), fixture("shapes/cube-cad-jittered.glb")]);
+    meshes.sort();
+    assert!(meshes.len() >= 12, "{meshes:?}");
+    let render = |input: &Path, extra: &[&str]| {
+        let png = dir.path().join("frame.png");
+        let mut args = vec!["render", path_str(input), "-o", path_str(&png)];
+        args.extend(["--style", "chamfer", "--width", "80", "--height", "60"]);
+        args.extend(extra);
+        let run = chamfer(&args);
+        assert!(run.status.success(), "chamfer {args:?}: {}", text(&run.stderr));
+        png_pixels(&std::fs::read(&png).expect("png"))
+    };
+    for mesh in &meshes {
+        let plain = render(mesh, &[]);
+        let rounded = render(mesh, &["--radius-rel", "0.01"]);
+        let asset = dir.path().join("baked.chamfer");
+        let run = chamfer(&["bake", path_str(mesh), "-o", path_str(&asset), "--radius-rel", "0.01"]);
+        assert!(run.status.success(), "{}: {}", mesh.display(), text(&run.stderr));
+        assert_eq!(render(&asset, &[]), rounded, "{}: baked then rendered", mesh.display());
+        let run = chamfer(&["inspect", path_str(&asset), "--json"]);
+        let json: serde_json::Value = serde_json::from_slice(&run.stdout).expect("JSON");
+        let chamfer_edges = json["chamfer"]["edges"].as_u64().expect("chamfer edges");
+        let changed = plain.iter().zip(&rounded).filter(|(a, b)| a != b).count();
+        eprintln!("{}: {chamfer_edges} chamfer edges, {changed} pixels changed", mesh.display());
+        if chamfer_edges > 0 {
+            assert!(changed > 0, "{}: the strips show", mesh.display());
+        } else {
+            assert_eq!(changed, 0, "{}: nothing to highlight", mesh.display());
+        }
+    }
+}
+
 #[test]
 fn render_refuses_bad_input_and_options_and_keeps_the_old_picture() {
     let dir = tempfile::tempdir().expect("tempdir");

@@ -184,6 +184,33 @@ await check("the page keeps running while a large bake runs in the worker", asyn
   await page.close();
 });
 
+// Issue 39: an asset without chamfer edges used to fail the highlighted frame (an empty corner buffer).
+await check("the highlight draws on every asset: no chamfer edges, chamfer edges without corners, corners", async () => {
+  const page = await openPage(session);
+  await settled(page);
+  let sharp = null;
+  // The cylinder between the two cubes: the same name twice in a row would not wait for the new bake.
+  for (const [file, radius, strips] of [["fixtures/shapes/cube.obj", "", false],
+    ["fixtures/meshes/cylinder.obj", "0.01", true], ["fixtures/shapes/cube.obj", "0.02", true]]) {
+    await page.evaluate((r) => { document.getElementById("radius-rel").value = r; }, radius);
+    await upload(page, file);
+    await settled(page);
+    const off = await capture(page, { highlight: "off" });
+    const lit = await capture(page, { highlight: "pbr" });
+    await settled(page);
+    save(lit, `highlight-${file.split("/").pop()}-${radius || "none"}.png`);
+    const edges = await page.evaluate(() => window.chamfer.asset.report.chamfer.edges);
+    expect(strips ? edges > 0 : edges === 0, `${file}: ${edges} chamfer edges`);
+    expect(count(differing(off, lit, 1)) > 1000, `${file}: the highlight's shading did not show`);
+    // The cube with rounded edges against the sharp cube, both highlighted: the strips.
+    if (!strips) sharp = lit;
+    const changed = strips ? count(differing(sharp, lit, 1)) : 0;
+    console.log(`     ${file} radius ${radius || "none"}: ${edges} chamfer edges; ${changed} pixels differ from the sharp cube`);
+    if (file.endsWith("cube.obj") && strips) expect(changed > 100, `the strips changed ${changed} pixels`);
+  }
+  await page.close();
+});
+
 await session.close();
 
 await check("without WebGPU the page says why it cannot draw, and still bakes", async () => {

@@ -209,11 +209,8 @@ impl GpuAsset {
         } else {
             Default::default()
         };
-        let corner_words = if has_chamfers {
-            corners.words()
-        } else {
-            Vec::new()
-        };
+        // At least the count's word, so the binding has the size the shaders declare.
+        let corner_words = corners.words();
         check("corners", 16 * corner_words.len())?;
         Ok(Self {
             // Vertex and index buffers are storage buffers too, for techniques that pull triangles.

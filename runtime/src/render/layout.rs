@@ -49,6 +49,9 @@ pub(crate) mod drawn {
     pub(crate) const CLIPPED_SHIFT: u32 = 11;
     /// A chamfer edge drawn as its lit rounded strip (seed 000): no joins, no caps.
     pub(crate) const HIGHLIGHT: u32 = 1 << 13;
+    /// With [`HIGHLIGHT`]: the strip lies on the silhouette (one face turned away), so its outline is
+    /// rounded by the outline pass. The contour bit, which highlighted edges do not otherwise use.
+    pub(crate) const SILHOUETTE: u32 = CONTOUR;
     /// The rest of the word: the drawn instance's number.
     pub(crate) const INSTANCE_SHIFT: u32 = 14;
 }
@@ -81,6 +84,7 @@ pub(crate) fn constants() -> Vec<(&'static str, u32)> {
         ("ON_SCREEN", drawn::ON_SCREEN),
         ("CLIPPED_SHIFT", drawn::CLIPPED_SHIFT),
         ("DRAWN_HIGHLIGHT", drawn::HIGHLIGHT),
+        ("DRAWN_SILHOUETTE", drawn::SILHOUETTE),
         ("INSTANCE_SHIFT", drawn::INSTANCE_SHIFT),
         ("WORKGROUP", WORKGROUP),
         ("MAX_GROUPS", MAX_GROUPS),
@@ -284,9 +288,9 @@ pub(crate) struct ScreenRecord {
 pub(crate) struct ChamferRecord {
     pub(crate) n1: [f32; 4],
     pub(crate) n2: [f32; 4],
-    pub(crate) across: [f32; 4],
-    pub(crate) middle: [f32; 4],
-    pub(crate) viewer: [f32; 4],
+    pub(crate) end0: [f32; 4],
+    pub(crate) end1: [f32; 4],
+    pub(crate) eye: [f32; 4],
     pub(crate) hand_over: [f32; 4],
     pub(crate) light_position: [f32; 4],
     pub(crate) light_axis: [f32; 4],
@@ -446,9 +450,9 @@ pub(crate) fn layouts() -> Vec<Layout> {
             [
                 n1,
                 n2,
-                across,
-                middle,
-                viewer,
+                end0,
+                end1,
+                eye,
                 hand_over,
                 light_position,
                 light_axis

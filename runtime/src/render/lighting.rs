@@ -52,8 +52,9 @@ pub struct Highlight {
     /// Share of the diffuse colour lit regardless of the light (0 in the paper); under
     /// [`Shading::Pbr`] the radiance of a uniform white environment, as [`super::MeshStyle::ambient`].
     pub ambient: f32,
-    /// `K` of the blend weight `W = K r_e / (d r_max)` (§3.2); `None`: the camera's distance to the
-    /// model's centre, so a strip at that distance blends by exactly the share of the pixel it covers.
+    /// `K` of the seed's blend weight `W = K r_e / (d r_max)` (§3.2), which strengthens strips nearer
+    /// than `K` and weakens farther ones; `None`: no distance factor, every strip blends by exactly the
+    /// share of the pixel it covers (as a real fillet does, at any distance).
     pub k: Option<f32>,
     /// Where two or three chamfer edges of one radius meet at a convex vertex, draw the corner the
     /// rounded solid has (a sphere patch, its cylinders meeting it; issue 29) instead of letting the

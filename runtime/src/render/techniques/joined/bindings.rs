@@ -5,8 +5,9 @@
 //! buffers.
 
 pub(crate) use crate::render::bindings::INSTANCE_FRAMES;
-use crate::render::bindings::Kind::{Read, ReadWrite, Uniform};
+use crate::render::bindings::Kind::{Read, ReadWrite, Texture, Uniform};
 use crate::render::bindings::{Binding, Bindings, FRAME, asset};
+use crate::render::techniques::post;
 
 /// The slot table: per (instance, edge) drawn, its slot + 1, written by classify, read by the joins.
 pub(crate) const TABLE: Binding = Binding::new(16, "table", ReadWrite);
@@ -118,11 +119,32 @@ pub(crate) const DRAW: Bindings = Bindings::draw(
         COS_POWER,
         LIGHTING,
         ENVIRONMENT,
+        INSTANCE_FRAMES,
     ],
 );
 pub(crate) const CORNER_DRAW: Bindings = Bindings::draw(
     "rounded corners",
     &[FRAME, asset::CORNERS, LIGHTING, ENVIRONMENT],
+);
+/// The outline pass's copy of the application's colour (`outline.wgsl`).
+pub(crate) const SCENE_COLOR: Binding = Binding::new(32, "scene_color", Texture);
+/// The outline pass over the silhouette strips (after the application's pass).
+pub(crate) const OUTLINE_STRIPS: Bindings = Bindings::draw(
+    "outline of silhouette strips",
+    &[
+        FRAME,
+        read_only(DRAWN),
+        read_only(SCREEN),
+        read_only(CHAMFERS),
+        INSTANCE_FRAMES,
+        SCENE_COLOR,
+        post::DEPTH,
+    ],
+);
+/// The outline pass over the rounded corners, an instance at a time.
+pub(crate) const OUTLINE_CORNERS: Bindings = Bindings::draw(
+    "outline of rounded corners",
+    &[FRAME, asset::CORNERS, LIGHTING, SCENE_COLOR, post::DEPTH],
 );
 pub(crate) const SEGMENTS: Bindings =
     Bindings::draw("intersection edges", &[FRAME, asset::SEGMENTS]);

@@ -50,12 +50,8 @@ impl HighlightUniforms {
         let Some(highlight) = &cx.style.highlight else {
             return false;
         };
-        // K by the first instance (for one asset: the camera's distance to its centre).
-        let k = highlight.k.unwrap_or_else(|| {
-            cx.instances.first().map_or(1.0, |d| {
-                d.camera.eye().truncate().distance(d.asset.center())
-            })
-        });
+        // 0: no distance factor (the shaders blend by coverage alone).
+        let k = highlight.k.filter(|k| k.is_finite() && *k > 0.0).unwrap_or(0.0);
         let ambient = highlight.ambient.clamp(0.0, 1.0);
         let (material, base, shade) = match highlight.shading {
             Shading::Blinn(material) => {

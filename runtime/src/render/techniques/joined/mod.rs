@@ -25,6 +25,7 @@
 mod bindings;
 mod highlight;
 mod lists;
+mod outline;
 mod pipelines;
 mod planes;
 mod readback;
@@ -50,8 +51,8 @@ pub(crate) static MODULE: Joined = Joined;
 pub(crate) struct Joined;
 
 impl Module for Joined {
-    fn shaders(&self, _target: &Target) -> Vec<Shader> {
-        pipelines::shaders()
+    fn shaders(&self, target: &Target) -> Vec<Shader> {
+        pipelines::shaders(target)
     }
 
     fn new_frame(
@@ -105,6 +106,9 @@ struct Frame {
     culling: bool,
     /// This frame draws chamfer edges as highlight strips.
     highlighted: bool,
+    /// ... and some of its assets have chamfer edges: `finish` rounds their outline.
+    outlined: bool,
+    outline: outline::Outline,
     caps: CapMethod,
     /// The slots the next lists must have, at least.
     wanted_slots: u64,
@@ -186,6 +190,8 @@ impl Frame {
             instance_count: 0,
             culling: true,
             highlighted: false,
+            outlined: false,
+            outline: outline::Outline::default(),
             caps: CapMethod::NextIndex,
             wanted_slots: options.first_slots,
             wanted_survivors: 0,
@@ -460,6 +466,7 @@ impl TechniqueFrame for Frame {
             }
         }
         self.highlighted = self.highlight.prepare(cx);
+        self.outlined = self.highlighted && cx.instances.iter().any(|d| d.asset.has_chamfers);
         self.ensure_lists(cx)?;
         let (Some(lists), Some(instances)) = (&self.lists, &self.instances) else {
             return Err(super::mismatch(cx));
@@ -588,6 +595,10 @@ impl TechniqueFrame for Frame {
         pass.set_bind_group(0, draw_group, &[0]);
         pass.set_pipeline(&pipelines.edges);
         pass.draw_indirect(&lists.out, 0);
+        if self.highlighted {
+            pass.set_pipeline(&pipelines.strips);
+            pass.draw_indirect(&lists.out, 0);
+        }
         if self.caps != CapMethod::None {
             pass.set_pipeline(&pipelines.caps);
             pass.draw_indirect(&lists.out, CAP_DRAW_OFFSET);
@@ -605,6 +616,14 @@ impl TechniqueFrame for Frame {
                 pass.draw(0..6, 0..gpu.corner_count);
             }
         }
+    }
+
+    fn finish(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        views: &crate::render::FrameViews<'_>,
+    ) -> Result<(), RenderError> {
+        outline::record(self, encoder, views)
     }
 
     fn read_counts(
@@ -641,5 +660,6 @@ impl TechniqueFrame for Frame {
             + self.blocks.gpu_bytes()
             + self.instance_blocks.gpu_bytes()
             + self.highlight.gpu_bytes()
+            + self.outline.gpu_bytes()
     }
 }

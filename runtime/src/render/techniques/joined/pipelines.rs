@@ -2,10 +2,14 @@
 
 use chamfer_shaders as wgsl;
 
-use super::bindings::{ARGS, CLASSIFY, CORNER_DRAW, CULL, DRAW, JOIN, PLACE, RECORDS, SEGMENTS};
+use super::bindings::{
+    ARGS, CLASSIFY, CORNER_DRAW, CULL, DRAW, JOIN, OUTLINE_CORNERS, OUTLINE_STRIPS, PLACE, RECORDS,
+    SEGMENTS,
+};
 use crate::render::modules::{Program, Shader};
 use crate::render::pipelines::{PipelineSet, Raster};
-use crate::render::{Pipelines as Cache, RenderError};
+use crate::render::techniques::post;
+use crate::render::{Pipelines as Cache, RenderError, Target};
 
 /// Every module the technique compiles: its name, its parts after the shared constants, its
 /// programs.
@@ -92,7 +96,10 @@ const SHADERS: [(&str, &[&str], &[Program]); 9] = [
             wgsl::DRAW,
             wgsl::EDGES,
         ],
-        &[Program::draw("edge_vertex_main", "edge_fragment", &DRAW)],
+        &[
+            Program::draw("edge_vertex_main", "edge_fragment", &DRAW),
+            Program::draw("strip_vertex", "strip_fragment", &DRAW),
+        ],
     ),
     // Round caps.
     (
@@ -137,12 +144,34 @@ const SHADERS: [(&str, &[&str], &[Program]); 9] = [
     ),
 ];
 
-/// Every module the technique compiles.
-pub(crate) fn shaders() -> Vec<Shader> {
-    SHADERS
+/// The outline pass's programs (after the application's pass, reading its depth).
+const OUTLINE: [Program; 2] = [
+    Program::draw("strip_trim_vertex", "strip_trim_fragment", &OUTLINE_STRIPS),
+    Program::draw("corner_trim_vertex", "corner_trim_fragment", &OUTLINE_CORNERS),
+];
+
+/// Every module the technique compiles for `target`: the outline pass reads its depth as the target
+/// samples it.
+pub(crate) fn shaders(target: &Target) -> Vec<Shader> {
+    let mut all: Vec<Shader> = SHADERS
         .iter()
         .map(|&(label, parts, programs)| Shader::new(label, parts, programs.to_vec()))
-        .collect()
+        .collect();
+    all.push(Shader::new(
+        "outline.wgsl",
+        &[
+            wgsl::COMMON,
+            wgsl::FRAME,
+            wgsl::BRDF,
+            wgsl::HIGHLIGHT,
+            wgsl::DRAW,
+            wgsl::CORNERS,
+            post::depth_source(target),
+            wgsl::OUTLINE,
+        ],
+        OUTLINE.to_vec(),
+    ));
+    all
 }
 
 /// The technique's pipelines.
@@ -162,9 +191,12 @@ pub(crate) struct JoinedPipelines {
     pub(crate) clear_joins: wgpu::ComputePipeline,
     pub(crate) chamfer_records: wgpu::ComputePipeline,
     pub(crate) edges: wgpu::RenderPipeline,
+    pub(crate) strips: wgpu::RenderPipeline,
     pub(crate) caps: wgpu::RenderPipeline,
     pub(crate) corners: wgpu::RenderPipeline,
     pub(crate) segments: wgpu::RenderPipeline,
+    pub(crate) outline_strips: wgpu::RenderPipeline,
+    pub(crate) outline_corners: wgpu::RenderPipeline,
 }
 
 impl PipelineSet for JoinedPipelines {
@@ -179,14 +211,25 @@ impl PipelineSet for JoinedPipelines {
             caps,
             corners,
             intersections,
-        ] = shaders()
+            outline,
+        ] = shaders(cache.target())
             .try_into()
             .map_err(|_| RenderError::Internal("the joined technique's shaders".into()))?;
         let classify = cache.compile(&classify)?;
         let args = cache.compile(&args)?;
         let joins = cache.compile(&joins)?;
         let chamfers = cache.compile(&chamfers)?;
+        let edges = cache.compile(&edges)?;
         let over_mesh = || Raster::over_mesh(cache.target());
+        let outline = cache.compile(&outline)?;
+        // Into the finished single-sample colour, without depth (outline.wgsl tests the scene's).
+        let over_finished = || Raster {
+            buffers: &[],
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: None,
+            multisample: wgpu::MultisampleState::default(),
+            color: Some(cache.target().blended_color()),
+        };
         Ok(Self {
             place: cache.compile(&instances)?.compute("place")?,
             reset: args.compute("reset")?,
@@ -201,11 +244,8 @@ impl PipelineSet for JoinedPipelines {
             joins_heads: joins.compute("joins_heads")?,
             clear_joins: joins.compute("clear_joins")?,
             chamfer_records: chamfers.compute("chamfer_records")?,
-            edges: cache.compile(&edges)?.render(
-                "edge_vertex_main",
-                Some("edge_fragment"),
-                over_mesh(),
-            )?,
+            edges: edges.render("edge_vertex_main", Some("edge_fragment"), over_mesh())?,
+            strips: edges.render("strip_vertex", Some("strip_fragment"), over_mesh())?,
             caps: cache.compile(&caps)?.render(
                 "cap_vertex_main",
                 Some("cap_fragment"),
@@ -220,6 +260,16 @@ impl PipelineSet for JoinedPipelines {
                 "segment_vertex",
                 Some("segment_fragment"),
                 over_mesh(),
+            )?,
+            outline_strips: outline.render(
+                "strip_trim_vertex",
+                Some("strip_trim_fragment"),
+                over_finished(),
+            )?,
+            outline_corners: outline.render(
+                "corner_trim_vertex",
+                Some("corner_trim_fragment"),
+                over_finished(),
             )?,
         })
     }
