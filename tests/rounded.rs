@@ -194,7 +194,9 @@ pub fn rounded_turned_part(r: f32) -> Mesh {
             },
         );
         profile.push(from);
-        let pieces = 24;
+        // The rounded solid's flat runs in pieces (its normals stay the faces' up to the arcs); the
+        // sharp solid's whole, or the bake would clamp its radii to the narrow pieces.
+        let pieces = if r == 0.0 { 1 } else { 24 };
         profile.extend((0..=pieces).map(|j| inner_from.lerp(inner_to, j as f32 / pieces as f32)));
         profile.push(to);
         profile.extend(arcs[k + 1].2.iter().copied());
