@@ -2,8 +2,10 @@
 //!
 //! ```text
 //! cargo run --release -p chamfer-preprocess --example bench_render -- [--frames 15] [--size 1920x1080]
-//!     [--caps next-index|cap-buffer|none] [MESH...]
+//!     [--caps next-index|cap-buffer|none] [--radius-rel 0.004] [MESH...]
 //! ```
+//! Meshes are baked with chamfer radii (`--radius-rel` of the diagonal on ridges; 0: none), so the
+//! highlight column times strips, rounded corners and the outline pass after the mesh.
 //! With no mesh it benches `fixtures/meshes/stanford-bunny.obj` and the largest shared mesh,
 //! `bunny-loop2.ply.gz`. Per mesh, the configurations run round-robin (one frame of each in turn, so
 //! drifts of a shared machine hit all alike) after a warm-up that compiles every pipeline; each frame is
@@ -32,6 +34,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut frames = 15;
     let mut size = [1920, 1080];
     let mut caps = CapMethod::NextIndex;
+    let mut radius_rel = 0.004f32;
     let mut meshes = Vec::new();
     let mut args = std::env::args().skip(1);
     while let Some(arg) = args.next() {
@@ -49,6 +52,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     Some("none") => CapMethod::None,
                     _ => return Err("--caps needs next-index, cap-buffer or none".into()),
                 }
+            }
+            "--radius-rel" => {
+                radius_rel = args.next().ok_or("--radius-rel needs a number")?.parse()?
             }
             _ => meshes.push(PathBuf::from(arg)),
         }
@@ -72,8 +78,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
     );
     for mesh in &meshes {
-        let asset =
-            chamfer_preprocess::bake_file(mesh, &chamfer_preprocess::BakeOptions::DEFAULT)?.asset;
+        let options = chamfer_preprocess::BakeOptions::DEFAULT;
+        let options = if radius_rel > 0.0 {
+            options.with_radius(chamfer_preprocess::Radius::Relative(radius_rel))
+        } else {
+            options
+        };
+        let asset = chamfer_preprocess::bake_file(mesh, &options)?.asset;
         bench(&gpu, &asset, mesh, size, frames, caps)?;
     }
     Ok(())
@@ -123,9 +134,13 @@ fn bench(
             encoder = gpu.encoder();
         }
         if draw {
-            let mut pass = target.begin_pass(&mut encoder, [1.0; 4]);
-            mesh.render(&mut pass);
-            prepared.render(&mut pass);
+            {
+                let mut pass = target.begin_pass(&mut encoder, [1.0; 4]);
+                mesh.render(&mut pass);
+                prepared.render(&mut pass);
+            }
+            // The highlight's outline pass (nothing without one).
+            prepared.finish(&mut encoder, &target.views())?;
         }
         gpu.submit(encoder)?;
         Ok::<f64, Box<dyn std::error::Error>>(start.elapsed().as_secs_f64() * 1e3)

@@ -1313,3 +1313,25 @@ fn stl_and_3mf_bake_from_the_command_line_and_inspect_reports_the_stitch() {
         text(&run.stderr)
     );
 }
+
+/// The frame benchmark (`examples/bench_render.rs`, built by `cargo test`) runs: one frame of each
+/// configuration at 64 × 64 on a cube with chamfer radii, the highlight's row included.
+#[test]
+fn the_frame_benchmark_runs_at_a_tiny_size() {
+    let chamfer = Path::new(env!("CARGO_BIN_EXE_chamfer"));
+    let bench = chamfer
+        .parent()
+        .expect("target folder")
+        .join("examples")
+        .join(format!("bench_render{}", std::env::consts::EXE_SUFFIX));
+    assert!(bench.exists(), "{} is built by cargo test", bench.display());
+    let run = Command::new(&bench)
+        .args(["--frames", "1", "--size", "64x64", "--radius-rel", "0.02"])
+        .arg(fixture("shapes/cube.obj"))
+        .output()
+        .expect("run bench_render");
+    let out = text(&run.stdout);
+    assert!(run.status.success(), "{out}{}", text(&run.stderr));
+    let row = out.lines().find(|l| l.starts_with("| cube.obj")).expect("the cube's row");
+    assert!(!row.contains("NaN") && !row.contains("inf"), "{row}");
+}
