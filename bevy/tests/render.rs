@@ -632,9 +632,16 @@ fn the_technique_changes_at_run_time() {
 
 /// Moves the scene's only light (`light`, put where `from` is and looking at the part) from one side to
 /// the other: lit by the scene, the strips change; with the style's own light, they stay.
-fn strips_follow_the_scenes_light<L: Component + Clone>(light: L) {
+/// `light` is made (from the distance it will be at) by `make`: point and spot lights are placed three
+/// diagonals from the part's centre, so every face sees them from outside.
+fn strips_follow_the_scenes_light<L: Component + Clone>(make: impl Fn(f32) -> L) {
     let folder = rounded_assets(&[("fandisk", "meshes/fandisk.obj")], 0.01);
     let mut scene = fandisk_scene(folder.path());
+    let baked = bake_file(&fixture("meshes/fandisk.obj"), &BakeOptions::DEFAULT).expect("bake");
+    let [lo, hi] = [baked.asset.header.bounds_min, baked.asset.header.bounds_max].map(Vec3::from_array);
+    let (centre, diagonal) = ((lo + hi) * 0.5, (hi - lo).length());
+    let place = |side: Vec3| centre + side.normalize() * 3.0 * diagonal;
+    let light = make(3.0 * diagonal);
     let highlight = chamfer_bevy::Highlight {
         shading: chamfer_bevy::Shading::Pbr(chamfer_bevy::PbrMaterial::default()),
         ..chamfer_bevy::Highlight::default()
@@ -669,7 +676,7 @@ fn strips_follow_the_scenes_light<L: Component + Clone>(light: L) {
             .scene_light = scene_light;
         let mut lights = world.query_filtered::<&mut Transform, With<L>>();
         for mut light in lights.iter_mut(world) {
-            *light = Transform::from_translation(from).looking_at(Vec3::ZERO, Vec3::Y);
+            *light = Transform::from_translation(from).looking_at(centre, Vec3::Y);
         }
         render(&mut scene.app, &scene.image)
     };
@@ -682,13 +689,14 @@ fn strips_follow_the_scenes_light<L: Component + Clone>(light: L) {
     };
     let strips = scene.edge_pixels();
     let strip_count = strips.iter().filter(|&&s| s).count();
-    let left = frame_lit_from(&mut scene, Vec3::new(-2.0, 1.0, 0.5), true);
-    let right = frame_lit_from(&mut scene, Vec3::new(2.0, 1.0, -0.5), true);
+    let (from_left, from_right) = (place(Vec3::new(-2.0, 1.0, 0.5)), place(Vec3::new(2.0, 1.0, -0.5)));
+    let left = frame_lit_from(&mut scene, from_left, true);
+    let right = frame_lit_from(&mut scene, from_right, true);
     let moved = differ(&left, &right, &strips);
     // With the style's own light, the strips stay (a few pixels of the joined technique's
     // ties aside: 5 of 1,669 measured).
-    let own_left = frame_lit_from(&mut scene, Vec3::new(-2.0, 1.0, 0.5), false);
-    let own_right = frame_lit_from(&mut scene, Vec3::new(2.0, 1.0, -0.5), false);
+    let own_left = frame_lit_from(&mut scene, from_left, false);
+    let own_right = frame_lit_from(&mut scene, from_right, false);
     let own_moved = differ(&own_left, &own_right, &strips);
     eprintln!(
         "{}: {strip_count} strip pixels; the scene's light moved: {moved} differ lit by it, {own_moved} with the style's own light",
@@ -701,19 +709,30 @@ fn strips_follow_the_scenes_light<L: Component + Clone>(light: L) {
 
 #[test]
 fn the_highlight_takes_its_light_from_the_scenes_directional_light() {
-    strips_follow_the_scenes_light(DirectionalLight::default());
+    strips_follow_the_scenes_light(|_| DirectionalLight::default());
+}
+
+/// The lumens that light a surface `distance` away as the default directional light does.
+fn lumens_like_the_sun(distance: f32) -> f32 {
+    DirectionalLight::default().illuminance * distance * distance * 4.0 * std::f32::consts::PI
 }
 
 #[test]
 fn the_highlight_takes_its_light_from_the_scenes_point_light() {
-    strips_follow_the_scenes_light(PointLight::default());
+    strips_follow_the_scenes_light(|distance| PointLight {
+        intensity: lumens_like_the_sun(distance),
+        range: 2.0 * distance,
+        ..PointLight::default()
+    });
 }
 
 #[test]
 fn the_highlight_takes_its_light_from_the_scenes_spot_light() {
-    strips_follow_the_scenes_light(SpotLight {
-        outer_angle: 1.0,
-        inner_angle: 0.8,
+    strips_follow_the_scenes_light(|distance| SpotLight {
+        intensity: lumens_like_the_sun(distance),
+        range: 2.0 * distance,
+        outer_angle: 0.6,
+        inner_angle: 0.5,
         ..SpotLight::default()
     });
 }

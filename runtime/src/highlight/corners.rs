@@ -33,9 +33,7 @@ pub(crate) struct Corner {
     pub(crate) far: [[f32; 4]; 3],
 }
 
-/// `vec4<u32>` words per [`Corner`] in the corner buffer (the shaders' constant; only the renderer
-/// and the tests read it).
-#[cfg_attr(not(any(feature = "render", test)), allow(dead_code))]
+/// `vec4<u32>` words per [`Corner`] in the corner buffer.
 pub(crate) const CORNER_WORDS: u32 = (std::mem::size_of::<Corner>() / 16) as u32;
 
 /// Two normals closer than this (1 − cos) are one plane (a face split into triangles).

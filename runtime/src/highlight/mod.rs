@@ -11,6 +11,8 @@
 //! - [`environment`]: image-based light, an equirectangular environment prefiltered for one roughness.
 //! - `corners`: the rounded corners where chamfer edges of one radius meet (issue 29), found per asset.
 
+// Only the renderer uploads corners: without it (the baker's and Python's build) the module is unused.
+#[cfg(any(feature = "render", test))]
 pub(crate) mod corners;
 pub mod environment;
 pub mod ggx;
