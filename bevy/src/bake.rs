@@ -17,8 +17,8 @@ use bevy::asset::AssetPath;
 use bevy::asset::processor::{AssetProcessor, Process, ProcessContext, ProcessError};
 use bevy::reflect::TypePath;
 use bevy::tasks::futures_lite::AsyncReadExt;
-use chamfer_preprocess::settings::{BakeSettings, SettingsError};
-use chamfer_preprocess::{Companions, Limits, bake_with_companions, compact};
+use chamfer_preprocess::schema::{BakeSettings, SettingsError};
+use chamfer_preprocess::{Companions, bake_with_companions, compact};
 
 use crate::asset::ChamferLoader;
 
@@ -140,7 +140,7 @@ async fn bake_into(
 ) -> Result<(), ProcessError> {
     let asset_path = context.path().clone();
     // One byte past the input limit is enough for the bake to refuse the file by name.
-    let limit = Limits::DEFAULT.max_input_bytes.saturating_add(1);
+    let limit = settings.max_input_bytes.saturating_add(1);
     let mut bytes = Vec::new();
     AsyncReadExt::take(context.asset_reader(), limit)
         .read_to_end(&mut bytes)

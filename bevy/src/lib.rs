@@ -24,7 +24,7 @@ use bevy::prelude::*;
 
 pub use asset::{ChamferAsset, ChamferLoadError, ChamferLoader, render_mesh};
 pub use bake::{BakeError, ChamferBake, bake_to_asset};
-pub use chamfer_preprocess::settings::BakeSettings;
+pub use chamfer_preprocess::schema::BakeSettings;
 pub use chamfer_runtime::highlight::ggx::PbrMaterial;
 pub use chamfer_runtime::render::{EdgeClasses, EdgeStyle, Highlight, Light, Shading, Technique};
 pub use render::{ChamferEdges, ChamferTimings};

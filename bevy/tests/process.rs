@@ -100,6 +100,50 @@ fn baked(name: &str, fixture_path: &str, settings: &BakeSettings) -> Vec<u8> {
     bake_to_asset(Path::new(name), &bytes, settings).expect("bake")
 }
 
+/// Issue 40: every entry of the bake schema is a `.meta` setting. One asset per entry, its `.meta`
+/// giving the entry's example (and what it requires), all processed in one run: each processed
+/// file is what the same settings bake (chamfer bake's flags and the page's settings are checked
+/// against those too).
+#[test]
+fn every_schema_option_is_a_meta_setting_that_bakes_what_the_settings_bake() {
+    use chamfer_runtime::schema::{Schema, Value};
+
+    let folders = Folders::new();
+    let mut expected = Vec::new();
+    for entry in BakeSettings::ENTRIES {
+        let mut settings = BakeSettings::default();
+        let mut ron = Vec::new();
+        for name in entry.requires.iter().copied().chain([entry.name]) {
+            let entry = BakeSettings::entry(name).expect("known");
+            entry.set_example(&mut settings);
+            let value = match entry.example().expect("an example") {
+                Value::Number(x) => format!("{x:?}"),
+                value => value.to_string(),
+            };
+            // An entry without a default is an Option field: RON spells it Some(..).
+            let value = if entry.default().is_none() {
+                format!("Some({value})")
+            } else {
+                value
+            };
+            ron.push(format!("{name}: {value}"));
+        }
+        let name = format!("{}.glb", entry.name);
+        folders.add(&name, "shapes/cube-cad-jittered.glb", &format!("({})", ron.join(", ")));
+        let plain = baked(&name, "shapes/cube-cad-jittered.glb", &BakeSettings::default());
+        expected.push((name.clone(), baked(&name, "shapes/cube-cad-jittered.glb", &settings), plain));
+    }
+    let app = process(&folders);
+    let mut changed = 0;
+    for (name, bytes, plain) in expected {
+        assert_eq!(status(&app, &name), ProcessStatus::Processed, "{name}");
+        assert!(folders.processed(&name) == bytes, "{name}: other bytes than its settings");
+        changed += usize::from(bytes != plain);
+    }
+    // Most examples change what is baked (the limits and some tolerances do not, on this cube).
+    assert!(changed >= 5, "only {changed} settings changed the asset");
+}
+
 #[test]
 fn a_glb_is_baked_with_its_meta_settings_and_again_when_they_change() {
     let folders = Folders::new();

@@ -1336,3 +1336,49 @@ fn the_frame_benchmark_runs_at_a_tiny_size() {
     let row = out.lines().find(|l| l.starts_with("| cube.obj")).expect("the cube's row");
     assert!(!row.contains("NaN") && !row.contains("inf"), "{row}");
 }
+
+/// Issue 40: every entry of the bake's schema is a flag of `chamfer bake`, and its example value
+/// given as that flag bakes what the same settings bake through the library (Python, the page and
+/// Bevy check theirs against the same settings).
+#[test]
+fn every_schema_option_is_a_flag_that_bakes_what_the_settings_bake() {
+    use chamfer_preprocess::BakeSettings;
+    use chamfer_runtime::schema::{Schema, Value};
+
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mesh = fixture("meshes/fandisk.obj");
+    let help = text(&chamfer(&["bake", "--help"]).stdout);
+    for entry in BakeSettings::ENTRIES {
+        let flag = BakeSettings::flag(entry.name);
+        assert!(help.contains(&flag), "{flag} is not in chamfer bake --help");
+        let mut settings = BakeSettings::default();
+        let mut args = vec![
+            "bake".to_owned(),
+            path_str(&mesh).to_owned(),
+            "-o".to_owned(),
+        ];
+        let out = dir.path().join(format!("{}.chamfer", entry.name));
+        args.push(path_str(&out).to_owned());
+        for name in entry.requires.iter().copied().chain([entry.name]) {
+            let entry = BakeSettings::entry(name).expect("known");
+            entry.set_example(&mut settings);
+            args.push(BakeSettings::flag(name));
+            match entry.example().expect("an example") {
+                Value::Flag(_) => {}
+                value => args.push(value.to_string()),
+            }
+        }
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let run = chamfer(&args);
+        assert!(run.status.success(), "{args:?}: {}", text(&run.stderr));
+        let (options, compact) = settings.options().expect(entry.name);
+        let baked = chamfer_preprocess::bake_file(&mesh, &options).expect("bake");
+        let mut expected = Vec::new();
+        chamfer_preprocess::compact::encode(&baked.asset, compact.as_ref(), &mut expected)
+            .expect("encode");
+        assert!(
+            std::fs::read(&out).expect("baked") == expected,
+            "{args:?} baked other bytes than the settings"
+        );
+    }
+}

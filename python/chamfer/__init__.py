@@ -13,13 +13,15 @@ folders on a Dask cluster: ``chamfer.dask.bake_folder`` (and ``python -m chamfer
 Every function releases the interpreter while it works, and every error is a ``ChamferError``
 (ReadError, WriteError, FormatError, UnsupportedError, MeshError, LimitError, OptionsError,
 ArrayError, AssetError) whose message names the file and the problem; ``error.path`` is the file.
-The bake options are listed in ``help(chamfer.bake)`` and in ``chamfer.OPTIONS``.
+The bake options are listed in ``help(chamfer.bake)`` and in ``chamfer.OPTIONS``; ``chamfer.BAKE_SCHEMA``
+is their schema (the table ``chamfer bake``'s flags, the page and Bevy's ``.meta`` are made from).
 """
 
 import enum as _enum
 
 from . import _chamfer
 from ._chamfer import (
+    BAKE_SCHEMA,
     FORMAT_VERSION,
     OPTIONS,
     ArrayError,
@@ -79,6 +81,7 @@ def from_trimesh(mesh, *, name=None, **options):
 __all__ = [
     "FORMAT_VERSION",
     "OPTIONS",
+    "BAKE_SCHEMA",
     "ArrayError",
     "Asset",
     "AssetError",

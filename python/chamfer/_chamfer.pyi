@@ -3,7 +3,7 @@
 import os
 import pathlib
 import sys
-from typing import Dict, List, Optional, Sequence, Tuple, TypedDict, Union
+from typing import Any, Dict, List, Optional, Sequence, Tuple, TypedDict, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -20,9 +20,10 @@ FORMAT_VERSION: int
 EDGE_FLAGS: List[Tuple[str, int]]
 #: (name, "float" | "int" | "bool", help) of every bake option.
 OPTIONS: List[Tuple[str, str, str]]
+BAKE_SCHEMA: List[Dict[str, Any]]
 
 class BakeOptions(TypedDict, total=False):
-    """The bake options (python/src/options.rs: OPTIONS); None leaves one at its default."""
+    """The bake options (the schema's "bake" group, chamfer.OPTIONS); None leaves one at its default."""
 
     weld_epsilon: Optional[float]
     weld_rel: Optional[float]
@@ -31,14 +32,14 @@ class BakeOptions(TypedDict, total=False):
     radius: Optional[float]
     radius_rel: Optional[float]
     radius_valleys: Optional[bool]
-    intersections: Optional[bool]
-    stitch_rel: Optional[float]
-    stitch_epsilon: Optional[float]
-    no_stitch: Optional[bool]
     max_triangles: Optional[int]
     max_vertices: Optional[int]
     max_instances: Optional[int]
     max_input_bytes: Optional[int]
+    intersections: Optional[bool]
+    stitch_rel: Optional[float]
+    stitch_epsilon: Optional[float]
+    no_stitch: Optional[bool]
 
 class ChamferError(Exception):
     path: Optional[str]

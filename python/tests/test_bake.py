@@ -191,8 +191,9 @@ def test_the_stubs_name_what_the_module_has():
     public = {n for n in dir(chamfer._chamfer) if not n.startswith("_") or n == "__version__"}
     assert public == names - {"BakeOptions"}
     options = next(n for n in stub.body if isinstance(n, ast.ClassDef) and n.name == "BakeOptions")
-    keys = [s.target.id for s in options.body if isinstance(s, ast.AnnAssign)]
-    assert keys == [name for name, _, _ in chamfer.OPTIONS]
+    # The TypedDict is the schema's bake group: same names, order and types.
+    keys = [(s.target.id, ast.unparse(s.annotation)) for s in options.body if isinstance(s, ast.AnnAssign)]
+    assert keys == [(name, f"Optional[{kind}]") for name, kind, _ in chamfer.OPTIONS]
     assert (Path(chamfer.__file__).parent / "py.typed").is_file()
 
 
@@ -218,3 +219,21 @@ def test_compact_files_are_the_cli_compact_bakes_and_state_their_precision(cli, 
     with pytest.raises(chamfer.OptionsError, match="position bits"):
         asset.save(tmp_path / "never.chamfer", compact=True, position_bits=20)
     assert not (tmp_path / "never.chamfer").exists()
+
+
+def test_every_schema_option_is_a_keyword_that_bakes_what_chamfer_bake_bakes(cli, tmp_path):
+    """Issue 40: each entry of the bake schema, set to its example through Python's keywords (the
+    "bake" group: bake(); "encoding": Asset.encode()), bakes chamfer bake's bytes with its flag."""
+    mesh = MESHES / "fandisk.obj"
+    schema = {e["name"]: e for e in chamfer.BAKE_SCHEMA}
+    assert [e["name"] for e in chamfer.BAKE_SCHEMA if e["group"] == "bake"] == [n for n, _, _ in chamfer.OPTIONS]
+    for entry in chamfer.BAKE_SCHEMA:
+        given = [schema[name] for name in [*entry["requires"], entry["name"]]]
+        assert all(e["example"] is not None and e["example"] != e["default"] for e in given), given
+        flags = []
+        for e in given:
+            flags += ["--" + e["name"].replace("_", "-")] + ([] if e["kind"] == "flag" else [str(e["example"])])
+        expected = cli.bake(mesh, tmp_path / f"{entry['name']}.chamfer", *flags)
+        bake = {e["name"]: e["example"] for e in given if e["group"] == "bake"}
+        encode = {e["name"]: e["example"] for e in given if e["group"] == "encoding"}
+        assert chamfer.bake(mesh, **bake).encode(**encode) == expected, flags

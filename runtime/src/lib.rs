@@ -18,3 +18,4 @@ pub mod highlight;
 #[cfg(feature = "render")]
 pub mod render;
 pub mod scene;
+pub mod schema;

@@ -8,6 +8,7 @@ use chamfer_preprocess::draw::{DrawOptions, hidden_lines};
 use chamfer_preprocess::inspect::summary;
 use chamfer_preprocess::{Companions, bake_with_companions, compact};
 use chamfer_runtime::asset::Asset;
+use chamfer_runtime::schema::Schema;
 use wasm_bindgen::prelude::*;
 
 use crate::settings::{BakeSettings, ViewSettings, bake_settings};
@@ -153,6 +154,14 @@ pub fn draw_svg(
     svg_of(name, bytes, &view, [width, height]).map_err(js_error)
 }
 
+/// The bake's schema, as JSON: every option `chamfer bake` has (`BakeSettings`' table: name, kind,
+/// group, default, example, range, help, conflicts, requires), from which the page builds its
+/// bake panel.
+#[wasm_bindgen(js_name = bakeSchema)]
+pub fn bake_schema() -> String {
+    BakeSettings::schema_json().to_string()
+}
+
 /// The techniques the runtime has, as JSON: `[{name, summary, post_process}]`.
 #[wasm_bindgen]
 pub fn techniques() -> String {
@@ -177,6 +186,44 @@ mod tests {
         Path::new(env!("CARGO_MANIFEST_DIR"))
             .join("../fixtures")
             .join(relative)
+    }
+
+    /// Issue 40: every entry of the bake schema the page builds its panel from, given as JSON
+    /// (the page's settings) with its example value, bakes what the same settings bake through
+    /// the library (chamfer bake's flags are checked against those too, preprocess/tests/cli.rs).
+    #[test]
+    fn every_schema_option_set_in_the_page_settings_bakes_what_the_settings_bake() {
+        let schema: serde_json::Value = serde_json::from_str(&bake_schema()).expect("json");
+        let entries = schema.as_array().expect("an array");
+        assert_eq!(entries.len(), BakeSettings::ENTRIES.len());
+        let mesh = fixture("meshes/fandisk.obj");
+        let files = vec![("fandisk.obj".to_owned(), std::fs::read(&mesh).expect("mesh"))];
+        for entry in entries {
+            let name = entry["name"].as_str().expect("a name");
+            let mut json = serde_json::Map::new();
+            let requires = entry["requires"].as_array().expect("requires");
+            for needed in requires.iter().filter_map(|n| n.as_str()).chain([name]) {
+                let example = schema
+                    .as_array()
+                    .and_then(|all| all.iter().find(|e| e["name"] == needed))
+                    .map(|e| e["example"].clone())
+                    .expect("an example");
+                json.insert(needed.to_owned(), example);
+            }
+            let json = serde_json::Value::Object(json).to_string();
+            let settings = bake_settings(&json).expect("settings");
+            let baked = bake_files("fandisk.obj", &files, &settings, &mut |_| {}).expect(name);
+            let mut direct = BakeSettings::default();
+            for needed in requires.iter().filter_map(|n| n.as_str()).chain([name]) {
+                BakeSettings::entry(needed).expect("known").set_example(&mut direct);
+            }
+            assert_eq!(settings, direct, "{json}");
+            let (options, compact) = direct.options().expect("options");
+            let on_disk = chamfer_preprocess::bake_file(&mesh, &options).expect("on disk");
+            let mut expected = Vec::new();
+            compact::encode(&on_disk.asset, compact.as_ref(), &mut expected).expect("encode");
+            assert!(baked.asset == expected, "{json}: other bytes");
+        }
     }
 
     #[test]

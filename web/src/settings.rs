@@ -3,7 +3,7 @@
 //! so the page and the commands make the same asset and the same picture.
 
 use chamfer_preprocess::draw::LineClass;
-pub use chamfer_preprocess::settings::BakeSettings;
+pub use chamfer_preprocess::schema::BakeSettings;
 use chamfer_runtime::highlight::ggx::PbrMaterial;
 use chamfer_runtime::highlight::strip::Material;
 use chamfer_runtime::render::{
@@ -294,7 +294,8 @@ mod tests {
         for (json, expected) in [
             (r#"{"crease_deg": -5}"#, "crease"),
             (r#"{"position_bits": 40}"#, "position"),
-            (r#"{"radius": 1}"#, "unknown field `radius`"),
+            (r#"{"stitch": 1}"#, "unknown field `stitch`"),
+            (r#"{"radius": 1, "radius_rel": 0.01}"#, "cannot both be given"),
         ] {
             let error = bake_settings(json)
                 .and_then(|b| b.options().map(|_| ()).map_err(|e| e.to_string()))

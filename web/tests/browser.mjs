@@ -123,7 +123,7 @@ await check("the asset baked in the page is byte-identical to chamfer bake's", a
   for (const [file, compact] of [[fandisk, true], ["fixtures/shapes/cube-marked-le.ply", false]]) {
     const page = await openPage(session);
     await settled(page);
-    await page.evaluate((compact) => { document.getElementById("compact").checked = compact; }, compact);
+    await page.evaluate((compact) => { document.getElementById("bake-compact").checked = compact; }, compact);
     await upload(page, file);
     await settled(page);
     const bytes = Buffer.from(await page.evaluate(() => [...window.chamfer.asset.bytes]));
@@ -135,6 +135,42 @@ await check("the asset baked in the page is byte-identical to chamfer bake's", a
     console.log(`     ${file}${compact ? " --compact" : ""}: ${cli.length} bytes, identical`);
     await page.close();
   }
+});
+
+// Issue 40: the bake panel is built from the wasm module's bake schema, the table chamfer bake's
+// flags come from: each entry, set in its control to the schema's example, bakes chamfer bake's bytes
+// with that flag.
+await check("every bake option of the schema is a control whose bake is chamfer bake's with its flag", async () => {
+  const page = await openPage(session);
+  await settled(page);
+  const schema = await page.evaluate(() => window.chamfer.bakeSchema);
+  const controls = await page.evaluate(() => [...document.querySelectorAll("#bake-options input")].map((i) => i.id));
+  expect(controls.length === schema.length && schema.every((e) => controls.includes(`bake-${e.name}`)),
+    `controls ${controls} for ${schema.map((e) => e.name)}`);
+  const file = "fixtures/meshes/fandisk.obj";
+  for (const entry of schema) {
+    const given = [...entry.requires, entry.name].map((name) => schema.find((e) => e.name === name));
+    await page.evaluate((given) => {
+      for (const input of document.querySelectorAll("#bake-options input")) {
+        if (input.type === "checkbox") input.checked = false; else input.value = "";
+      }
+      for (const e of given) {
+        const input = document.getElementById(`bake-${e.name}`);
+        if (e.kind === "flag") input.checked = true; else input.value = String(e.example);
+      }
+      document.getElementById("status").textContent = "";
+    }, given);
+    await upload(page, file);
+    await settled(page);
+    const bytes = Buffer.from(await page.evaluate(() => [...window.chamfer.asset.bytes]));
+    const flags = given.flatMap((e) => [`--${e.name.replaceAll("_", "-")}`, ...(e.kind === "flag" ? [] : [String(e.example)])]);
+    const out = join(outDir, `schema-${entry.name}.chamfer`);
+    execFileSync(chamfer, ["bake", file, "-o", out, ...flags], { stdio: "ignore" });
+    const cli = readFileSync(out);
+    expect(bytes.length > 0 && bytes.equals(cli), `${flags.join(" ")}: ${bytes.length} bytes in the page, ${cli.length} from the CLI`);
+  }
+  console.log(`     ${schema.length} options, each baked as chamfer bake does with its flag`);
+  await page.close();
 });
 
 await check("the downloads are the asset on screen and its SVG drawing", async () => {
@@ -192,7 +228,7 @@ await check("the highlight draws on every asset: no chamfer edges, chamfer edges
   // The cylinder between the two cubes: the same name twice in a row would not wait for the new bake.
   for (const [file, radius, strips] of [["fixtures/shapes/cube.obj", "", false],
     ["fixtures/meshes/cylinder.obj", "0.01", true], ["fixtures/shapes/cube.obj", "0.02", true]]) {
-    await page.evaluate((r) => { document.getElementById("radius-rel").value = r; }, radius);
+    await page.evaluate((r) => { document.getElementById("bake-radius_rel").value = r; }, radius);
     await upload(page, file);
     await settled(page);
     const off = await capture(page, { highlight: "off" });

@@ -1,7 +1,7 @@
 // The page: files in (picker, drop, ?url=, or the bundled fandisk), bakes in worker.js, the asset
 // drawn by the wasm Viewer on WebGPU, the controls, the downloads. Query parameters: url (a file to
 // load), azimuth / elevation (the camera), size (WxH canvas pixels), technique.
-import init, { createViewer, techniques } from "./pkg/chamfer_web.js";
+import init, { bakeSchema, createViewer, techniques } from "./pkg/chamfer_web.js";
 
 const $ = (id) => document.getElementById(id);
 const canvas = $("canvas");
@@ -63,12 +63,43 @@ function run(message, progress, transfer = []) {
 }
 
 // --- loading ----------------------------------------------------------------------------------
+// The bake panel's controls, one per entry of the bake schema (the wasm module's, the same table
+// chamfer bake's flags and Python's keywords are made from): a checkbox per flag, a number field per
+// number or count, empty for the default. The page bakes compact assets unless told otherwise.
+const PAGE_DEFAULTS = { compact: true };
+function setUpBakeOptions(schema) {
+  state.bakeSchema = schema;
+  for (const entry of schema) {
+    const label = document.createElement("label");
+    label.title = entry.help;
+    const input = document.createElement("input");
+    input.id = `bake-${entry.name}`;
+    input.dataset.kind = entry.kind;
+    if (entry.kind === "flag") {
+      input.type = "checkbox";
+      input.checked = PAGE_DEFAULTS[entry.name] ?? false;
+      label.append(input, ` ${entry.name}`);
+    } else {
+      input.type = "number";
+      input.step = entry.kind === "count" ? "1" : "any";
+      if (entry.range) [input.min, input.max] = entry.range;
+      input.placeholder = entry.default ?? "none";
+      label.append(`${entry.name} `, input);
+    }
+    $("bake-options").append(label);
+  }
+}
+
 function bakeSettings() {
-  const settings = { compact: $("compact").checked };
-  const crease = $("crease-deg").value;
-  if (crease !== "") settings.crease_deg = Number(crease);
-  const radius = $("radius-rel").value;
-  if (radius !== "" && Number(radius) > 0) settings.radius_rel = Number(radius);
+  const settings = {};
+  for (const entry of state.bakeSchema) {
+    const input = $(`bake-${entry.name}`);
+    if (entry.kind === "flag") {
+      if (input.checked) settings[entry.name] = true;
+    } else if (input.value !== "") {
+      settings[entry.name] = Number(input.value);
+    }
+  }
   return JSON.stringify(settings);
 }
 
@@ -314,6 +345,7 @@ async function start() {
   const size = query.get("size")?.match(/^(\d+)x(\d+)$/);
   if (size) [canvas.width, canvas.height] = [Number(size[1]), Number(size[2])];
   setUpControls(JSON.parse(techniques()));
+  setUpBakeOptions(JSON.parse(bakeSchema()));
   try {
     if (!navigator.gpu) throw new Error("this browser has no WebGPU (navigator.gpu is missing)");
     state.viewer = await createViewer(canvas);

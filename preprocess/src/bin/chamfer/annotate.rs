@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use chamfer_preprocess::annotate::GltfEdges;
 use clap::{Args, ValueEnum};
 
-use crate::bake::OptionArgs;
+use crate::flags::BakeFlags;
 
 /// Write the mesh back with its chamfer marks and radii embedded (PLY `edge` element; glTF
 /// `extras.chamfer` per primitive, and if asked the EXT_mesh_primitive_edge_visibility and
@@ -42,7 +42,7 @@ pub struct AnnotateArgs {
     )]
     gltf_edges: Vec<Dialect>,
     #[command(flatten)]
-    options: OptionArgs,
+    options: BakeFlags,
 }
 
 /// One glTF edge dialect.

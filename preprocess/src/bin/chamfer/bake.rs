@@ -8,12 +8,13 @@ use std::time::{Duration, Instant};
 use anyhow::{Context, bail};
 use chamfer_preprocess::write::{ensure_not_an_input, ensure_replaceable, write_atomically};
 use chamfer_preprocess::{
-    BakeOptions, Baked, Error, Limits, Radius, Stitch, WeldTolerance, bake_file, build, compact,
+    BakeOptions, Baked, Error, bake_file, build, compact,
 };
 use chamfer_runtime::asset::CompactOptions;
 use clap::Args;
 use rayon::prelude::*;
 
+use crate::flags::{BakeFlags, EncodingFlags};
 use crate::memory::peak_rss_bytes;
 
 /// What every command that reads a mesh says about limits and companion files.
@@ -49,7 +50,7 @@ pub struct BakeArgs {
     #[arg(short, long)]
     output: PathBuf,
     #[command(flatten)]
-    options: OptionArgs,
+    options: BakeFlags,
     /// Print the time of each bake step and the peak memory.
     #[arg(long)]
     timings: bool,
@@ -59,130 +60,7 @@ pub struct BakeArgs {
     #[arg(long)]
     scene: bool,
     #[command(flatten)]
-    compact: CompactArgs,
-}
-
-/// How the asset is stored (shared with `chamfer demo`).
-#[derive(Args, Clone)]
-pub struct CompactArgs {
-    /// Write the compact format for shipping: coded sections, positions on a grid of
-    /// --position-bits per axis over the bounding box, octahedral normals of --normal-bits
-    /// (`chamfer inspect` states each error bound). The loader decodes it to the same GPU sections.
-    #[arg(long)]
-    compact: bool,
-    /// Bits per axis of the compact positions' grid (1 to 16), or 32 to keep them exact.
-    #[arg(long, value_name = "BITS", default_value_t = CompactOptions::default().position_bits, requires = "compact")]
-    position_bits: u32,
-    /// Bits per component of the compact normals' octahedral code (2 to 16), or 32 to keep them exact.
-    #[arg(long, value_name = "BITS", default_value_t = CompactOptions::default().normal_bits, requires = "compact")]
-    normal_bits: u32,
-}
-
-impl CompactArgs {
-    /// The compact options, checked; `None` for the uncompressed format.
-    pub fn to_options(&self) -> anyhow::Result<Option<CompactOptions>> {
-        if !self.compact {
-            return Ok(None);
-        }
-        let options = CompactOptions {
-            position_bits: self.position_bits,
-            normal_bits: self.normal_bits,
-        };
-        options.check().map_err(anyhow::Error::msg)?;
-        Ok(Some(options))
-    }
-}
-
-/// The bake settings as command-line flags (shared with `chamfer demo`).
-#[derive(Args, Clone)]
-pub struct OptionArgs {
-    /// Weld positions closer than this distance, in mesh units; 0 welds only identical positions.
-    /// [default: --weld-rel 1e-6]
-    #[arg(long, value_name = "DIST", conflicts_with = "weld_rel")]
-    weld_epsilon: Option<f32>,
-    /// Weld positions closer than this fraction of the distance from the origin to the bounding
-    /// box's farthest corner (1e-6 is at least 8 ULPs of the largest coordinate: the copies of a
-    /// vertex that CAD exports leave apart weld, distinct vertices do not).
-    #[arg(long, value_name = "F", default_value_t = WeldTolerance::DEFAULT_FRACTION)]
-    weld_rel: f32,
-    /// Drop interior edges whose faces are coplanar within this many degrees.
-    #[arg(long, default_value_t = BakeOptions::DEFAULT.coplanar_deg, value_name = "DEG")]
-    coplanar_deg: f32,
-    /// Edges whose faces meet at this many degrees or more are creases.
-    #[arg(long, default_value_t = BakeOptions::DEFAULT.crease_deg, value_name = "DEG")]
-    crease_deg: f32,
-    /// Give ridge creases (and marked edges without a radius) this chamfer radius, in mesh units.
-    /// Radii marked in the file win.
-    #[arg(long, value_name = "R", conflicts_with = "radius_rel")]
-    radius: Option<f32>,
-    /// Like --radius, as a fraction of the bounding box's diagonal (e.g. 0.005).
-    #[arg(long, value_name = "F")]
-    radius_rel: Option<f32>,
-    /// Give valley creases the radius too.
-    #[arg(long)]
-    radius_valleys: bool,
-    /// Refuse a mesh with more triangles than this (after fanning polygons and glTF instancing).
-    #[arg(long, default_value_t = Limits::DEFAULT.max_triangles, value_name = "N")]
-    max_triangles: u64,
-    /// Refuse a mesh with more vertices than this (as loaded, before welding).
-    #[arg(long, default_value_t = Limits::DEFAULT.max_vertices, value_name = "N")]
-    max_vertices: u64,
-    /// Refuse a glTF whose node graph (or a 3MF whose components and build) expands into more
-    /// mesh instances than this.
-    #[arg(long, default_value_t = Limits::DEFAULT.max_instances, value_name = "N")]
-    max_instances: u64,
-    /// Refuse a file (or a file it refers to) larger than this many bytes, after inflating .gz.
-    #[arg(long, default_value_t = Limits::DEFAULT.max_input_bytes, value_name = "BYTES")]
-    max_input_bytes: u64,
-    /// Also find intersection edges, where triangles cut through each other (within one mesh and
-    /// between the objects, primitives and instances of the file), and store them in the asset.
-    #[arg(long)]
-    intersections: bool,
-    /// Stitch the cracks between separately tessellated faces (CAD/BIM exports): join boundary
-    /// vertices closer than this fraction of the bounding box's diagonal and split boundary edges
-    /// at boundary vertices this close to them (T-junctions). Open boundaries wider stay open.
-    #[arg(long, value_name = "F", default_value_t = Stitch::DEFAULT_FRACTION, conflicts_with_all = ["stitch_epsilon", "no_stitch"])]
-    stitch_rel: f32,
-    /// Like --stitch-rel, as a distance in mesh units.
-    #[arg(long, value_name = "DIST", conflicts_with = "no_stitch")]
-    stitch_epsilon: Option<f32>,
-    /// Do not stitch: every boundary edge the weld leaves stays a boundary.
-    #[arg(long)]
-    no_stitch: bool,
-}
-
-impl OptionArgs {
-    /// The options, checked.
-    pub fn to_options(&self) -> anyhow::Result<BakeOptions> {
-        let options = BakeOptions::DEFAULT
-            .with_weld(match self.weld_epsilon {
-                Some(distance) => WeldTolerance::Absolute(distance),
-                None => WeldTolerance::Relative(self.weld_rel),
-            })
-            .with_coplanar_deg(self.coplanar_deg)
-            .with_crease_deg(self.crease_deg)
-            .with_radius(match (self.radius, self.radius_rel) {
-                (Some(r), _) => Radius::Absolute(r),
-                (None, Some(f)) => Radius::Relative(f),
-                (None, None) => Radius::None,
-            })
-            .with_radius_valleys(self.radius_valleys)
-            .with_limits(
-                Limits::DEFAULT
-                    .with_max_triangles(self.max_triangles)
-                    .with_max_vertices(self.max_vertices)
-                    .with_max_instances(self.max_instances)
-                    .with_max_input_bytes(self.max_input_bytes),
-            )
-            .with_intersections(self.intersections)
-            .with_stitch(match (self.no_stitch, self.stitch_epsilon) {
-                (true, _) => Stitch::Off,
-                (false, Some(distance)) => Stitch::Absolute(distance),
-                (false, None) => Stitch::Relative(self.stitch_rel),
-            });
-        options.validate()?;
-        Ok(options)
-    }
+    compact: EncodingFlags,
 }
 
 pub fn run(args: &BakeArgs) -> anyhow::Result<()> {

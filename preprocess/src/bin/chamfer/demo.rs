@@ -8,7 +8,7 @@ use chamfer_preprocess::bake_bytes;
 use chamfer_preprocess::write::write_atomically;
 use clap::Args;
 
-use crate::bake::OptionArgs;
+use crate::flags::BakeFlags;
 
 /// The bundled mesh: Hoppe's fandisk, 12,946 triangles (see fixtures/meshes/SOURCES.md). `assets/fandisk.obj`
 /// is a link to the fixture, so the file lives once in the repository and travels in the package.
@@ -21,7 +21,7 @@ pub struct DemoArgs {
     #[arg(short, long, default_value = "demo-output/fandisk.chamfer")]
     output: PathBuf,
     #[command(flatten)]
-    options: OptionArgs,
+    options: BakeFlags,
     #[command(flatten)]
     view: crate::render::ViewArgs,
 }

@@ -9,7 +9,7 @@ use chamfer_preprocess::draw::{DrawOptions, LineClass, hidden_lines};
 use chamfer_preprocess::write::{ensure_not_an_input, write_atomically};
 use clap::{Args, ValueEnum};
 
-use crate::bake::OptionArgs;
+use crate::flags::BakeFlags;
 use crate::render::CameraArgs;
 
 /// Draw the visible contours, boundaries, marked edges, creases and intersection edges of an asset
@@ -48,7 +48,7 @@ pub struct DrawArgs {
     #[arg(long)]
     timings: bool,
     #[command(flatten)]
-    options: OptionArgs,
+    options: BakeFlags,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]

@@ -5,6 +5,7 @@ mod annotate;
 mod bake;
 mod demo;
 mod draw;
+mod flags;
 mod inspect;
 mod memory;
 mod render;

@@ -18,7 +18,7 @@ use chamfer_runtime::render::{
 use clap::{Args, ValueEnum};
 use glam::Mat4;
 
-use crate::bake::OptionArgs;
+use crate::flags::BakeFlags;
 
 /// Render an asset (`.chamfer`) or a mesh (baked on the fly with the bake flags) to a PNG.
 #[derive(Args)]
@@ -32,7 +32,7 @@ pub struct RenderArgs {
     #[command(flatten)]
     view: ViewArgs,
     #[command(flatten)]
-    options: OptionArgs,
+    options: BakeFlags,
 }
 
 /// Where the camera is and the frame it fills (shared with `chamfer draw`, so a drawing and a

@@ -46,14 +46,17 @@ pub struct CompactOptions {
 
 impl Default for CompactOptions {
     fn default() -> Self {
-        Self {
-            position_bits: 16,
-            normal_bits: 12,
-        }
+        Self::DEFAULT
     }
 }
 
 impl CompactOptions {
+    /// 16 bits per axis for positions, 12 per component for normals.
+    pub const DEFAULT: Self = Self {
+        position_bits: 16,
+        normal_bits: 12,
+    };
+
     /// Every number lossless: the decoded asset equals the encoded one.
     pub const LOSSLESS: Self = Self {
         position_bits: LOSSLESS_BITS,

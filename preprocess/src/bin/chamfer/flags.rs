@@ -1,0 +1,111 @@
+//! clap flags made from a schema (issue 40): each entry of a group becomes `--kebab-name`, with its
+//! help (other entries spelled as flags), value name, default, conflicts and requirements. What the
+//! command line gives is set into the schema's struct; the rest keeps the struct's defaults.
+
+use chamfer_preprocess::BakeSettings;
+use chamfer_runtime::schema::{Entry, Kind, Schema, Value};
+use clap::error::ErrorKind;
+use clap::{Arg, ArgAction, ArgMatches, Args, Command, FromArgMatches, value_parser};
+
+/// The flags of `group`'s entries added to `command`.
+fn augment<S: Schema>(command: Command, group: &str) -> Command {
+    S::ENTRIES
+        .iter()
+        .filter(|entry| entry.group == group)
+        .fold(command, |command, entry| command.arg(arg(entry)))
+}
+
+fn arg<S: Schema>(entry: &Entry<S>) -> Arg {
+    let mut help = entry.help(|name| BakeSettings::flag(name));
+    let arg = Arg::new(entry.name)
+        .long(entry.name.replace('_', "-"))
+        .conflicts_with_all(entry.conflicts.iter().copied());
+    let arg = entry
+        .requires
+        .iter()
+        .fold(arg, |arg, &needed| arg.requires(needed));
+    let arg = match entry.kind {
+        Kind::Flag => return arg.action(ArgAction::SetTrue).help(help),
+        Kind::Number => arg.value_parser(value_parser!(f32)),
+        Kind::Count => arg.value_parser(value_parser!(u64)),
+    };
+    if let Some(default) = entry.default() {
+        help.push_str(&format!(" [default: {default}]"));
+    }
+    arg.action(ArgAction::Set)
+        .value_name(entry.value_name)
+        .help(help)
+}
+
+/// Sets into `settings` the values of `group`'s flags that `matches` holds.
+fn read<S: Schema>(matches: &ArgMatches, group: &str, settings: &mut S) -> Result<(), clap::Error> {
+    for entry in S::ENTRIES.iter().filter(|entry| entry.group == group) {
+        let value = match entry.kind {
+            Kind::Number => matches.get_one::<f32>(entry.name).copied().map(Value::Number),
+            Kind::Count => matches.get_one::<u64>(entry.name).copied().map(Value::Count),
+            Kind::Flag => matches.get_flag(entry.name).then_some(Value::Flag(true)),
+        };
+        if let Some(value) = value {
+            entry
+                .set(settings, value)
+                .map_err(|e| clap::Error::raw(ErrorKind::ValueValidation, e))?;
+        }
+    }
+    Ok(())
+}
+
+/// Flags for the entries of one group of [`BakeSettings`].
+macro_rules! group_flags {
+    ($(#[$meta:meta])* $name:ident, $group:literal) => {
+        $(#[$meta])*
+        #[derive(Clone, Default)]
+        pub struct $name(pub BakeSettings);
+
+        impl FromArgMatches for $name {
+            fn from_arg_matches(matches: &ArgMatches) -> Result<Self, clap::Error> {
+                let mut settings = BakeSettings::default();
+                read(matches, $group, &mut settings)?;
+                Ok(Self(settings))
+            }
+
+            fn update_from_arg_matches(&mut self, matches: &ArgMatches) -> Result<(), clap::Error> {
+                read(matches, $group, &mut self.0)
+            }
+        }
+
+        impl Args for $name {
+            fn augment_args(command: Command) -> Command {
+                augment::<BakeSettings>(command, $group)
+            }
+
+            fn augment_args_for_update(command: Command) -> Command {
+                augment::<BakeSettings>(command, $group)
+            }
+        }
+    };
+}
+
+group_flags!(
+    /// The bake options as flags (`chamfer bake`, `demo`, `annotate`, `draw`, `render`).
+    BakeFlags,
+    "bake"
+);
+group_flags!(
+    /// How the asset is stored (`chamfer bake`, `demo`).
+    EncodingFlags,
+    "encoding"
+);
+
+impl BakeFlags {
+    /// The options, checked.
+    pub fn to_options(&self) -> anyhow::Result<chamfer_preprocess::BakeOptions> {
+        Ok(self.0.bake_options()?)
+    }
+}
+
+impl EncodingFlags {
+    /// The compact options, checked; `None` for the uncompressed format.
+    pub fn to_options(&self) -> anyhow::Result<Option<chamfer_runtime::asset::CompactOptions>> {
+        Ok(self.0.compact_options()?)
+    }
+}
