@@ -27,6 +27,7 @@ const fn python_type(kind: Kind) -> &'static str {
 /// wrong type, two conflicting options or a value out of range raises `OptionsError`.
 pub fn from_kwargs(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<BakeOptions> {
     let mut settings = BakeSettings::default();
+    let mut given = Vec::new();
     if let Some(kwargs) = kwargs {
         for (key, value) in kwargs.iter() {
             let name: String = key.extract()?;
@@ -45,8 +46,13 @@ pub fn from_kwargs(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<BakeOptions> 
             entry
                 .set(&mut settings, value)
                 .map_err(|e| errors::options(e.to_string()))?;
+            // A flag given False is not given (as its flag left off the command line).
+            if value != Value::Flag(false) {
+                given.push(entry.name);
+            }
         }
     }
+    BakeSettings::check_names(&given).map_err(|e| errors::options(e.to_string()))?;
     settings.bake_options().map_err(|e| match e {
         chamfer_preprocess::SettingsError::Options(e) => errors::from_library(e.into()),
         other => errors::options(other.to_string()),

@@ -275,18 +275,28 @@ pub trait Schema: Default + Sized + 'static {
         Self::entry(name)?.set(self, value)
     }
 
-    /// Refuses given entries that conflict, or that lack an entry they need.
+    /// Refuses given entries that conflict, or that lack an entry they need; an entry is given
+    /// when it holds a value other than its default (see [`Schema::check_names`] where the names
+    /// given are known).
     fn check_combinations(&self) -> Result<(), SchemaError> {
-        for entry in Self::ENTRIES.iter().filter(|e| e.is_given(self)) {
-            for &other in entry.conflicts {
-                if Self::entry(other)?.is_given(self) {
-                    return Err(SchemaError::Conflict(entry.name, other));
-                }
+        let given: Vec<&str> = Self::ENTRIES
+            .iter()
+            .filter(|e| e.is_given(self))
+            .map(|e| e.name)
+            .collect();
+        Self::check_names(&given)
+    }
+
+    /// Refuses `given`, the names of the entries a caller gave (a default given explicitly
+    /// included), when two of them conflict or one lacks an entry it needs.
+    fn check_names(given: &[&str]) -> Result<(), SchemaError> {
+        for &name in given {
+            let entry = Self::entry(name)?;
+            if let Some(&other) = entry.conflicts.iter().find(|c| given.contains(c)) {
+                return Err(SchemaError::Conflict(entry.name, other));
             }
-            for &needed in entry.requires {
-                if !Self::entry(needed)?.is_given(self) {
-                    return Err(SchemaError::Requires(entry.name, needed));
-                }
+            if let Some(&needed) = entry.requires.iter().find(|r| !given.contains(r)) {
+                return Err(SchemaError::Requires(entry.name, needed));
             }
         }
         Ok(())
@@ -441,6 +451,11 @@ mod tests {
         );
         s.on = true;
         assert_eq!(s.check_combinations(), Ok(()));
+        // A default given explicitly still conflicts.
+        assert_eq!(
+            Sample::check_names(&["fraction", "length"]),
+            Err(SchemaError::Conflict("length", "fraction"))
+        );
     }
 
     #[test]
