@@ -267,6 +267,9 @@ struct Tally {
     worst_view: [f64; 3],
     /// The view with the most pixels covered by ours and not the truth: (pixels, view).
     worst_overhang: (usize, usize),
+    /// Time in the truth's renders and in ours (for BENCHMARKS: what the validation costs).
+    truth_time: std::time::Duration,
+    ours_time: std::time::Duration,
 }
 
 /// The box of radius `r` from `chamfer render`'s default camera direction, rounded and sharp with the
@@ -356,8 +359,12 @@ fn whole_frames_of_the_highlight_match_the_rounded_solids() {
             for (l, lit) in Lit::ALL.into_iter().enumerate() {
                 let (mesh, edges) = lit.styles(*towards);
                 let env = (lit == Lit::Environment).then_some(&environment);
+                let started = std::time::Instant::now();
                 let truth = render_supersampled_on(rounded, orbit, SIZE, &mesh, FACTOR, env, BLACK);
+                tally.truth_time += started.elapsed();
+                let started = std::time::Instant::now();
                 let ours = render_lit_on(sharp, &camera, &mesh, Some(&edges), env, BLACK);
+                tally.ours_time += started.elapsed();
                 if lit == Lit::Blinn {
                     let truth_white =
                         render_supersampled_on(rounded, orbit, SIZE, &mesh, FACTOR, env, WHITE);
@@ -383,6 +390,11 @@ fn whole_frames_of_the_highlight_match_the_rounded_solids() {
         }
         all_pixels += tally.pixels;
         all_overhang += tally.overhang;
+        println!(
+            "{name}: the truth's renders took {:.1} s, ours {:.1} s (Blinn's white-background pair not counted)",
+            tally.truth_time.as_secs_f64(),
+            tally.ours_time.as_secs_f64()
+        );
         let (over, view) = tally.worst_overhang;
         println!("{name}: the most pixels covered by ours and not the truth, {over}, in view {view}: {:?}", views[view].0);
         for (l, lit) in Lit::ALL.into_iter().enumerate() {
@@ -462,3 +474,4 @@ fn the_highlight_renders_with_and_without_chamfer_edges_and_corners() {
         }
     }
 }
+
