@@ -1,7 +1,7 @@
 //! Option schemas (issue 40): one table per concept (the bake's options, ...) from which every front
 //! end builds its own surface — clap's flags and their help, Python's keywords and `chamfer.OPTIONS`,
 //! the page's controls, Bevy's `.meta` — so an option is declared once, next to the code that uses
-//! it. [`schema!`] writes the struct (typed fields, serde's derive for JSON and RON) and its table
+//! it. [`schema!`](crate::schema!) writes the struct (typed fields, serde's derive for JSON and RON) and its table
 //! ([`Schema::ENTRIES`]: each field's name, kind, default, range, help, conflicts and an example of a
 //! value other than the default, which the cross-front-end tests set through each front end).
 
@@ -106,7 +106,7 @@ field!(f32, Number);
 field!(u64, Count);
 field!(bool, Flag);
 
-/// One entry of a schema: a field of the struct `S`, described. Made by [`schema!`]; the function
+/// One entry of a schema: a field of the struct `S`, described. Made by [`schema!`](crate::schema!); the function
 /// fields are its accessors (use the methods).
 pub struct Entry<S: 'static> {
     /// The field's name, snake_case: the JSON/RON key and Python keyword; the CLI flag is it in
@@ -250,7 +250,7 @@ impl<S: Schema> Entry<S> {
     }
 }
 
-/// A struct described by a table of entries, made by [`schema!`].
+/// A struct described by a table of entries, made by [`schema!`](crate::schema!).
 pub trait Schema: Default + Sized + 'static {
     /// The fields, in declaration order.
     const ENTRIES: &'static [Entry<Self>];
