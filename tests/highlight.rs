@@ -627,7 +627,11 @@ fn the_pbr_highlight_catches_the_environment_like_real_fillets() {
     );
     // 1 % before issue 39; its silhouette strips and corners left the cylinder at 6 px, roughness 0.2,
     // at 1.01 % (measured 2026-12-05): held here, not yet brought back under 1 %.
-    assert!(worst_mean <= 0.0102, "mean error {:.2} %", worst_mean * 100.0);
+    assert!(
+        worst_mean <= 0.0102,
+        "mean error {:.2} %",
+        worst_mean * 100.0
+    );
     assert!(
         plain_worst > 3.0 * worst_mean,
         "the control must differ: {plain_worst}"

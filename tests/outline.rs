@@ -396,7 +396,10 @@ fn whole_frames_of_the_highlight_match_the_rounded_solids() {
             tally.ours_time.as_secs_f64()
         );
         let (over, view) = tally.worst_overhang;
-        println!("{name}: the most pixels covered by ours and not the truth, {over}, in view {view}: {:?}", views[view].0);
+        println!(
+            "{name}: the most pixels covered by ours and not the truth, {over}, in view {view}: {:?}",
+            views[view].0
+        );
         for (l, lit) in Lit::ALL.into_iter().enumerate() {
             let e = &mut tally.errors[l];
             let mean = e.iter().sum::<f64>() / e.len().max(1) as f64;
@@ -446,9 +449,13 @@ fn whole_frames_of_the_highlight_match_the_rounded_solids() {
 #[test]
 fn the_highlight_renders_with_and_without_chamfer_edges_and_corners() {
     let r = 0.1;
-    let plain = chamfer_preprocess::bake(rounded_box(0.0), "plain", &chamfer_preprocess::BakeOptions::DEFAULT)
-        .expect("bake")
-        .asset;
+    let plain = chamfer_preprocess::bake(
+        rounded_box(0.0),
+        "plain",
+        &chamfer_preprocess::BakeOptions::DEFAULT,
+    )
+    .expect("bake")
+    .asset;
     let (_, cylinder) = rounded_and_sharp(rounded_cylinder, r);
     let (_, rounded) = rounded_and_sharp(rounded_box, r);
     let orbit = Orbit::default();
@@ -465,7 +472,12 @@ fn the_highlight_renders_with_and_without_chamfer_edges_and_corners() {
     ] {
         let lit = render_lit_on(asset, &camera, &mesh, Some(&edges), None, BLACK);
         let unlit = render_lit_on(asset, &camera, &mesh, Some(&without), None, BLACK);
-        let changed = lit.rgba.chunks(4).zip(unlit.rgba.chunks(4)).filter(|(a, b)| a != b).count();
+        let changed = lit
+            .rgba
+            .chunks(4)
+            .zip(unlit.rgba.chunks(4))
+            .filter(|(a, b)| a != b)
+            .count();
         eprintln!("{name}: {changed} pixels changed by the highlight");
         if strips {
             assert!(changed > 100, "{name}: {changed} pixels");
@@ -474,4 +486,3 @@ fn the_highlight_renders_with_and_without_chamfer_edges_and_corners() {
         }
     }
 }
-

@@ -11,9 +11,9 @@
 use std::path::Path;
 use std::sync::Arc;
 
+use bevy::asset::AssetPath;
 use bevy::asset::AsyncWriteExt;
 use bevy::asset::io::{AssetReaderError, AssetWriterError, Writer};
-use bevy::asset::AssetPath;
 use bevy::asset::processor::{AssetProcessor, Process, ProcessContext, ProcessError};
 use bevy::reflect::TypePath;
 use bevy::tasks::futures_lite::AsyncReadExt;

@@ -134,7 +134,9 @@ impl SceneLight {
     /// (Bevy's range cut-off aside), a spot's also over its cone as KHR_lights_punctual's.
     fn illuminance_at(&self, point: glam::Vec3) -> glam::Vec3 {
         let falloff = |position: [f32; 3]| {
-            1.0 / glam::Vec3::from(position).distance_squared(point).max(1e-12)
+            1.0 / glam::Vec3::from(position)
+                .distance_squared(point)
+                .max(1e-12)
         };
         match self.light {
             Light::Directional(_) => self.strength,
@@ -189,30 +191,38 @@ fn extract(
         }
     }
     let linear = |color: Color| glam::Vec3::from_array(color.to_linear().to_f32_array_no_alpha());
-    let at = |transform: &GlobalTransform| glam::Vec3::from_array(transform.translation().to_array());
-    let forward = |transform: &GlobalTransform| glam::Vec3::from_array(transform.forward().to_array());
+    let at =
+        |transform: &GlobalTransform| glam::Vec3::from_array(transform.translation().to_array());
+    let forward =
+        |transform: &GlobalTransform| glam::Vec3::from_array(transform.forward().to_array());
     let candela = 1.0 / (4.0 * std::f32::consts::PI);
     extracted.lights.clear();
     let suns = suns.iter().filter(|(_, _, visible)| visible.get());
-    extracted.lights.extend(suns.map(|(light, transform, _)| SceneLight {
-        light: Light::Directional((-forward(transform)).to_array()),
-        strength: linear(light.color) * light.illuminance,
-    }));
+    extracted
+        .lights
+        .extend(suns.map(|(light, transform, _)| SceneLight {
+            light: Light::Directional((-forward(transform)).to_array()),
+            strength: linear(light.color) * light.illuminance,
+        }));
     let points = points.iter().filter(|(_, _, visible)| visible.get());
-    extracted.lights.extend(points.map(|(light, transform, _)| SceneLight {
-        light: Light::Point(at(transform).to_array()),
-        strength: linear(light.color) * light.intensity * candela,
-    }));
+    extracted
+        .lights
+        .extend(points.map(|(light, transform, _)| SceneLight {
+            light: Light::Point(at(transform).to_array()),
+            strength: linear(light.color) * light.intensity * candela,
+        }));
     let spots = spots.iter().filter(|(_, _, visible)| visible.get());
-    extracted.lights.extend(spots.map(|(light, transform, _)| SceneLight {
-        light: Light::Spot {
-            position: at(transform).to_array(),
-            direction: forward(transform).to_array(),
-            inner_deg: light.inner_angle.to_degrees(),
-            outer_deg: light.outer_angle.to_degrees(),
-        },
-        strength: linear(light.color) * light.intensity * candela,
-    }));
+    extracted
+        .lights
+        .extend(spots.map(|(light, transform, _)| SceneLight {
+            light: Light::Spot {
+                position: at(transform).to_array(),
+                direction: forward(transform).to_array(),
+                inner_deg: light.inner_angle.to_degrees(),
+                outer_deg: light.outer_angle.to_degrees(),
+            },
+            strength: linear(light.color) * light.intensity * candela,
+        }));
     extracted.drawn.clear();
     for (edges, transform, visibility) in &entities {
         if !visibility.get() {
@@ -569,7 +579,12 @@ mod tests {
             glam::Quat::IDENTITY,
             glam::Vec3::new(2.0, 0.0, 0.0),
         );
-        let (pbr, seen) = lit_by(highlight(Shading::Pbr(Default::default())), bulb, placed, 1.0);
+        let (pbr, seen) = lit_by(
+            highlight(Shading::Pbr(Default::default())),
+            bulb,
+            placed,
+            1.0,
+        );
         let Some(Light::Point(position)) = seen else {
             panic!("point: {seen:?}");
         };
@@ -579,10 +594,18 @@ mod tests {
         let color = pbr.highlight.expect("highlight").color;
         assert!((color[0] - 250.0).abs() < 1e-2, "{color:?}");
         // Blinn has no falloff: the illuminance at the origin, over π.
-        let (blinn, _) = lit_by(highlight(chamfer_runtime::render::Highlight::default().shading), bulb, placed, 1.0);
+        let (blinn, _) = lit_by(
+            highlight(chamfer_runtime::render::Highlight::default().shading),
+            bulb,
+            placed,
+            1.0,
+        );
         let color = blinn.highlight.expect("highlight").color;
         let expected = 1000.0 / 20.0 / std::f32::consts::PI;
-        assert!((color[0] - expected).abs() < 1e-3, "{color:?} vs {expected}");
+        assert!(
+            (color[0] - expected).abs() < 1e-3,
+            "{color:?} vs {expected}"
+        );
     }
 
     #[test]
@@ -597,7 +620,12 @@ mod tests {
             strength: glam::Vec3::splat(500.0),
         };
         let turned = glam::Mat4::from_rotation_z(std::f32::consts::FRAC_PI_2);
-        let (style, seen) = lit_by(highlight(Shading::Pbr(Default::default())), spot, turned, 1.0);
+        let (style, seen) = lit_by(
+            highlight(Shading::Pbr(Default::default())),
+            spot,
+            turned,
+            1.0,
+        );
         let Some(Light::Spot {
             position,
             direction,

@@ -129,15 +129,30 @@ fn every_schema_option_is_a_meta_setting_that_bakes_what_the_settings_bake() {
             ron.push(format!("{name}: {value}"));
         }
         let name = format!("{}.glb", entry.name);
-        folders.add(&name, "shapes/cube-cad-jittered.glb", &format!("({})", ron.join(", ")));
-        let plain = baked(&name, "shapes/cube-cad-jittered.glb", &BakeSettings::default());
-        expected.push((name.clone(), baked(&name, "shapes/cube-cad-jittered.glb", &settings), plain));
+        folders.add(
+            &name,
+            "shapes/cube-cad-jittered.glb",
+            &format!("({})", ron.join(", ")),
+        );
+        let plain = baked(
+            &name,
+            "shapes/cube-cad-jittered.glb",
+            &BakeSettings::default(),
+        );
+        expected.push((
+            name.clone(),
+            baked(&name, "shapes/cube-cad-jittered.glb", &settings),
+            plain,
+        ));
     }
     let app = process(&folders);
     let mut changed = 0;
     for (name, bytes, plain) in expected {
         assert_eq!(status(&app, &name), ProcessStatus::Processed, "{name}");
-        assert!(folders.processed(&name) == bytes, "{name}: other bytes than its settings");
+        assert!(
+            folders.processed(&name) == bytes,
+            "{name}: other bytes than its settings"
+        );
         changed += usize::from(bytes != plain);
     }
     // Most examples change what is baked (the limits and some tolerances do not, on this cube).

@@ -638,7 +638,8 @@ fn strips_follow_the_scenes_light<L: Component + Clone>(make: impl Fn(f32) -> L)
     let folder = rounded_assets(&[("fandisk", "meshes/fandisk.obj")], 0.01);
     let mut scene = fandisk_scene(folder.path());
     let baked = bake_file(&fixture("meshes/fandisk.obj"), &BakeOptions::DEFAULT).expect("bake");
-    let [lo, hi] = [baked.asset.header.bounds_min, baked.asset.header.bounds_max].map(Vec3::from_array);
+    let [lo, hi] =
+        [baked.asset.header.bounds_min, baked.asset.header.bounds_max].map(Vec3::from_array);
     let (centre, diagonal) = ((lo + hi) * 0.5, (hi - lo).length());
     let place = |side: Vec3| centre + side.normalize() * 3.0 * diagonal;
     let light = make(3.0 * diagonal);
@@ -689,7 +690,10 @@ fn strips_follow_the_scenes_light<L: Component + Clone>(make: impl Fn(f32) -> L)
     };
     let strips = scene.edge_pixels();
     let strip_count = strips.iter().filter(|&&s| s).count();
-    let (from_left, from_right) = (place(Vec3::new(-2.0, 1.0, 0.5)), place(Vec3::new(2.0, 1.0, -0.5)));
+    let (from_left, from_right) = (
+        place(Vec3::new(-2.0, 1.0, 0.5)),
+        place(Vec3::new(2.0, 1.0, -0.5)),
+    );
     let left = frame_lit_from(&mut scene, from_left, true);
     let right = frame_lit_from(&mut scene, from_right, true);
     let moved = differ(&left, &right, &strips);
@@ -744,7 +748,10 @@ fn the_highlight_takes_its_light_from_the_scenes_spot_light() {
 fn the_highlight_draws_with_and_without_chamfer_edges_and_corners() {
     let plain = assets(&[("cube", "shapes/cube.obj")]);
     let rounded = rounded_assets(
-        &[("cube", "shapes/cube.obj"), ("cylinder", "meshes/cylinder.obj")],
+        &[
+            ("cube", "shapes/cube.obj"),
+            ("cylinder", "meshes/cylinder.obj"),
+        ],
         0.02,
     );
     for (folder, name, strips) in [

@@ -190,7 +190,9 @@ mod tests {
             let mut settings = BakeSettings::default();
             entry.set_example(&mut settings);
             for needed in entry.requires {
-                BakeSettings::entry(needed).expect("known").set_example(&mut settings);
+                BakeSettings::entry(needed)
+                    .expect("known")
+                    .set_example(&mut settings);
             }
             let options = settings.options().expect(entry.name);
             assert_ne!(options, defaults, "{}", entry.name);
@@ -208,7 +210,9 @@ mod tests {
             let at = |x: f64| {
                 let mut settings = BakeSettings::default();
                 for needed in entry.requires {
-                    BakeSettings::entry(needed).expect("known").set_example(&mut settings);
+                    BakeSettings::entry(needed)
+                        .expect("known")
+                        .set_example(&mut settings);
                 }
                 let value = match entry.kind {
                     Kind::Number => Value::Number(x as f32),
@@ -224,7 +228,11 @@ mod tests {
             for x in inside {
                 assert!(at(x).is_ok(), "{} at {x}", entry.name);
             }
-            let below = if entry.kind == Kind::Number { low - 1e-3 } else { low - 1.0 };
+            let below = if entry.kind == Kind::Number {
+                low - 1e-3
+            } else {
+                low - 1.0
+            };
             if below >= 0.0 || entry.kind == Kind::Number {
                 assert!(at(below).is_err(), "{} at {below}", entry.name);
             }
@@ -260,14 +268,18 @@ mod tests {
             ..BakeSettings::default()
         };
         let err = bits_alone.options().expect_err("refused");
-        assert!(err.to_string().contains("normal_bits needs option compact"), "{err}");
+        assert!(
+            err.to_string().contains("normal_bits needs option compact"),
+            "{err}"
+        );
     }
 
     #[test]
     fn json_and_ron_read_every_option() {
-        let settings: BakeSettings =
-            serde_json::from_str(r#"{"stitch_rel": 0.001, "max_triangles": 5, "radius_rel": 0.01}"#)
-                .expect("json");
+        let settings: BakeSettings = serde_json::from_str(
+            r#"{"stitch_rel": 0.001, "max_triangles": 5, "radius_rel": 0.01}"#,
+        )
+        .expect("json");
         assert_eq!(settings.stitch_rel, 1e-3);
         assert_eq!(settings.max_triangles, 5);
         assert_eq!(settings.radius_rel, Some(0.01));

@@ -591,7 +591,10 @@ fn the_highlight_renders_on_every_mesh_fixture_with_or_without_a_radius() {
         .map(|entry| entry.expect("entry").path())
         .filter(|path| path.extension().is_some_and(|e| e != "md"))
         .collect();
-    meshes.extend([fixture("shapes/cube.obj"), fixture("shapes/cube-cad-jittered.glb")]);
+    meshes.extend([
+        fixture("shapes/cube.obj"),
+        fixture("shapes/cube-cad-jittered.glb"),
+    ]);
     meshes.sort();
     assert!(meshes.len() >= 12, "{meshes:?}");
     let render = |input: &Path, extra: &[&str]| {
@@ -600,22 +603,41 @@ fn the_highlight_renders_on_every_mesh_fixture_with_or_without_a_radius() {
         args.extend(["--style", "chamfer", "--width", "80", "--height", "60"]);
         args.extend(extra);
         let run = chamfer(&args);
-        assert!(run.status.success(), "chamfer {args:?}: {}", text(&run.stderr));
+        assert!(
+            run.status.success(),
+            "chamfer {args:?}: {}",
+            text(&run.stderr)
+        );
         png_pixels(&std::fs::read(&png).expect("png"))
     };
     for mesh in &meshes {
         let plain = render(mesh, &[]);
         let rounded = render(mesh, &["--radius-rel", "0.01"]);
         let asset = dir.path().join("baked.chamfer");
-        let run = chamfer(&["bake", path_str(mesh), "-o", path_str(&asset), "--radius-rel", "0.01"]);
-        assert!(run.status.success(), "{}: {}", mesh.display(), text(&run.stderr));
+        let run = chamfer(&[
+            "bake",
+            path_str(mesh),
+            "-o",
+            path_str(&asset),
+            "--radius-rel",
+            "0.01",
+        ]);
+        assert!(
+            run.status.success(),
+            "{}: {}",
+            mesh.display(),
+            text(&run.stderr)
+        );
         // Baked first, then rendered: the asset path draws too (its framing is the asset's bounds).
         render(&asset, &[]);
         let run = chamfer(&["inspect", path_str(&asset), "--json"]);
         let json: serde_json::Value = serde_json::from_slice(&run.stdout).expect("JSON");
         let chamfer_edges = json["chamfer"]["edges"].as_u64().expect("chamfer edges");
         let changed = plain.iter().zip(&rounded).filter(|(a, b)| a != b).count();
-        eprintln!("{}: {chamfer_edges} chamfer edges, {changed} pixels changed", mesh.display());
+        eprintln!(
+            "{}: {chamfer_edges} chamfer edges, {changed} pixels changed",
+            mesh.display()
+        );
         if chamfer_edges > 0 {
             assert!(changed > 0, "{}: the strips show", mesh.display());
         } else {
@@ -1333,7 +1355,10 @@ fn the_frame_benchmark_runs_at_a_tiny_size() {
         .expect("run bench_render");
     let out = text(&run.stdout);
     assert!(run.status.success(), "{out}{}", text(&run.stderr));
-    let row = out.lines().find(|l| l.starts_with("| cube.obj")).expect("the cube's row");
+    let row = out
+        .lines()
+        .find(|l| l.starts_with("| cube.obj"))
+        .expect("the cube's row");
     assert!(!row.contains("NaN") && !row.contains("inf"), "{row}");
 }
 

@@ -197,7 +197,10 @@ mod tests {
         let entries = schema.as_array().expect("an array");
         assert_eq!(entries.len(), BakeSettings::ENTRIES.len());
         let mesh = fixture("meshes/fandisk.obj");
-        let files = vec![("fandisk.obj".to_owned(), std::fs::read(&mesh).expect("mesh"))];
+        let files = vec![(
+            "fandisk.obj".to_owned(),
+            std::fs::read(&mesh).expect("mesh"),
+        )];
         for entry in entries {
             let name = entry["name"].as_str().expect("a name");
             let mut json = serde_json::Map::new();
@@ -215,7 +218,9 @@ mod tests {
             let baked = bake_files("fandisk.obj", &files, &settings, &mut |_| {}).expect(name);
             let mut direct = BakeSettings::default();
             for needed in requires.iter().filter_map(|n| n.as_str()).chain([name]) {
-                BakeSettings::entry(needed).expect("known").set_example(&mut direct);
+                BakeSettings::entry(needed)
+                    .expect("known")
+                    .set_example(&mut direct);
             }
             assert_eq!(settings, direct, "{json}");
             let (options, compact) = direct.options().expect("options");

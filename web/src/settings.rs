@@ -295,7 +295,10 @@ mod tests {
             (r#"{"crease_deg": -5}"#, "crease"),
             (r#"{"position_bits": 40}"#, "position"),
             (r#"{"stitch": 1}"#, "unknown field `stitch`"),
-            (r#"{"radius": 1, "radius_rel": 0.01}"#, "cannot both be given"),
+            (
+                r#"{"radius": 1, "radius_rel": 0.01}"#,
+                "cannot both be given",
+            ),
         ] {
             let error = bake_settings(json)
                 .and_then(|b| b.options().map(|_| ()).map_err(|e| e.to_string()))

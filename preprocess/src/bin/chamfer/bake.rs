@@ -7,9 +7,7 @@ use std::time::{Duration, Instant};
 
 use anyhow::{Context, bail};
 use chamfer_preprocess::write::{ensure_not_an_input, ensure_replaceable, write_atomically};
-use chamfer_preprocess::{
-    BakeOptions, Baked, Error, bake_file, build, compact,
-};
+use chamfer_preprocess::{BakeOptions, Baked, Error, bake_file, build, compact};
 use chamfer_runtime::asset::CompactOptions;
 use clap::Args;
 use rayon::prelude::*;

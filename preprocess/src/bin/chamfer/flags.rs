@@ -41,8 +41,14 @@ fn arg<S: Schema>(entry: &Entry<S>) -> Arg {
 fn read<S: Schema>(matches: &ArgMatches, group: &str, settings: &mut S) -> Result<(), clap::Error> {
     for entry in S::ENTRIES.iter().filter(|entry| entry.group == group) {
         let value = match entry.kind {
-            Kind::Number => matches.get_one::<f32>(entry.name).copied().map(Value::Number),
-            Kind::Count => matches.get_one::<u64>(entry.name).copied().map(Value::Count),
+            Kind::Number => matches
+                .get_one::<f32>(entry.name)
+                .copied()
+                .map(Value::Number),
+            Kind::Count => matches
+                .get_one::<u64>(entry.name)
+                .copied()
+                .map(Value::Count),
             Kind::Flag => matches.get_flag(entry.name).then_some(Value::Flag(true)),
         };
         if let Some(value) = value {

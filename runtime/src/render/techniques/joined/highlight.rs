@@ -51,7 +51,10 @@ impl HighlightUniforms {
             return false;
         };
         // 0: no distance factor (the shaders blend by coverage alone).
-        let k = highlight.k.filter(|k| k.is_finite() && *k > 0.0).unwrap_or(0.0);
+        let k = highlight
+            .k
+            .filter(|k| k.is_finite() && *k > 0.0)
+            .unwrap_or(0.0);
         let ambient = highlight.ambient.clamp(0.0, 1.0);
         let (material, base, shade) = match highlight.shading {
             Shading::Blinn(material) => {

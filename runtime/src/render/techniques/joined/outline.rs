@@ -73,24 +73,24 @@ impl Outline {
         let copy = copy
             .as_ref()
             .ok_or_else(|| RenderError::Internal("the outline's copy".into()))?;
-        encoder.copy_texture_to_texture(
-            color.as_image_copy(),
-            copy.texture.as_image_copy(),
-            size,
-        );
+        encoder.copy_texture_to_texture(color.as_image_copy(), copy.texture.as_image_copy(), size);
         Ok(copy.view.clone())
     }
 
     /// GPU bytes of the copy.
     pub(super) fn gpu_bytes(&self) -> u64 {
-        self.copy.lock().ok().and_then(|c| {
-            c.as_ref().map(|c| {
-                let size = c.texture.size();
-                u64::from(size.width)
-                    * u64::from(size.height)
-                    * u64::from(c.texture.format().block_copy_size(None).unwrap_or(4))
+        self.copy
+            .lock()
+            .ok()
+            .and_then(|c| {
+                c.as_ref().map(|c| {
+                    let size = c.texture.size();
+                    u64::from(size.width)
+                        * u64::from(size.height)
+                        * u64::from(c.texture.format().block_copy_size(None).unwrap_or(4))
+                })
             })
-        }).unwrap_or(0)
+            .unwrap_or(0)
     }
 }
 

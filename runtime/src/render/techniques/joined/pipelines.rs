@@ -147,7 +147,11 @@ const SHADERS: [(&str, &[&str], &[Program]); 9] = [
 /// The outline pass's programs (after the application's pass, reading its depth).
 const OUTLINE: [Program; 2] = [
     Program::draw("strip_trim_vertex", "strip_trim_fragment", &OUTLINE_STRIPS),
-    Program::draw("corner_trim_vertex", "corner_trim_fragment", &OUTLINE_CORNERS),
+    Program::draw(
+        "corner_trim_vertex",
+        "corner_trim_fragment",
+        &OUTLINE_CORNERS,
+    ),
 ];
 
 /// Every module the technique compiles for `target`: the outline pass reads its depth as the target
