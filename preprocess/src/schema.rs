@@ -161,11 +161,6 @@ impl BakeSettings {
         compact.check().map_err(SettingsError::Compact)?;
         Ok(self.compact.then_some(compact))
     }
-
-    /// The option `name` spelled as a `chamfer bake` flag: `--weld-rel`.
-    pub fn flag(name: &str) -> String {
-        format!("--{}", name.replace('_', "-"))
-    }
 }
 
 #[cfg(test)]

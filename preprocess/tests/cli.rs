@@ -1374,7 +1374,7 @@ fn every_schema_option_is_a_flag_that_bakes_what_the_settings_bake() {
     let mesh = fixture("meshes/fandisk.obj");
     let help = text(&chamfer(&["bake", "--help"]).stdout);
     for entry in BakeSettings::ENTRIES {
-        let flag = BakeSettings::flag(entry.name);
+        let flag = chamfer_runtime::schema::flag(entry.name);
         assert!(help.contains(&flag), "{flag} is not in chamfer bake --help");
         let mut settings = BakeSettings::default();
         let mut args = vec![
@@ -1387,7 +1387,7 @@ fn every_schema_option_is_a_flag_that_bakes_what_the_settings_bake() {
         for name in entry.requires.iter().copied().chain([entry.name]) {
             let entry = BakeSettings::entry(name).expect("known");
             entry.set_example(&mut settings);
-            args.push(BakeSettings::flag(name));
+            args.push(chamfer_runtime::schema::flag(name));
             match entry.example().expect("an example") {
                 Value::Flag(_) => {}
                 value => args.push(value.to_string()),

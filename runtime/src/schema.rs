@@ -67,6 +67,11 @@ impl fmt::Display for Value {
     }
 }
 
+/// The entry `name` spelled as a command-line flag: `weld_rel` is `--weld-rel`.
+pub fn flag(name: &str) -> String {
+    format!("--{}", name.replace('_', "-"))
+}
+
 /// A field type a schema can hold: its kind and its value (`None`: not set).
 pub trait Field: Sized {
     /// How the field is written.
@@ -460,7 +465,7 @@ mod tests {
 
     #[test]
     fn help_spells_other_entries_for_each_front_end() {
-        let cli = Sample::ENTRIES[0].help(|n| format!("--{}", n.replace('_', "-")));
+        let cli = Sample::ENTRIES[0].help(super::flag);
         assert_eq!(cli, "A length; see --fraction.");
         assert_eq!(Sample::ENTRIES[1].help(str::to_owned), "A fraction of it.");
         let json = Sample::schema_json();

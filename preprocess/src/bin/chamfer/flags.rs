@@ -3,7 +3,7 @@
 //! command line gives is set into the schema's struct; the rest keeps the struct's defaults.
 
 use chamfer_preprocess::BakeSettings;
-use chamfer_runtime::schema::{Entry, Kind, Schema, Value};
+use chamfer_runtime::schema::{Entry, Kind, Schema, Value, flag};
 use clap::error::ErrorKind;
 use clap::{Arg, ArgAction, ArgMatches, Args, Command, FromArgMatches, value_parser};
 
@@ -16,9 +16,9 @@ fn augment<S: Schema>(command: Command, group: &str) -> Command {
 }
 
 fn arg<S: Schema>(entry: &Entry<S>) -> Arg {
-    let mut help = entry.help(|name| BakeSettings::flag(name));
+    let mut help = entry.help(flag);
     let arg = Arg::new(entry.name)
-        .long(entry.name.replace('_', "-"))
+        .long(flag(entry.name).trim_start_matches('-').to_owned())
         .conflicts_with_all(entry.conflicts.iter().copied());
     let arg = entry
         .requires
