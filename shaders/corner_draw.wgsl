@@ -41,7 +41,7 @@ fn corner_vertex(
     let vertex_px = square.vertex_px;
     let steps = square.steps;
     let per_pixel = pixel_size(steps);
-    let lines = hand_over_lines(c, vertex_px);
+    let lines = square.lines;
     // Sub-samples a side: enough that neighbouring ones' normals differ by at most half the lobe's
     // width (the normal turns by a pixel over r across the pixel), so a wide corner is not shaded 16
     // times a pixel where its light hardly changes.

@@ -95,23 +95,38 @@ fn hand_over(c: Corner, far: vec3<f32>) -> f32 {
 }
 
 // Where a corner's square lies on screen, and what every pixel of it shares (the vertex on screen,
-// the model-space steps of a pixel there).
+// the model-space steps of a pixel there, the strips' hand-over lines).
 struct CornerSquare {
     position: vec4<f32>,
     vertex_px: vec2<f32>,
     steps: array<vec3<f32>, 2>,
+    lines: array<vec4<f32>, 3>,
 }
 
-// Vertex `vertex` (of 6) of the square around corner `c`: its hand-over reach along the edges and a
-// rounded edge's reach across them (at most 3 r from the sharp edge; the sphere lies within), plus
-// `margin` pixels, in front of the faces around it by as much.
+// Vertex `vertex` (of 6) of the square around corner `c`, in front of the faces around it by its
+// half-width: all the corner draws or trims, plus `margin` pixels. Every rounded point it owns is
+// c + r n + a axis with n in its normals' cone (the sphere) or in a pair's arc (a cylinder, a >= 0):
+// c + r n lies within sqrt(|c - v|^2 - r^2) of the vertex (each normal is r above the centre), and
+// the cylinders run along their edges no farther than their hand-over. The square is no wider: on a
+// faceted rim (short edges, many corners) the reach alone made it ten times the corner's pixels.
 fn corner_square(c: Corner, vertex: u32, margin: f32) -> CornerSquare {
     var q: CornerSquare;
     let clip = view_mvp() * vec4<f32>(c.vertex.xyz, 1.0);
     q.vertex_px = to_pixels(clip);
     q.steps = pixel_steps(c.vertex.xyz);
-    let reach = c.normals[0].w;
-    let extent = sqrt(reach * reach + 9.0 * c.sphere.w * c.sphere.w) / pixel_size(q.steps) + 1.0 + margin;
+    q.lines = hand_over_lines(c, q.vertex_px);
+    let per_pixel = pixel_size(q.steps);
+    let to_centre = c.sphere.xyz - c.vertex.xyz;
+    let r = c.sphere.w;
+    // The 1.5 pixels the fragment grows the sphere by to find the pixels worth tracing.
+    let around = sqrt(max(dot(to_centre, to_centre) - r * r, 0.0)) / per_pixel + 1.5;
+    var along = around;
+    for (var k = 0u; k < 3u; k += 1u) {
+        if pair_rounded(c, k) && q.lines[k].w > 0.0 {
+            along = max(along, q.lines[k].z + 1.5);
+        }
+    }
+    let extent = sqrt(along * along + around * around) + 1.0 + margin;
     let corner = vec2<f32>(
         select(-1.0, 1.0, ((0x16u >> vertex) & 1u) == 1u),
         select(-1.0, 1.0, ((0x34u >> vertex) & 1u) == 1u),

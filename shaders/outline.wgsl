@@ -114,7 +114,7 @@ fn corner_trim_vertex(
     v.vertex_px = square.vertex_px;
     v.step_x = square.steps[0];
     v.step_y = square.steps[1];
-    let lines = hand_over_lines(c, square.vertex_px);
+    let lines = square.lines;
     v.line0 = lines[0];
     v.line1 = lines[1];
     v.line2 = lines[2];
