@@ -1,5 +1,6 @@
-//! A decoder of meshoptimizer's vertex codec (`meshopt_decodeVertexBuffer`, bitstream versions 0
-//! and 1, as specified by glTF's `EXT_meshopt_compression`, "attributes" mode), in safe Rust so that
+//! A decoder of meshoptimizer's vertex codec (`meshopt_decodeVertexBuffer`, bitstream version 0 as
+//! glTF's `EXT_meshopt_compression` specifies it, "attributes" mode, and version 1 as
+//! `KHR_meshopt_compression` does; docs/format-compact.md restates both), in safe Rust so that
 //! the runtime needs no C++ and builds for wasm. The bake encodes with the `meshopt` crate (the
 //! reference encoder); the tests check this decoder against the reference decoder.
 //!
