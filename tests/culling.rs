@@ -65,17 +65,17 @@ fn cameras(asset: &Asset) -> Vec<Camera> {
     let bounds = [asset.header.bounds_min, asset.header.bounds_max];
     let radius = 0.5 * (glam::Vec3::from(bounds[1]) - glam::Vec3::from(bounds[0])).length();
     let orbit = (0..36).map(|k| Orbit {
-        azimuth_deg: 10.0 * k as f32,
-        elevation_deg: 60.0 * (k as f32 * 0.7).sin(),
-        orthographic: k % 2 == 1,
+        azimuth: 10.0 * k as f32,
+        elevation: 60.0 * (k as f32 * 0.7).sin(),
+        ortho: k % 2 == 1,
         ..Orbit::default()
     });
     let close = (0..12).map(|k| Orbit {
-        azimuth_deg: 30.0 * k as f32 + 7.0,
-        elevation_deg: 25.0 * (k as f32).cos(),
+        azimuth: 30.0 * k as f32 + 7.0,
+        elevation: 25.0 * (k as f32).cos(),
         distance: Some(radius * [0.35, 0.6, 0.9][k % 3]),
-        orthographic: k % 4 == 3,
-        fov_y_deg: 60.0,
+        ortho: k % 4 == 3,
+        fov_y: 60.0,
     });
     orbit
         .chain(close)

@@ -104,8 +104,8 @@ fn edge_light(r: f32, light: Light, camera: &Camera) -> Vec<(f64, f64, f64)> {
 #[test]
 fn the_highlight_carries_the_light_of_real_fillets() {
     let orbit = Orbit {
-        azimuth_deg: 30.0,
-        elevation_deg: 24.0,
+        azimuth: 30.0,
+        elevation: 24.0,
         distance: Some(6.0),
         ..Orbit::default()
     };
@@ -265,8 +265,8 @@ fn rim_edges_of(eye: Vec3, rho: f32, y: f32, a: Vec2, b: Vec2) -> Vec<MeasuredEd
 /// The view of the PBR validations: the box or cylinder from 6 units, 360 × 360.
 fn validation_view() -> (Orbit, Camera) {
     let orbit = Orbit {
-        azimuth_deg: 30.0,
-        elevation_deg: 24.0,
+        azimuth: 30.0,
+        elevation: 24.0,
         distance: Some(6.0),
         ..Orbit::default()
     };
@@ -513,8 +513,8 @@ fn the_pbr_highlight_carries_the_light_of_real_fillets() {
 #[test]
 fn a_spot_light_lights_only_its_cone_and_falls_off_with_distance() {
     let orbit = Orbit {
-        azimuth_deg: 30.0,
-        elevation_deg: 50.0,
+        azimuth: 30.0,
+        elevation: 50.0,
         distance: Some(6.0),
         ..Orbit::default()
     };

@@ -391,9 +391,9 @@ pub mod cube {
 
     pub fn cube_camera(size: u32, orthographic: bool) -> Camera {
         let orbit = Orbit {
-            azimuth_deg: 35.0,
-            elevation_deg: 28.0,
-            orthographic,
+            azimuth: 35.0,
+            elevation: 28.0,
+            ortho: orthographic,
             ..Orbit::default()
         };
         Camera::orbit([[0.0; 3], [1.0; 3]], &orbit, [size, size])

@@ -153,10 +153,10 @@ impl Random {
 fn random_view(random: &mut Random) -> (Orbit, Vec3) {
     let elevation = random.between(-75f32.to_radians().sin(), 75f32.to_radians().sin());
     let orbit = Orbit {
-        azimuth_deg: random.between(0.0, 360.0),
-        elevation_deg: elevation.asin().to_degrees(),
+        azimuth: random.between(0.0, 360.0),
+        elevation: elevation.asin().to_degrees(),
         distance: Some(random.between(5.0, 8.0)),
-        orthographic: random.next() < 0.2,
+        ortho: random.next() < 0.2,
         ..Orbit::default()
     };
     let camera = Camera::orbit([[-1.0; 3], [1.0; 3]], &orbit, [SIZE; 2]);

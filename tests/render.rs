@@ -175,7 +175,7 @@ fn a_spheres_silhouette_is_drawn_as_a_contour_from_any_camera() {
         classes: EdgeClasses::CONTOUR,
         ..edges_in(RED, 3.0, CapMethod::NextIndex)
     };
-    for (azimuth_deg, elevation_deg, orthographic) in [
+    for (azimuth, elevation, orthographic) in [
         (0.0, 0.0, false),
         (60.0, 30.0, false),
         (200.0, -50.0, false),
@@ -183,9 +183,9 @@ fn a_spheres_silhouette_is_drawn_as_a_contour_from_any_camera() {
         (30.0, 10.0, true),
     ] {
         let orbit = Orbit {
-            azimuth_deg,
-            elevation_deg,
-            orthographic,
+            azimuth,
+            elevation,
+            ortho: orthographic,
             distance: Some(3.0 * Vec3::from(bounds[1]).distance(center)),
             ..Orbit::default()
         };
@@ -197,8 +197,7 @@ fn a_spheres_silhouette_is_drawn_as_a_contour_from_any_camera() {
             Some(&style),
             BLUE_BACKGROUND,
         );
-        let what =
-            format!("azimuth {azimuth_deg}, elevation {elevation_deg}, ortho {orthographic}");
+        let what = format!("azimuth {azimuth}, elevation {elevation}, ortho {orthographic}");
         assert_silhouette_outlined(&image, project(&camera, center), &what);
     }
 }
@@ -395,10 +394,10 @@ fn the_gpu_draws_the_edges_a_cpu_reference_counts() {
         "meshes/fandisk.obj",
     ] {
         let asset = bake_fixture(fixture);
-        for (azimuth_deg, orthographic) in [(20.0, false), (130.0, true)] {
+        for (azimuth, orthographic) in [(20.0, false), (130.0, true)] {
             let orbit = Orbit {
-                azimuth_deg,
-                orthographic,
+                azimuth,
+                ortho: orthographic,
                 ..Orbit::default()
             };
             let camera = Camera::orbit(
@@ -441,9 +440,9 @@ fn a_renderer_reused_across_frames_draws_what_a_fresh_one_does() {
     let gpu = chamfer_tests::gpu();
     let asset = bake_fixture("meshes/fandisk.obj");
     let bounds = [asset.header.bounds_min, asset.header.bounds_max];
-    let cameras = [20.0, 140.0, 260.0].map(|azimuth_deg| {
+    let cameras = [20.0, 140.0, 260.0].map(|azimuth| {
         let orbit = Orbit {
-            azimuth_deg,
+            azimuth,
             ..Orbit::default()
         };
         Camera::orbit(bounds, &orbit, [200, 160])
@@ -484,7 +483,7 @@ fn depth_scaled_edges_are_wider_in_front_than_behind() {
     let asset = bake_fixture("shapes/cube.obj");
     let orbit = Orbit {
         distance: Some(2.2),
-        fov_y_deg: 60.0,
+        fov_y: 60.0,
         ..Orbit::default()
     };
     let camera = Camera::orbit([[0.0; 3], [1.0; 3]], &orbit, [320, 320]);

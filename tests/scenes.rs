@@ -103,8 +103,8 @@ fn instances_mirrored_and_scaled_draw_what_pretransformed_copies_do() {
     let camera = Camera::orbit(
         [together.header.bounds_min, together.header.bounds_max],
         &Orbit {
-            azimuth_deg: 25.0,
-            elevation_deg: 20.0,
+            azimuth: 25.0,
+            elevation: 20.0,
             ..Orbit::default()
         },
         [320, 200],
@@ -330,8 +330,8 @@ fn a_scene_drawn_in_batches_equals_it_drawn_instance_by_instance() {
             let camera = Camera::orbit(
                 bounds,
                 &Orbit {
-                    azimuth_deg: azimuth,
-                    elevation_deg: 15.0 + 10.0 * k as f32,
+                    azimuth,
+                    elevation: 15.0 + 10.0 * k as f32,
                     ..Orbit::default()
                 },
                 [240, 180],

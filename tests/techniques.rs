@@ -178,8 +178,8 @@ fn thick_joints_leave_gaps_exactly_where_the_seeds_say() {
 /// lies in the floor.
 fn valley_speckle(z_bias: f32) -> f32 {
     let orbit = Orbit {
-        azimuth_deg: 40.0,
-        elevation_deg: 35.0,
+        azimuth: 40.0,
+        elevation: 35.0,
         ..Orbit::default()
     };
     let camera = Camera::orbit([[0.0; 3], [2.0, 2.0, 1.0]], &orbit, [320, 320]);
@@ -262,11 +262,11 @@ fn rim_gap_points(camera: &Camera, half_width: f32) -> Vec<glam::Vec2> {
 #[test]
 fn mcguire_hughes_caps_land_on_the_wrong_side_where_projected_normals_mislead() {
     let mut totals = [0; 2];
-    for elevation_deg in [5.0, 20.0, 40.0, 65.0] {
-        for azimuth_deg in [0.0, 50.0, 110.0] {
+    for elevation in [5.0, 20.0, 40.0, 65.0] {
+        for azimuth in [0.0, 50.0, 110.0] {
             let orbit = Orbit {
-                azimuth_deg,
-                elevation_deg,
+                azimuth,
+                elevation,
                 ..Orbit::default()
             };
             let camera = Camera::orbit([[-1.0, -1.0, 0.0], [1.0, 1.0, 2.0]], &orbit, [320, 320]);
@@ -324,8 +324,8 @@ fn silhouette_score(image: &Image, center: glam::Vec2, inner: f32) -> (f32, f32)
 fn sphere_view() -> (Camera, glam::Vec2) {
     let bounds = [[-1.0; 3], [1.0; 3]];
     let orbit = Orbit {
-        azimuth_deg: 60.0,
-        elevation_deg: 30.0,
+        azimuth: 60.0,
+        elevation: 30.0,
         distance: Some(3.0 * 3f32.sqrt()),
         ..Orbit::default()
     };
@@ -424,8 +424,8 @@ fn the_hybrid_shader_shades_inside_corners_and_marks_silhouettes() {
     // The open box (the unit cube without its top) from above: inside, along the vertical corner
     // where the walls x = 0 and z = 0 meet, and in the middle of the wall x = 0.
     let orbit = Orbit {
-        azimuth_deg: 30.0,
-        elevation_deg: 40.0,
+        azimuth: 30.0,
+        elevation: 40.0,
         ..Orbit::default()
     };
     let camera = Camera::orbit([[0.0; 3], [1.0; 3]], &orbit, [280, 240]);
@@ -537,10 +537,10 @@ fn depth_step(ratio: f32) -> (chamfer_runtime::asset::Asset, Camera, f32) {
     let triangles = [[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]];
     let asset = baked(&positions, &triangles);
     let orbit = Orbit {
-        azimuth_deg: 0.0,
-        elevation_deg: 0.0,
+        azimuth: 0.0,
+        elevation: 0.0,
         distance: Some(distance + depth / 2.0),
-        orthographic: true,
+        ortho: true,
         ..Orbit::default()
     };
     let camera = Camera::orbit(
@@ -677,9 +677,9 @@ fn the_barycentric_wireframe_keeps_its_width_on_slivers_and_large_triangles() {
     let triangles = [[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]];
     let asset = baked(&positions, &triangles);
     let orbit = Orbit {
-        azimuth_deg: 0.0,
-        elevation_deg: 0.0,
-        orthographic: true,
+        azimuth: 0.0,
+        elevation: 0.0,
+        ortho: true,
         ..Orbit::default()
     };
     let camera = Camera::orbit(
@@ -780,7 +780,7 @@ fn intersection_edges_are_drawn_like_creases_and_only_as_a_class() {
     // From the left, where the second cube ([0.5, 1.5] × [0.25, 1.25] × [0.3, 1.3]) comes out of
     // the first's front and top: seams the camera sees; from the right it hides them itself.
     let orbit = Orbit {
-        azimuth_deg: -40.0,
+        azimuth: -40.0,
         ..Orbit::default()
     };
     let camera = Camera::orbit(

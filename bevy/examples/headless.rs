@@ -94,8 +94,8 @@ fn main() -> anyhow::Result<()> {
     });
     let bounds = [asset.header.bounds_min, asset.header.bounds_max];
     let orbit = Orbit {
-        azimuth_deg: -120.0,
-        elevation_deg: 30.0,
+        azimuth: -120.0,
+        elevation: 30.0,
         ..Orbit::default()
     };
     let camera = EdgeCamera::orbit(bounds, &orbit, SIZE);
@@ -107,7 +107,7 @@ fn main() -> anyhow::Result<()> {
         Tonemapping::None,
         Transform::from_translation(Vec3::from_array(eye)).looking_at((lo + hi) * 0.5, Vec3::Y),
         Projection::Perspective(PerspectiveProjection {
-            fov: orbit.fov_y_deg.to_radians(),
+            fov: orbit.fov_y.to_radians(),
             ..default()
         }),
     ));

@@ -88,8 +88,8 @@ fn orbit_camera(
     elevation: f32,
 ) -> (Transform, Projection, EdgeCamera) {
     let orbit = Orbit {
-        azimuth_deg: azimuth,
-        elevation_deg: elevation,
+        azimuth,
+        elevation,
         ..Orbit::default()
     };
     let camera = EdgeCamera::orbit(bounds, &orbit, SIZE);
@@ -99,7 +99,7 @@ fn orbit_camera(
     let transform = Transform::from_translation(Vec3::from_array(eye.to_array()))
         .looking_at(Vec3::from_array(center.to_array()), Vec3::Y);
     let projection = Projection::Perspective(PerspectiveProjection {
-        fov: orbit.fov_y_deg.to_radians(),
+        fov: orbit.fov_y.to_radians(),
         near: 0.01,
         ..default()
     });

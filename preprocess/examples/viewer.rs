@@ -340,7 +340,7 @@ fn apply_key(key: &Key, style: &mut EdgeStyle, orbit: &mut Orbit, draw_edges: &m
                 }
                 "d" => style.depth_scaled = !style.depth_scaled,
                 "e" => *draw_edges = !*draw_edges,
-                "o" => orbit.orthographic = !orbit.orthographic,
+                "o" => orbit.ortho = !orbit.ortho,
                 "t" => {
                     let all = Technique::all();
                     let now = all
@@ -470,9 +470,9 @@ impl ApplicationHandler for Viewer {
                     .map(|(x, y)| (position.x - x, position.y - y));
                 self.cursor = Some((position.x, position.y));
                 if let Some((dx, dy)) = moved {
-                    self.orbit.azimuth_deg -= dx as f32 * 0.4;
-                    self.orbit.elevation_deg =
-                        (self.orbit.elevation_deg + dy as f32 * 0.4).clamp(-89.0, 89.0);
+                    self.orbit.azimuth -= dx as f32 * 0.4;
+                    self.orbit.elevation =
+                        (self.orbit.elevation + dy as f32 * 0.4).clamp(-89.0, 89.0);
                 }
                 moved.is_some()
             }

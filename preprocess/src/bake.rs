@@ -11,12 +11,12 @@ use rayon::prelude::*;
 // std's clock panics in a browser; this one is std's everywhere else.
 use web_time::Instant;
 
-use crate::corners::VertexCorners;
 use crate::mesh::{Mark, Mesh, MeshError};
 use crate::{
     BakeOptions, Companions, Error, adjacency, caps, classify, degenerate, intersections, load,
     mesh_order, normals, radii, stitch, weld,
 };
+use chamfer_runtime::asset::corners::VertexCorners;
 
 /// The setting in which a bake with stitching on records the boundary edges stitching started
 /// from (a record of the bake's work beside the options' own settings; `inspect` reports
@@ -240,7 +240,7 @@ pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Er
     // Edges go into the order they are written in (the runtime's clusters cull) before the rings
     // are built, so the rings need no renumbering and the copies are made while memory is low;
     // the steps below do not depend on the edges' order. Timed as part of `assemble`.
-    let corners = VertexCorners::new(&triangles, positions.len());
+    let corners = VertexCorners::new(triangles.as_flattened(), positions.len());
     let order = mesh_order::edge_order(&corners, &triangles, &edges);
     mesh_order::reorder(&mut edges, &mut caps::Rings::default(), &order);
     drop(order);

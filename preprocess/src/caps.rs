@@ -26,7 +26,7 @@ use std::sync::atomic::{AtomicU32, Ordering};
 use rayon::prelude::*;
 
 use crate::adjacency::Edges;
-use crate::corners::VertexCorners;
+use chamfer_runtime::asset::corners::VertexCorners;
 
 /// Next-index rings and cap heads.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -47,7 +47,7 @@ const SMALL_FAN: usize = 16;
 /// below `vertex_count`. The result does not depend on the thread count.
 pub fn rings(triangles: &[[u32; 3]], edges: &Edges, vertex_count: usize) -> Rings {
     rings_around(
-        &VertexCorners::new(triangles, vertex_count),
+        &VertexCorners::new(triangles.as_flattened(), vertex_count),
         triangles,
         edges,
         vertex_count,

@@ -30,7 +30,6 @@ mod bvh;
 pub mod caps;
 pub mod classify;
 pub mod compact;
-mod corners;
 pub mod degenerate;
 pub mod draw;
 pub mod environment;

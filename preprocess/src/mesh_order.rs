@@ -17,7 +17,7 @@ use rayon::prelude::*;
 
 use crate::adjacency::Edges;
 use crate::caps::Rings;
-use crate::corners::VertexCorners;
+use chamfer_runtime::asset::corners::VertexCorners;
 
 /// Bits per axis of the Morton code (24 in all, above them the direction cell; the low 31 bits of
 /// a `u64` key hold the triangle index).

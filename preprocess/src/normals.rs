@@ -17,7 +17,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use crate::adjacency::Edges;
-use crate::corners::VertexCorners;
+use chamfer_runtime::asset::corners::VertexCorners;
 
 /// Render buffers with normals split at creases.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -47,7 +47,7 @@ const VERTICES_PER_CHUNK: usize = 4096;
 /// classified edges of `triangles`, in any order. Render vertices are numbered by topology vertex,
 /// then by each fan's first corner, so the output is the same for any thread count.
 pub fn split_normals(positions: &[Vec3], triangles: &[[u32; 3]], edges: &Edges) -> RenderMesh {
-    let corners = VertexCorners::new(triangles, positions.len());
+    let corners = VertexCorners::new(triangles.as_flattened(), positions.len());
     split_normals_around(corners, positions, triangles, edges)
 }
 

@@ -6,13 +6,10 @@
 //! the table) and the ranges (the library's own checks).
 
 use chamfer_runtime::asset::CompactOptions;
-use chamfer_runtime::schema::{Schema, SchemaError};
+use chamfer_runtime::schema::{FINITE, Schema, SchemaError};
 use serde::{Deserialize, Serialize};
 
 use crate::{BakeOptions, Limits, OptionsError, Radius, Stitch, WeldTolerance};
-
-/// The largest finite f32, as the schema's upper bound for distances.
-const FINITE: f64 = f32::MAX as f64;
 
 chamfer_runtime::schema! {
     /// What to bake and how to encode it: `chamfer bake`'s flags of the same names (kebab-case

@@ -16,6 +16,17 @@ fn chamfer(args: &[&str]) -> Output {
         .expect("run chamfer")
 }
 
+/// Runs `chamfer args` and checks it succeeded (else fails the test with its stderr).
+fn succeed(args: &[&str]) -> Output {
+    let run = chamfer(args);
+    assert!(
+        run.status.success(),
+        "chamfer {args:?} failed: {}",
+        text(&run.stderr)
+    );
+    run
+}
+
 fn text(bytes: &[u8]) -> String {
     String::from_utf8_lossy(bytes).into_owned()
 }
@@ -28,15 +39,13 @@ fn path_str(p: &Path) -> &str {
 fn bake_then_inspect_json_has_the_documented_keys() {
     let dir = tempfile::tempdir().expect("tempdir");
     let out = dir.path().join("cube.chamfer");
-    let run = chamfer(&[
+    succeed(&[
         "bake",
         path_str(&fixture("shapes/cube.obj")),
         "-o",
         path_str(&out),
     ]);
-    assert!(run.status.success(), "{}", text(&run.stderr));
-    let run = chamfer(&["inspect", path_str(&out), "--json"]);
-    assert!(run.status.success(), "{}", text(&run.stderr));
+    let run = succeed(&["inspect", path_str(&out), "--json"]);
     let json: serde_json::Value = serde_json::from_slice(&run.stdout).expect("valid JSON");
     for key in [
         "vertices",
@@ -122,8 +131,7 @@ fn compact_bakes_state_their_precision_and_decode_to_the_same_edges() {
     ] {
         let mut args = vec!["bake", path_str(&fandisk), "-o", path_str(out)];
         args.extend(flags);
-        let run = chamfer(&args);
-        assert!(run.status.success(), "{}", text(&run.stderr));
+        let run = succeed(&args);
         // The report gives the file's own size.
         let size = std::fs::metadata(out).expect("written").len();
         assert!(
@@ -133,8 +141,7 @@ fn compact_bakes_state_their_precision_and_decode_to_the_same_edges() {
         );
     }
     let json = |path: &Path| -> serde_json::Value {
-        let run = chamfer(&["inspect", path_str(path), "--json"]);
-        assert!(run.status.success(), "{}", text(&run.stderr));
+        let run = succeed(&["inspect", path_str(path), "--json"]);
         serde_json::from_slice(&run.stdout).expect("JSON")
     };
     let (raw, compact_json, lossless) = (json(&raw), json(&compact), json(&lossless));
@@ -159,8 +166,7 @@ fn compact_bakes_state_their_precision_and_decode_to_the_same_edges() {
             .is_some_and(|b| b > 0)
     );
     // The table says it too, and --timings adds what each section took.
-    let table = chamfer(&["inspect", path_str(&compact), "--timings"]);
-    assert!(table.status.success(), "{}", text(&table.stderr));
+    let table = succeed(&["inspect", path_str(&compact), "--timings"]);
     let table = text(&table.stdout);
     assert!(
         table.contains("16-bit grid") && table.contains("decode ms"),
@@ -185,7 +191,7 @@ fn compact_bakes_state_their_precision_and_decode_to_the_same_edges() {
 fn radius_flags_mark_chamfer_edges() {
     let dir = tempfile::tempdir().expect("tempdir");
     let out = dir.path().join("cube.chamfer");
-    let run = chamfer(&[
+    succeed(&[
         "bake",
         path_str(&fixture("shapes/cube.obj")),
         "--radius",
@@ -193,7 +199,6 @@ fn radius_flags_mark_chamfer_edges() {
         "-o",
         path_str(&out),
     ]);
-    assert!(run.status.success(), "{}", text(&run.stderr));
     let run = chamfer(&["inspect", path_str(&out), "--json"]);
     let json: serde_json::Value = serde_json::from_slice(&run.stdout).expect("valid JSON");
     assert_eq!(json["chamfer"]["edges"], 12);
@@ -240,8 +245,7 @@ fn many_inputs_bake_into_a_directory() {
     let mut args = vec!["bake".to_owned()];
     args.extend(inputs.iter().map(|i| path_str(&fixture(i)).to_owned()));
     args.extend(["-o".to_owned(), path_str(&out).to_owned()]);
-    let run = chamfer(&args.iter().map(String::as_str).collect::<Vec<_>>());
-    assert!(run.status.success(), "{}", text(&run.stderr));
+    succeed(&args.iter().map(String::as_str).collect::<Vec<_>>());
     for name in ["cube", "cone-16", "two-materials", "cube-marked-le"] {
         assert!(
             out.join(format!("{name}.chamfer")).is_file(),
@@ -355,7 +359,7 @@ fn annotate_writes_marks_that_bake_reads_back() {
     let dir = tempfile::tempdir().expect("tempdir");
     let out = dir.path().join("marked.ply");
     let input = fixture("shapes/cube-marked-le.ply");
-    let run = chamfer(&[
+    let run = succeed(&[
         "annotate",
         path_str(&input),
         "--radius",
@@ -363,15 +367,13 @@ fn annotate_writes_marks_that_bake_reads_back() {
         "-o",
         path_str(&out),
     ]);
-    assert!(run.status.success(), "{}", text(&run.stderr));
     assert!(
         text(&run.stdout).contains("13 marked or chamfer edges"),
         "{}",
         text(&run.stdout)
     );
     let asset = dir.path().join("marked.chamfer");
-    let run = chamfer(&["bake", path_str(&out), "-o", path_str(&asset)]);
-    assert!(run.status.success(), "{}", text(&run.stderr));
+    succeed(&["bake", path_str(&out), "-o", path_str(&asset)]);
     let run = chamfer(&["inspect", path_str(&asset), "--json"]);
     let json: serde_json::Value = serde_json::from_slice(&run.stdout).expect("valid JSON");
     assert_eq!(json["edges"]["marked"], 13);
@@ -396,7 +398,7 @@ fn annotate_writes_the_glb_edge_extensions_it_is_told_to() {
     let dir = tempfile::tempdir().expect("tempdir");
     let out = dir.path().join("cube.glb");
     let input = fixture("shapes/cube.obj");
-    let run = chamfer(&[
+    let run = succeed(&[
         "annotate",
         path_str(&input),
         "--gltf-edges",
@@ -404,7 +406,6 @@ fn annotate_writes_the_glb_edge_extensions_it_is_told_to() {
         "-o",
         path_str(&out),
     ]);
-    assert!(run.status.success(), "{}", text(&run.stderr));
     assert!(
         text(&run.stdout).contains("12 hard and 0 silhouette edges"),
         "{}",
@@ -497,8 +498,7 @@ fn render_shades_chamfers_with_pbr_under_a_spot_and_an_environment() {
             "0",
         ];
         args.extend(light);
-        let run = chamfer(&args);
-        assert!(run.status.success(), "{}", text(&run.stderr));
+        succeed(&args);
         let pixels = png_pixels(&std::fs::read(&png).expect("png"));
         assert_eq!(pixels.len(), 96 * 64);
         pixels
@@ -573,8 +573,7 @@ fn render_writes_a_png_of_a_mesh_or_an_asset() {
             "64",
         ];
         args.extend(extra);
-        let run = chamfer(&args);
-        assert!(run.status.success(), "{}", text(&run.stderr));
+        succeed(&args);
         assert_eq!(png_size(&std::fs::read(&png).expect("png")), (96, 64));
     }
 }
@@ -1024,8 +1023,7 @@ fn a_folder_input_is_baked_like_build_bake_dir() {
     .expect("copy");
     std::fs::write(assets.join("notes.txt"), "not a mesh").expect("write");
     let out = dir.path().join("baked");
-    let run = chamfer(&["bake", path_str(&assets), "-o", path_str(&out)]);
-    assert!(run.status.success(), "{}", text(&run.stderr));
+    succeed(&["bake", path_str(&assets), "-o", path_str(&out)]);
     assert!(out.join("cube.chamfer").is_file());
     assert!(out.join("props/pair.chamfer").is_file());
     assert_eq!(std::fs::read_dir(&out).expect("dir").count(), 2);
@@ -1041,8 +1039,7 @@ fn warnings_go_to_stderr() {
     )
     .expect("write");
     let out = dir.path().join("lonely.chamfer");
-    let run = chamfer(&["bake", path_str(&obj), "-o", path_str(&out)]);
-    assert!(run.status.success(), "{}", text(&run.stderr));
+    let run = succeed(&["bake", path_str(&obj), "-o", path_str(&out)]);
     assert!(
         !text(&run.stdout).contains("warning"),
         "{}",
@@ -1092,21 +1089,19 @@ fn bake_intersections_then_inspect_json_shows_them() {
     let dir = tempfile::tempdir().expect("tempdir");
     let out = dir.path().join("cubes.chamfer");
     let input = fixture("shapes/two-cubes.obj");
-    let run = chamfer(&[
+    let run = succeed(&[
         "bake",
         path_str(&input),
         "-o",
         path_str(&out),
         "--intersections",
     ]);
-    assert!(run.status.success(), "{}", text(&run.stderr));
     assert!(
         text(&run.stdout).contains("intersections: "),
         "{}",
         text(&run.stdout)
     );
-    let run = chamfer(&["inspect", path_str(&out), "--json"]);
-    assert!(run.status.success(), "{}", text(&run.stderr));
+    let run = succeed(&["inspect", path_str(&out), "--json"]);
     let json: serde_json::Value = serde_json::from_slice(&run.stdout).expect("valid JSON");
     let i = &json["intersections"];
     assert_eq!(i["polylines"], 1, "{json}");
@@ -1120,13 +1115,11 @@ fn bake_intersections_then_inspect_json_shows_them() {
             Some(p) => p,
             None => {
                 let plain = dir.path().join("plain.chamfer");
-                let run = chamfer(&["bake", path_str(&input), "-o", path_str(&plain)]);
-                assert!(run.status.success(), "{}", text(&run.stderr));
+                succeed(&["bake", path_str(&input), "-o", path_str(&plain)]);
                 plain
             }
         };
-        let run = chamfer(&["inspect", path_str(&path), "--json"]);
-        assert!(run.status.success(), "{}", text(&run.stderr));
+        let run = succeed(&["inspect", path_str(&path), "--json"]);
         let json: serde_json::Value = serde_json::from_slice(&run.stdout).expect("valid JSON");
         assert_eq!(json["intersections"]["segments"], 0, "{json}");
         assert_eq!(json["intersections"]["length"], 0.0);
@@ -1138,8 +1131,7 @@ fn bake_scene_keeps_a_gltf_scene_and_render_draws_it() {
     let dir = tempfile::tempdir().expect("tempdir");
     let out = dir.path().join("baked");
     let gltf = fixture("shapes/two-cube-instances.gltf");
-    let run = chamfer(&["bake", path_str(&gltf), "--scene", "-o", path_str(&out)]);
-    assert!(run.status.success(), "{}", text(&run.stderr));
+    succeed(&["bake", path_str(&gltf), "--scene", "-o", path_str(&out)]);
     let scene_path = out.join("two-cube-instances.scene.json");
     let scene = std::fs::read_to_string(&scene_path).expect("scene file");
     let parsed: serde_json::Value = serde_json::from_str(&scene).expect("JSON");
@@ -1155,7 +1147,7 @@ fn bake_scene_keeps_a_gltf_scene_and_render_draws_it() {
     );
     assert!(out.join("two-cube-instances.mesh0.chamfer").is_file());
     let png = dir.path().join("scene.png");
-    let run = chamfer(&[
+    let run = succeed(&[
         "render",
         path_str(&scene_path),
         "-o",
@@ -1165,7 +1157,6 @@ fn bake_scene_keeps_a_gltf_scene_and_render_draws_it() {
         "--height",
         "64",
     ]);
-    assert!(run.status.success(), "{}", text(&run.stderr));
     assert!(text(&run.stdout).contains("2 instances of 1 assets"));
     // A scene reaching outside its folder is refused, naming the file and the name.
     let sneaky = dir.path().join("sneaky.scene.json");
@@ -1221,8 +1212,7 @@ fn the_default_weld_is_relative_and_weld_epsilon_zero_keeps_it_exact() {
         let asset = dir.path().join("cube.chamfer");
         let mut args = vec!["bake", path_str(&input), "-o", path_str(&asset)];
         args.extend_from_slice(flags);
-        let run = chamfer(&args);
-        assert!(run.status.success(), "{}", text(&run.stderr));
+        succeed(&args);
         let run = chamfer(&["inspect", path_str(&asset), "--json"]);
         let json: serde_json::Value = serde_json::from_slice(&run.stdout).expect("valid JSON");
         (
@@ -1271,13 +1261,12 @@ fn the_default_weld_is_relative_and_weld_epsilon_zero_keeps_it_exact() {
 fn stl_and_3mf_bake_from_the_command_line_and_inspect_reports_the_stitch() {
     let dir = tempfile::tempdir().expect("tempdir");
     let asset = dir.path().join("step.chamfer");
-    let run = chamfer(&[
+    let run = succeed(&[
         "bake",
         path_str(&fixture("shapes/step-binary.stl")),
         "-o",
         path_str(&asset),
     ]);
-    assert!(run.status.success(), "{}", text(&run.stderr));
     assert!(
         text(&run.stdout).contains("0 boundary"),
         "{}",
@@ -1309,14 +1298,13 @@ fn stl_and_3mf_bake_from_the_command_line_and_inspect_reports_the_stitch() {
     );
     // A 3MF's build as a scene: one asset per object, an instance per placement.
     let out = dir.path().join("scene");
-    let run = chamfer(&[
+    succeed(&[
         "bake",
         path_str(&fixture("shapes/step-components.3mf")),
         "--scene",
         "-o",
         path_str(&out),
     ]);
-    assert!(run.status.success(), "{}", text(&run.stderr));
     let scene = std::fs::read_to_string(out.join("step-components.scene.json")).expect("scene");
     let parsed: serde_json::Value = serde_json::from_str(&scene).expect("JSON");
     assert_eq!(parsed["instances"].as_array().map(Vec::len), Some(3));
@@ -1406,4 +1394,114 @@ fn every_schema_option_is_a_flag_that_bakes_what_the_settings_bake() {
             "{args:?} baked other bytes than the settings"
         );
     }
+}
+
+/// Issue 40: every entry of the view and style schemas is a flag of `chamfer render` (and the view's
+/// of `chamfer draw`), its example accepted and changing the picture; a value out of range is
+/// refused naming the flag.
+#[test]
+fn every_view_and_style_entry_is_a_render_flag_that_changes_the_picture() {
+    use chamfer_runtime::camera::Orbit;
+    use chamfer_runtime::render::StyleSettings;
+    use chamfer_runtime::schema::{Entry, Schema, Value, flag};
+
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mesh = fixture("shapes/cube.obj");
+    let render_help = text(&succeed(&["render", "--help"]).stdout);
+    let draw_help = text(&succeed(&["draw", "--help"]).stdout);
+    // Plain edges for the camera and the edges' own numbers; the chamfer highlight (with radii)
+    // for its numbers, under PBR for the two that are PBR's.
+    let kind = |name: &str| match name {
+        "roughness" | "metallic" => 2,
+        "diffuse" | "specular" | "ambient" | "shininess" | "light_intensity" | "k"
+        | "sharp_corners" => 1,
+        _ => 0,
+    };
+    let base = |kind: usize| {
+        let mut args = vec![
+            "render",
+            path_str(&mesh),
+            "--width",
+            "96",
+            "--height",
+            "72",
+            "--radius",
+            "0.15",
+        ];
+        args.extend(
+            [
+                &[][..],
+                &["--style", "chamfer"],
+                &["--style", "chamfer", "--shading", "pbr"],
+            ][kind],
+        );
+        args.into_iter().map(str::to_owned).collect::<Vec<_>>()
+    };
+    let picture = |args: &[String], name: &str| {
+        let out = dir.path().join(format!("{name}.png"));
+        let mut args = args.to_vec();
+        args.extend(["-o".to_owned(), path_str(&out).to_owned()]);
+        succeed(&args.iter().map(String::as_str).collect::<Vec<_>>());
+        std::fs::read(&out).expect("png")
+    };
+    let defaults = [0, 1, 2].map(|k| picture(&base(k), &format!("default-{k}")));
+    fn flags<S: Schema>(entry: &Entry<S>) -> Vec<String> {
+        match entry.example().expect("an example") {
+            Value::Flag(_) => vec![flag(entry.name)],
+            value => vec![flag(entry.name), value.to_string()],
+        }
+    }
+    let check = |name: &'static str, given: Vec<String>, in_draw: bool| {
+        assert!(
+            render_help.contains(&given[0]),
+            "{} is not in render --help",
+            given[0]
+        );
+        assert!(
+            !in_draw || draw_help.contains(&given[0]),
+            "{} is not in draw --help",
+            given[0]
+        );
+        let mut args = base(kind(name));
+        args.extend(given.iter().cloned());
+        assert_ne!(
+            picture(&args, name),
+            defaults[kind(name)],
+            "{given:?} changed nothing"
+        );
+    };
+    for entry in Orbit::ENTRIES {
+        check(entry.name, flags(entry), true);
+    }
+    for entry in StyleSettings::ENTRIES {
+        check(entry.name, flags(entry), false);
+    }
+    for (args, message) in [
+        (
+            &["--elevation", "95"][..],
+            "--elevation must be -90 to 90, not 95",
+        ),
+        (&["--fov-y", "0.5"][..], "--fov-y must be 1 to 170, not 0.5"),
+        (&["--samples", "2"][..], "--samples must be 1 or 4, not 2"),
+        (
+            &["--shininess", "500"][..],
+            "--shininess must be 1 to 128, not 500",
+        ),
+        (&["--k", "-1"][..], "--k must be at least 0, not -1"),
+    ] {
+        let mut all = base(1);
+        all.extend(args.iter().map(|a| (*a).to_owned()));
+        all.extend([
+            "-o".to_owned(),
+            path_str(&dir.path().join("refused.png")).to_owned(),
+        ]);
+        let run = chamfer(&all.iter().map(String::as_str).collect::<Vec<_>>());
+        assert!(!run.status.success(), "{args:?} accepted");
+        assert!(
+            text(&run.stderr).contains(message),
+            "{args:?}: {}",
+            text(&run.stderr)
+        );
+    }
+    assert!(!dir.path().join("refused.png").exists());
 }

@@ -14,15 +14,19 @@ Every function releases the interpreter while it works, and every error is a ``C
 (ReadError, WriteError, FormatError, UnsupportedError, MeshError, LimitError, OptionsError,
 ArrayError, AssetError) whose message names the file and the problem; ``error.path`` is the file.
 The bake options are listed in ``help(chamfer.bake)`` and in ``chamfer.OPTIONS``; ``chamfer.BAKE_SCHEMA``
-is their schema (the table ``chamfer bake``'s flags, the page and Bevy's ``.meta`` are made from).
+is their schema (the table ``chamfer bake``'s flags, the page and Bevy's ``.meta`` are made from), and
+``chamfer.VIEW_SCHEMA`` the camera's (``draw_svg``'s keywords, ``chamfer draw``'s camera flags).
 """
 
 import enum as _enum
+import functools as _functools
+import textwrap as _textwrap
 
 from . import _chamfer
 from ._chamfer import (
     BAKE_SCHEMA,
     FORMAT_VERSION,
+    VIEW_SCHEMA,
     OPTIONS,
     ArrayError,
     Asset,
@@ -37,15 +41,47 @@ from ._chamfer import (
     WriteError,
     __version__,
     annotate,
-    bake,
     bake_arrays,
     bake_if_changed,
     decode,
-    draw_svg,
     load,
     plan_folder,
     settings,
 )
+
+_TYPES = {"number": "float", "count": "int", "flag": "bool"}
+
+
+def _keywords(schema, group):
+    """The docstring's list of a schema group's keywords: name, type, help and default."""
+    lines = []
+    for entry in schema:
+        if entry["group"] != group:
+            continue
+        default = "" if entry["default"] is None or entry["kind"] == "flag" else f" [default: {entry['default']}]"
+        lines.append(f"  {entry['name']}: {_TYPES[entry['kind']]}")
+        lines += _textwrap.wrap(entry["help"] + default, 92, initial_indent=" " * 6, subsequent_indent=" " * 6,
+                                break_on_hyphens=False, break_long_words=False)
+    return "\n".join(lines)
+
+
+def _with_keywords(function, *tables):
+    """``function`` (a compiled one, whose docstring cannot change) with the keyword lists its
+    docstring's ``{name}`` fields ask for made from the schemas: one source for the flags, the
+    keywords and their help."""
+
+    @_functools.wraps(function)
+    def documented(*args, **kwargs):
+        return function(*args, **kwargs)
+
+    documented.__doc__ = function.__doc__.format(**dict(tables))
+    documented.__text_signature__ = function.__text_signature__
+    return documented
+
+
+_BAKE_KEYWORDS = ("bake_keywords", _keywords(BAKE_SCHEMA, "bake"))
+bake = _with_keywords(_chamfer.bake, _BAKE_KEYWORDS)
+draw_svg = _with_keywords(_chamfer.draw_svg, ("view_keywords", _keywords(VIEW_SCHEMA, "view")), _BAKE_KEYWORDS)
 
 EdgeFlags = _enum.IntFlag("EdgeFlags", dict(_chamfer.EDGE_FLAGS))
 EdgeFlags.__doc__ = """The classes of an edge, bits of ``Asset.edge_flags`` (several can be set).
@@ -82,6 +118,7 @@ __all__ = [
     "FORMAT_VERSION",
     "OPTIONS",
     "BAKE_SCHEMA",
+    "VIEW_SCHEMA",
     "ArrayError",
     "Asset",
     "AssetError",

@@ -21,6 +21,8 @@ EDGE_FLAGS: List[Tuple[str, int]]
 #: (name, "float" | "int" | "bool", help) of every bake option.
 OPTIONS: List[Tuple[str, str, str]]
 BAKE_SCHEMA: List[Dict[str, Any]]
+#: The view schema: draw_svg's camera keywords, chamfer draw's camera flags.
+VIEW_SCHEMA: List[Dict[str, Any]]
 
 class BakeOptions(TypedDict, total=False):
     """The bake options (the schema's "bake" group, chamfer.OPTIONS); None leaves one at its default."""
@@ -40,6 +42,18 @@ class BakeOptions(TypedDict, total=False):
     stitch_rel: Optional[float]
     stitch_epsilon: Optional[float]
     no_stitch: Optional[bool]
+
+class ViewOptions(TypedDict, total=False):
+    """The orbit camera (chamfer.VIEW_SCHEMA); None leaves one at its default."""
+
+    azimuth: Optional[float]
+    elevation: Optional[float]
+    distance: Optional[float]
+    fov_y: Optional[float]
+    ortho: Optional[bool]
+
+class DrawOptions(ViewOptions, BakeOptions, total=False):
+    """draw_svg's keywords: the view's and, for a mesh, the bake's."""
 
 class ChamferError(Exception):
     path: Optional[str]
@@ -130,13 +144,9 @@ def draw_svg(
     *,
     width: int = 1024,
     height: int = 768,
-    azimuth: float = 35.0,
-    elevation: float = 25.0,
-    distance: Optional[float] = None,
-    ortho: bool = False,
     hidden: bool = False,
     classes: Optional[Sequence[str]] = None,
     scale: Optional[float] = None,
     title: Optional[str] = None,
-    **options: Unpack[BakeOptions],
+    **options: Unpack[DrawOptions],
 ) -> str: ...

@@ -1,12 +1,11 @@
 //! Baking from Python: a file, a file's bytes, or vertex and face arrays, with the interpreter
 //! released (other Python threads run while the bake does); and the per-file step of batch bakes.
 
-use std::io::Read;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use chamfer_preprocess::limits::Limited;
 use chamfer_preprocess::mesh::Mesh;
-use chamfer_preprocess::{BakeOptions, Baked, Error, annotate as annotate_mesh, build};
+use chamfer_preprocess::{Baked, Companions, Error, annotate as annotate_mesh, build};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
 
@@ -25,21 +24,9 @@ fn asset_of(baked: Baked) -> PyAsset {
 /// mesh refers to (an OBJ's .mtl, a .gltf's buffers) are looked for. The result is byte for byte
 /// what `chamfer bake` writes with the same options (Asset.encode()).
 ///
-/// Options (keywords, the `chamfer bake` flags with `_` for `-`; None leaves the default):
-///   weld_epsilon: float     weld positions closer than this distance (0: identical only)
-///   weld_rel: float         ... closer than this fraction of the farthest corner's distance (1e-6)
-///   coplanar_deg: float     drop interior edges whose faces are coplanar within this (0.01)
-///   crease_deg: float       edges whose faces meet at this angle or more are creases (30)
-///   radius: float           chamfer radius of ridge creases, in mesh units (marks in the file win)
-///   radius_rel: float       ... as a fraction of the bounding box's diagonal (e.g. 0.005)
-///   radius_valleys: bool    give valley creases the radius too (False)
-///   intersections: bool     also find intersection edges (False)
-///   stitch_rel: float       stitch cracks between separately tessellated faces within this
-///                           fraction of the bounding box's diagonal (1e-4)
-///   stitch_epsilon: float   ... within this distance, in mesh units
-///   no_stitch: bool         do not stitch (False)
-///   max_triangles, max_vertices, max_instances, max_input_bytes: int
-///                           refuse a file asking for more than this (chamfer.OPTIONS lists all)
+/// Options (keywords, the `chamfer bake` flags with `_` for `-`; None leaves the default; from
+/// chamfer.BAKE_SCHEMA, as chamfer.OPTIONS lists them):
+/// {bake_keywords}
 ///
 /// The interpreter is released while the file is read and baked. Raises ReadError, FormatError,
 /// UnsupportedError, MeshError, LimitError or OptionsError (all ChamferError), each naming the
@@ -60,7 +47,10 @@ pub fn bake(
             )
         })?;
         let data = bytes.as_bytes();
-        py.detach(|| bake_bytes(&name, data, &options))
+        // Inflated first if `name` ends in `.gz`, within the input-bytes limit, as the file would be.
+        py.detach(|| {
+            chamfer_preprocess::bake_with_companions(&name, data, Companions::Folder, &options)
+        })
     } else {
         let path: PathBuf = source.extract().map_err(|_| {
             pyo3::exceptions::PyTypeError::new_err(format!(
@@ -74,37 +64,6 @@ pub fn bake(
         py.detach(|| chamfer_preprocess::bake_file(&path, &options))
     };
     baked.map(asset_of).map_err(errors::from_library)
-}
-
-/// A file's bytes baked as the file `name` would be: inflated first if `name` ends in `.gz`, and
-/// never more than the input-bytes limit.
-fn bake_bytes(name: &Path, data: &[u8], options: &BakeOptions) -> Result<Baked, Error> {
-    let limit = options.limits.max_input_bytes;
-    let too_big = |count| Error::LimitExceeded {
-        path: name.to_owned(),
-        what: Limited::InputBytes,
-        count,
-        limit,
-    };
-    if data.len() as u64 > limit {
-        return Err(too_big(data.len() as u64));
-    }
-    let compressed = name.to_string_lossy().to_ascii_lowercase().ends_with(".gz");
-    if !compressed {
-        return chamfer_preprocess::bake_bytes(name, data, options);
-    }
-    let mut inflated = Vec::new();
-    flate2::read::GzDecoder::new(data)
-        .take(limit.saturating_add(1))
-        .read_to_end(&mut inflated)
-        .map_err(|source| Error::Read {
-            path: name.to_owned(),
-            source,
-        })?;
-    if inflated.len() as u64 > limit {
-        return Err(too_big(inflated.len() as u64));
-    }
-    chamfer_preprocess::bake_bytes(name, &inflated, options)
 }
 
 /// Bakes a mesh given as arrays: `vertices` (N, 3) float32 or float64, `faces` (M, 3) integers

@@ -1,5 +1,5 @@
 //! `chamfer.draw_svg`: hidden-line drawings as `chamfer draw` makes them, from the same camera
-//! keywords (its `--width --height --azimuth --elevation --distance --ortho` flags).
+//! keywords: `width` and `height`, and the view schema's (`chamfer.VIEW_SCHEMA`, its camera flags).
 
 use std::path::PathBuf;
 
@@ -14,80 +14,26 @@ use crate::asset::PyAsset;
 use crate::errors::Failure;
 use crate::{errors, options};
 
-/// Where the orbit camera sits: `chamfer draw`'s camera flags.
-struct Orbit {
-    width: u32,
-    height: u32,
-    azimuth: f32,
-    elevation: f32,
-    distance: Option<f32>,
-    ortho: bool,
-}
-
-impl Orbit {
-    /// The checks of `chamfer draw`'s camera flags, as OptionsError.
-    fn check(&self) -> PyResult<()> {
-        if !(1..=16_384).contains(&self.width) || !(1..=16_384).contains(&self.height) {
-            return Err(errors::options(format!(
-                "width and height must be 1 to 16384 pixels, not {}x{}",
-                self.width, self.height
-            )));
-        }
-        if !self.azimuth.is_finite() || !self.elevation.is_finite() {
-            return Err(errors::options(
-                "azimuth and elevation must be finite".into(),
-            ));
-        }
-        if self.distance.is_some_and(|d| !(d.is_finite() && d > 0.0)) {
-            return Err(errors::options("distance must be a positive number".into()));
-        }
-        Ok(())
-    }
-
-    /// The camera flags as `chamfer render` takes them: the drawing's description names them.
-    fn describe(&self) -> String {
-        let mut flags = format!(
-            "--width {} --height {} --azimuth {} --elevation {}",
-            self.width, self.height, self.azimuth, self.elevation
-        );
-        if let Some(d) = self.distance {
-            flags += &format!(" --distance {d}");
-        }
-        if self.ortho {
-            flags += " --ortho";
-        }
-        flags
-    }
-
-    /// The camera framing `bounds` from this orbit: the runtime's own, as `chamfer draw` uses it.
-    fn view(&self, bounds: [[f32; 3]; 2]) -> Camera {
-        let orbit = chamfer_runtime::camera::Orbit {
-            azimuth_deg: self.azimuth,
-            elevation_deg: self.elevation,
-            distance: self.distance,
-            orthographic: self.ortho,
-            ..Default::default()
-        };
-        Camera::orbit(bounds, &orbit, [self.width, self.height])
-    }
-}
-
 /// A hidden-line drawing as SVG text, the same as `chamfer draw` writes for the same camera.
 ///
 /// `source` is an Asset, a `.chamfer` file, or a mesh file (baked first, with intersection
-/// edges, and the bake options as for bake()). The camera orbits the model's bounding box:
-/// `azimuth` turns around +Y (0 looks from +Z), `elevation` rises above the horizon (degrees),
-/// `distance` from the centre (default: frame the model), `ortho` for an orthographic view, in a
-/// frame of `width` x `height` pixels. `classes` picks the line classes (contour, boundary,
-/// marked, crease, intersection; default all), `hidden` also draws the hidden parts (dashed),
-/// `scale` is paper millimetres per model unit (default 96 dpi), `title` defaults to the file's
-/// name (or the asset's source). When `output` is given the SVG is also written there
+/// edges, and the bake options as for bake()). `classes` picks the line classes (contour,
+/// boundary, marked, crease, intersection; default all), `hidden` also draws the hidden parts
+/// (dashed), `scale` is paper millimetres per model unit (default 96 dpi), `title` defaults to
+/// the file's name (or the asset's source). When `output` is given the SVG is also written there
 /// atomically. The interpreter is released while drawing.
+///
+/// The camera orbits the model's bounding box, in a frame of `width` x `height` pixels, where
+/// the view keywords put it (chamfer.VIEW_SCHEMA, `chamfer draw`'s camera flags of the same
+/// names):
+/// {view_keywords}
+///
+/// The bake options, for a mesh file:
+/// {bake_keywords}
 #[pyfunction]
 #[pyo3(signature = (
-    source, output = None, *, width = 1024, height = 768, azimuth = 35.0, elevation = 25.0,
-    distance = None, ortho = false, hidden = false, classes = None, scale = None, title = None,
-    **options
+    source, output = None, *, width = 1024, height = 768, hidden = false, classes = None,
+    scale = None, title = None, **options
 ))]
 #[allow(clippy::too_many_arguments)]
 pub fn draw_svg(
@@ -96,25 +42,20 @@ pub fn draw_svg(
     output: Option<PathBuf>,
     width: u32,
     height: u32,
-    azimuth: f32,
-    elevation: f32,
-    distance: Option<f32>,
-    ortho: bool,
     hidden: bool,
     classes: Option<Vec<String>>,
     scale: Option<f64>,
     title: Option<String>,
     options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<String> {
-    let orbit = Orbit {
-        width,
-        height,
-        azimuth,
-        elevation,
-        distance,
-        ortho,
-    };
-    orbit.check()?;
+    if !(1..=16_384).contains(&width) || !(1..=16_384).contains(&height) {
+        return Err(errors::options(format!(
+            "width and height must be 1 to 16384 pixels, not {width}x{height}"
+        )));
+    }
+    let (orbit, options) = options::view_from_kwargs(py, options)?;
+    // Checked whatever the source: a misspelt keyword is an error even where nothing is baked.
+    let bake_options = options::from_kwargs(Some(&options))?.with_intersections(true);
     if scale.is_some_and(|s| !(s.is_finite() && s > 0.0)) {
         return Err(errors::options(
             "scale must be a positive number of millimetres per model unit".into(),
@@ -149,7 +90,6 @@ pub fn draw_svg(
                     "draw_svg() takes an Asset or the path of an asset or a mesh",
                 )
             })?;
-            let bake_options = options::from_kwargs(options)?.with_intersections(true);
             baked = py.detach(|| read_or_bake(&path, &bake_options))?;
             (&baked, Some(path))
         }
@@ -164,13 +104,17 @@ pub fn draw_svg(
     let svg_options = SvgOptions::DEFAULT
         .with_mm_per_unit(scale)
         .with_title(title)
-        .with_description(format!("Camera: chamfer render {}.", orbit.describe()));
+        .with_description(format!(
+            "Camera: chamfer render {}.",
+            orbit.flags([width, height])
+        ));
     if let Some(output) = &output {
         let inputs: Vec<&std::path::Path> = input.iter().map(PathBuf::as_path).collect();
         ensure_not_an_input(output, &inputs)
             .map_err(|e| errors::from_library_writing(e, output))?;
     }
-    let view = orbit.view([asset.header.bounds_min, asset.header.bounds_max]);
+    let bounds = [asset.header.bounds_min, asset.header.bounds_max];
+    let view = Camera::orbit(bounds, &orbit, [width, height]);
     let svg = py.detach(|| {
         let drawing = hidden_lines(asset, &view, &draw_options);
         let mut svg = Vec::new();

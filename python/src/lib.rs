@@ -23,6 +23,7 @@ fn _chamfer(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add("EDGE_FLAGS", asset::edge_flags())?;
     module.add("OPTIONS", options::table())?;
     module.add("BAKE_SCHEMA", options::schema(module.py())?)?;
+    module.add("VIEW_SCHEMA", options::view_schema(module.py())?)?;
     module.add_class::<asset::PyAsset>()?;
     module.add_function(wrap_pyfunction!(bake::bake, module)?)?;
     module.add_function(wrap_pyfunction!(bake::bake_arrays, module)?)?;

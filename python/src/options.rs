@@ -5,6 +5,7 @@
 //! checks conflicts, the library the ranges.
 
 use chamfer_preprocess::{BakeOptions, BakeSettings};
+use chamfer_runtime::camera::Orbit;
 use chamfer_runtime::schema::{Entry, Kind, Schema, Value};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt};
@@ -27,31 +28,7 @@ const fn python_type(kind: Kind) -> &'static str {
 /// wrong type, two conflicting options or a value out of range raises `OptionsError`.
 pub fn from_kwargs(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<BakeOptions> {
     let mut settings = BakeSettings::default();
-    let mut given = Vec::new();
-    if let Some(kwargs) = kwargs {
-        for (key, value) in kwargs.iter() {
-            let name: String = key.extract()?;
-            let entry = BakeSettings::entry(&name)
-                .ok()
-                .filter(|entry| entry.group == GROUP)
-                .ok_or_else(|| {
-                    errors::options(format!(
-                        "unknown option {name:?} (chamfer.OPTIONS lists the options)"
-                    ))
-                })?;
-            if value.is_none() {
-                continue;
-            }
-            let value = read(entry, &value)?;
-            entry
-                .set(&mut settings, value)
-                .map_err(|e| errors::options(e.to_string()))?;
-            // A flag given False is not given (as its flag left off the command line).
-            if value != Value::Flag(false) {
-                given.push(entry.name);
-            }
-        }
-    }
+    let given = set_keywords(&mut settings, GROUP, kwargs, None)?;
     BakeSettings::check_names(&given).map_err(|e| errors::options(e.to_string()))?;
     settings.bake_options().map_err(|e| match e {
         chamfer_preprocess::SettingsError::Options(e) => errors::from_library(e.into()),
@@ -59,8 +36,65 @@ pub fn from_kwargs(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<BakeOptions> 
     })
 }
 
+/// The orbit camera the view keywords of `kwargs` set (the view schema, `chamfer.VIEW_SCHEMA`),
+/// checked, and the other keywords (the bake options) in a new dict.
+pub fn view_from_kwargs<'py>(
+    py: Python<'py>,
+    kwargs: Option<&Bound<'py, PyDict>>,
+) -> PyResult<(Orbit, Bound<'py, PyDict>)> {
+    let mut orbit = Orbit::default();
+    let others = PyDict::new(py);
+    let given = set_keywords(&mut orbit, "view", kwargs, Some(&others))?;
+    Orbit::check_names(&given).map_err(|e| errors::options(e.to_string()))?;
+    orbit.check().map_err(|e| errors::options(e.to_string()))?;
+    Ok((orbit, others))
+}
+
+/// Sets into `settings` the keywords of `kwargs` that are entries of `group`, each read as its
+/// entry's kind (`None` leaves one at its default), and returns the names given; a flag given
+/// False is not given, as its flag left off the command line. Other keywords go into `others`
+/// when it is given, and raise `OptionsError` when it is not.
+fn set_keywords<S: Schema>(
+    settings: &mut S,
+    group: &str,
+    kwargs: Option<&Bound<'_, PyDict>>,
+    others: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Vec<&'static str>> {
+    let mut given = Vec::new();
+    let Some(kwargs) = kwargs else {
+        return Ok(given);
+    };
+    for (key, value) in kwargs.iter() {
+        let name: String = key.extract()?;
+        let Some(entry) = S::entry(&name).ok().filter(|entry| entry.group == group) else {
+            match others {
+                Some(others) => {
+                    others.set_item(key, value)?;
+                    continue;
+                }
+                None => {
+                    return Err(errors::options(format!(
+                        "unknown option {name:?} (chamfer.OPTIONS lists the options)"
+                    )));
+                }
+            }
+        };
+        if value.is_none() {
+            continue;
+        }
+        let value = read(entry, &value)?;
+        entry
+            .set(settings, value)
+            .map_err(|e| errors::options(e.to_string()))?;
+        if value != Value::Flag(false) {
+            given.push(entry.name);
+        }
+    }
+    Ok(given)
+}
+
 /// `value` read as `entry`'s kind.
-fn read(entry: &Entry<BakeSettings>, value: &Bound<'_, PyAny>) -> PyResult<Value> {
+fn read<S: Schema>(entry: &Entry<S>, value: &Bound<'_, PyAny>) -> PyResult<Value> {
     let wrong = || {
         let type_name = value
             .get_type()
@@ -115,6 +149,16 @@ pub fn table() -> Vec<(&'static str, &'static str, String)> {
 /// (name, kind, group, value_name, help, default, example, range, conflicts, requires), the
 /// "encoding" group's entries being the keywords of `Asset.encode` and `Asset.save`.
 pub fn schema(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
-    let json = BakeSettings::schema_json().to_string();
-    py.import("json")?.call_method1("loads", (json,))
+    json(py, BakeSettings::schema_json())
+}
+
+/// The view schema for Python (`chamfer.VIEW_SCHEMA`), as [`schema`]: the camera keywords of
+/// `draw_svg`, `chamfer draw`'s and `chamfer render`'s camera flags.
+pub fn view_schema(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
+    json(py, Orbit::schema_json())
+}
+
+fn json(py: Python<'_>, value: serde_json::Value) -> PyResult<Bound<'_, PyAny>> {
+    py.import("json")?
+        .call_method1("loads", (value.to_string(),))
 }

@@ -171,6 +171,14 @@ def test_help_is_useful():
     for needle in ["ReadError", "FormatError", "MeshError", "LimitError", "released", "name"]:
         assert needle in doc
     assert chamfer.bake.__text_signature__ == "(source, *, name=None, **options)"
+    # The keyword lists are the schemas' (issue 40): every entry with its help, for bake and draw_svg.
+    flat = lambda text: " ".join(text.split())
+    for function, schemas in [(chamfer.bake, [chamfer.BAKE_SCHEMA]),
+                              (chamfer.draw_svg, [chamfer.VIEW_SCHEMA, chamfer.BAKE_SCHEMA])]:
+        for entry in (e for schema in schemas for e in schema if e["group"] in ("bake", "view")):
+            assert f"{entry['name']}: " in function.__doc__, (function, entry["name"])
+            assert flat(entry["help"]) in flat(function.__doc__), (function, entry["name"])
+    assert "{" not in chamfer.bake.__doc__ + chamfer.draw_svg.__doc__
     for function in [chamfer.bake_arrays, chamfer.load, chamfer.draw_svg, chamfer.annotate, chamfer.from_trimesh]:
         assert len(function.__doc__) > 100, function
     assert "numpy" in chamfer.Asset.__doc__
@@ -189,11 +197,16 @@ def test_the_stubs_name_what_the_module_has():
         elif isinstance(node, ast.AnnAssign):
             names.add(node.target.id)
     public = {n for n in dir(chamfer._chamfer) if not n.startswith("_") or n == "__version__"}
-    assert public == names - {"BakeOptions"}
+    assert public == names - {"BakeOptions", "ViewOptions", "DrawOptions"}
     options = next(n for n in stub.body if isinstance(n, ast.ClassDef) and n.name == "BakeOptions")
     # The TypedDict is the schema's bake group: same names, order and types.
     keys = [(s.target.id, ast.unparse(s.annotation)) for s in options.body if isinstance(s, ast.AnnAssign)]
     assert keys == [(name, f"Optional[{kind}]") for name, kind, _ in chamfer.OPTIONS]
+    # And the view's TypedDict is the view schema.
+    view = next(n for n in stub.body if isinstance(n, ast.ClassDef) and n.name == "ViewOptions")
+    keys = [(s.target.id, ast.unparse(s.annotation)) for s in view.body if isinstance(s, ast.AnnAssign)]
+    kinds = {"number": "float", "count": "int", "flag": "bool"}
+    assert keys == [(e["name"], f"Optional[{kinds[e['kind']]}]") for e in chamfer.VIEW_SCHEMA]
     assert (Path(chamfer.__file__).parent / "py.typed").is_file()
 
 

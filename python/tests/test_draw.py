@@ -29,6 +29,22 @@ def test_drawings_equal_the_cli_s(mesh, camera, cli, tmp_path):
     assert chamfer.draw_svg(asset, title=mesh.name, **kwargs) == expected
 
 
+def test_every_view_schema_entry_is_a_keyword_that_draws_what_chamfer_draw_draws(cli, tmp_path):
+    """Issue 40: each entry of the view schema, set to its example as a keyword, draws what its
+    flag draws, and changes the drawing (so the value arrives)."""
+    mesh = MESHES / "fandisk.obj"
+    assert [e["name"] for e in chamfer.VIEW_SCHEMA] == ["azimuth", "elevation", "distance", "fov_y", "ortho"]
+    default = chamfer.draw_svg(mesh)
+    for entry in chamfer.VIEW_SCHEMA:
+        assert entry["group"] == "view" and entry["example"] != entry["default"], entry
+        flag = "--" + entry["name"].replace("_", "-")
+        flags = [flag] if entry["kind"] == "flag" else [flag, str(entry["example"])]
+        cli.run("draw", mesh, "-o", tmp_path / "cli.svg", *flags)
+        drawn = chamfer.draw_svg(mesh, **{entry["name"]: entry["example"]})
+        assert drawn == (tmp_path / "cli.svg").read_text(), entry["name"]
+        assert drawn != default, entry["name"]
+
+
 def test_a_chamfer_file_draws_as_the_cli_draws_it(cli, tmp_path):
     asset_path = tmp_path / "fandisk.chamfer"
     chamfer.bake(MESHES / "fandisk.obj", radius_rel=0.01).save(asset_path)

@@ -189,6 +189,7 @@ def test_outputs_that_cannot_be_written_are_write_errors(tmp_path):
 def test_wrong_draw_and_annotate_arguments_are_options_errors(tmp_path):
     asset = chamfer.bake(SHAPES / "cube.obj")
     for kwargs in [{"width": 0}, {"height": 20000}, {"azimuth": float("nan")}, {"distance": -1.0},
+                   {"elevation": 91.0}, {"fov_y": 0.5}, {"ortho": 1}, {"zoom": 2.0},
                    {"classes": ["contour", "outlines"]}, {"scale": 0.0}]:
         with pytest.raises(chamfer.OptionsError):
             chamfer.draw_svg(asset, **kwargs)

@@ -50,19 +50,19 @@ impl Camera {
         let center = (lo + hi) * 0.5;
         let radius = ((hi - lo).length() * 0.5).max(1e-6);
         let aspect = viewport[0].max(1) as f32 / viewport[1].max(1) as f32;
-        let (azimuth, elevation) = (
-            orbit.azimuth_deg.to_radians(),
-            orbit.elevation_deg.to_radians(),
-        );
+        let (azimuth, elevation) = (orbit.azimuth.to_radians(), orbit.elevation.to_radians());
         let towards_eye = Vec3::new(
             elevation.cos() * azimuth.sin(),
             elevation.sin(),
             elevation.cos() * azimuth.cos(),
         );
-        let fov_y = orbit.fov_y_deg.to_radians().clamp(1e-3, 3.0);
+        let fov_y = orbit.fov_y.to_radians().clamp(1e-3, 3.0);
         let fov_x = 2.0 * ((fov_y * 0.5).tan() * aspect).atan();
         let fit = radius / (fov_y.min(fov_x) * 0.5).sin();
-        let distance = orbit.distance.unwrap_or(fit * 1.02).max(1e-6);
+        let distance = orbit
+            .distance
+            .unwrap_or(fit * 1.02)
+            .max(MIN_DISTANCE as f32);
         let eye = center + towards_eye * distance;
         let up = if towards_eye.y.abs() > 0.999 {
             Vec3::Z
@@ -74,7 +74,7 @@ impl Camera {
             (distance - radius * 1.5).max(distance * 1e-3),
             distance + radius * 1.5,
         );
-        let projection = if orbit.orthographic {
+        let projection = if orbit.ortho {
             let half_height = radius * 1.02 * aspect.recip().max(1.0);
             directx::orthographic(
                 -half_height * aspect,
@@ -95,30 +95,55 @@ impl Camera {
     }
 }
 
-/// Where an orbit camera sits around a model's bounding box.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Orbit {
-    /// Turn around the vertical (+Y) axis, degrees; 0 looks from +Z.
-    pub azimuth_deg: f32,
-    /// Height above the horizontal plane, degrees.
-    pub elevation_deg: f32,
-    /// Distance from the box's centre; `None` fits the box's bounding sphere in view.
-    pub distance: Option<f32>,
-    /// Orthographic instead of perspective.
-    pub orthographic: bool,
-    /// Vertical field of view of the perspective camera, degrees.
-    pub fov_y_deg: f32,
+/// The nearest an orbit camera may be to the box's centre.
+const MIN_DISTANCE: f64 = 1e-6;
+
+crate::schema! {
+    /// Where an orbit camera sits around a model's bounding box: the view schema (issue 40), which
+    /// `chamfer render`'s and `chamfer draw`'s camera flags, Python's `draw_svg` keywords
+    /// (`chamfer.VIEW_SCHEMA`) and the page's view panel are made from. JSON and RON read it with
+    /// the same names; unknown keys are refused. [`Orbit::check`] refuses values out of range.
+    #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+    #[serde(default, deny_unknown_fields)]
+    pub struct Orbit {
+        /// Camera turn around the vertical (+Y) axis, degrees; 0 looks from +Z.
+        azimuth: f32 = 35.0, { group: "view", value: "DEG", range: None, example: -50.0,
+            conflicts: [], requires: [] },
+        /// Camera height above the horizontal plane, degrees (-90 to 90).
+        elevation: f32 = 25.0, { group: "view", value: "DEG", range: Some((-90.0, 90.0)),
+            example: 60.0, conflicts: [], requires: [] },
+        /// Camera distance from the model's centre, mesh units. [default: frame the model]
+        distance: Option<f32> = None, { group: "view", value: "DIST",
+            range: Some((MIN_DISTANCE, crate::schema::FINITE)), example: Some(4.0),
+            conflicts: [], requires: [] },
+        /// Vertical field of view of the perspective camera, degrees.
+        fov_y: f32 = 35.0, { group: "view", value: "DEG", range: Some((1.0, 170.0)),
+            example: 50.0, conflicts: [], requires: [] },
+        /// Orthographic camera (parallel projection) instead of perspective; `fov_y` is then
+        /// unused.
+        ortho: bool = false, { group: "view", value: "", range: None, example: true,
+            conflicts: [], requires: [] },
+    }
 }
 
-impl Default for Orbit {
-    fn default() -> Self {
-        Self {
-            azimuth_deg: 35.0,
-            elevation_deg: 25.0,
-            distance: None,
-            orthographic: false,
-            fov_y_deg: 35.0,
-        }
+impl Orbit {
+    /// Refuses numbers that are not finite and values outside their entries' ranges.
+    pub fn check(&self) -> Result<(), crate::schema::SchemaError> {
+        use crate::schema::Schema;
+        self.check_combinations()?;
+        self.check_ranges()
+    }
+
+    /// This view in a frame of `viewport` pixels as `chamfer render`'s flags, as they would be
+    /// typed (a drawing's description quotes them, so the same view can be asked for again).
+    pub fn flags(&self, viewport: [u32; 2]) -> String {
+        use crate::schema::Schema;
+        let mut flags = vec![
+            format!("--width {}", viewport[0]),
+            format!("--height {}", viewport[1]),
+        ];
+        flags.extend(self.to_flags());
+        flags.join(" ")
     }
 }
 
@@ -139,7 +164,7 @@ mod tests {
         let ortho = Camera::orbit(
             bounds,
             &Orbit {
-                orthographic: true,
+                ortho: true,
                 ..Orbit::default()
             },
             [64, 48],
@@ -157,7 +182,7 @@ mod tests {
         for orthographic in [false, true] {
             for aspect in [[200, 100], [100, 200]] {
                 let orbit = Orbit {
-                    orthographic,
+                    ortho: orthographic,
                     ..Orbit::default()
                 };
                 let camera = Camera::orbit(bounds, &orbit, aspect);
@@ -178,5 +203,57 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn the_view_schema_checks_its_ranges_and_reads_json() {
+        use crate::schema::Schema;
+        assert_eq!(Orbit::default().check(), Ok(()));
+        for entry in Orbit::ENTRIES {
+            let mut orbit = Orbit::default();
+            entry.set_example(&mut orbit);
+            assert_eq!(orbit.check(), Ok(()), "{}", entry.name);
+            assert_ne!(orbit, Orbit::default(), "{}", entry.name);
+        }
+        for bad in [
+            Orbit {
+                elevation: 91.0,
+                ..Orbit::default()
+            },
+            Orbit {
+                azimuth: f32::INFINITY,
+                ..Orbit::default()
+            },
+            Orbit {
+                distance: Some(0.0),
+                ..Orbit::default()
+            },
+            Orbit {
+                fov_y: 180.0,
+                ..Orbit::default()
+            },
+        ] {
+            assert!(bad.check().is_err(), "{bad:?}");
+        }
+        let orbit: Orbit =
+            serde_json::from_str(r#"{"azimuth": -50, "ortho": true}"#).expect("json");
+        assert_eq!(
+            (orbit.azimuth, orbit.ortho, orbit.elevation),
+            (-50.0, true, 25.0)
+        );
+        assert!(serde_json::from_str::<Orbit>(r#"{"zoom": 2}"#).is_err());
+        assert_eq!(
+            Orbit {
+                distance: Some(3.0),
+                ..Orbit::default()
+            }
+            .to_flags(),
+            [
+                "--azimuth 35",
+                "--elevation 25",
+                "--distance 3",
+                "--fov-y 35"
+            ]
+        );
     }
 }

@@ -67,6 +67,9 @@ impl fmt::Display for Value {
     }
 }
 
+/// The upper bound of a range that has none but finiteness: the largest finite f32.
+pub const FINITE: f64 = f32::MAX as f64;
+
 /// The entry `name` spelled as a command-line flag: `weld_rel` is `--weld-rel`.
 pub fn flag(name: &str) -> String {
     format!("--{}", name.replace('_', "-"))
@@ -168,6 +171,50 @@ pub enum SchemaError {
     /// An entry is given without one it needs.
     #[error("option {0} needs option {1}")]
     Requires(&'static str, &'static str),
+    /// A value its struct's own check refuses, for a reason a range cannot say.
+    #[error("option {name} {reason}")]
+    Invalid {
+        /// The entry.
+        name: &'static str,
+        /// Why, as a predicate: "must be 1 or 4, not 3".
+        reason: String,
+    },
+    /// A number is not finite, or a value lies outside its entry's range.
+    #[error("option {name} must be {}, not {given}", describe_range(*range))]
+    OutOfRange {
+        /// The entry.
+        name: &'static str,
+        /// Its range (`None`: any finite number).
+        range: Option<(f64, f64)>,
+        /// What was given.
+        given: String,
+    },
+}
+
+impl SchemaError {
+    /// The message with the entry named as a front end spells it (the CLI: [`flag`]), for the
+    /// errors that name one entry's value; the others read as their `Display`.
+    pub fn spelled(&self, spell: impl Fn(&str) -> String) -> String {
+        match self {
+            Self::OutOfRange { name, range, given } => {
+                format!(
+                    "{} must be {}, not {given}",
+                    spell(name),
+                    describe_range(*range)
+                )
+            }
+            Self::Invalid { name, reason } => format!("{} {reason}", spell(name)),
+            other => other.to_string(),
+        }
+    }
+}
+
+fn describe_range(range: Option<(f64, f64)>) -> String {
+    match range {
+        Some((low, high)) if high >= FINITE => format!("at least {low}"),
+        Some((low, high)) => format!("{low} to {high}"),
+        None => "a finite number".into(),
+    }
 }
 
 impl<S: Schema> Entry<S> {
@@ -305,6 +352,43 @@ pub trait Schema: Default + Sized + 'static {
             }
         }
         Ok(())
+    }
+
+    /// Refuses a number that is not finite and a value outside its entry's range (inclusive).
+    /// Schemas whose library checks its values itself (the bake's) need not call it.
+    fn check_ranges(&self) -> Result<(), SchemaError> {
+        for entry in Self::ENTRIES {
+            let x = match entry.get(self) {
+                Some(Value::Number(x)) => f64::from(x),
+                Some(Value::Count(n)) => n as f64,
+                Some(Value::Flag(_)) | None => continue,
+            };
+            let inside = entry
+                .range
+                .is_none_or(|(low, high)| (low..=high).contains(&x));
+            if !x.is_finite() || !inside {
+                return Err(SchemaError::OutOfRange {
+                    name: entry.name,
+                    range: entry.range,
+                    given: entry.get(self).map(|v| v.to_string()).unwrap_or_default(),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// The entries `self` sets, as command-line flags in the table's order: `--name value`, a
+    /// flag `--name` when on; unset entries and flags that are off are left out. What a drawing's
+    /// description quotes, so the same view can be asked for again.
+    fn to_flags(&self) -> Vec<String> {
+        Self::ENTRIES
+            .iter()
+            .filter_map(|entry| match entry.get(self)? {
+                Value::Flag(false) => None,
+                Value::Flag(true) => Some(flag(entry.name)),
+                value => Some(format!("{} {value}", flag(entry.name))),
+            })
+            .collect()
     }
 
     /// The table as JSON: an array of [`Entry::to_json`].
@@ -474,5 +558,33 @@ mod tests {
         assert_eq!(json[1]["default"], 0.25);
         assert_eq!(json[1]["example"], 0.5);
         assert_eq!(json[2]["requires"][0], "on");
+    }
+
+    #[test]
+    fn ranges_refuse_what_lies_outside_and_flags_quote_what_is_set() {
+        let mut s = Sample::default();
+        assert_eq!(s.check_ranges(), Ok(()));
+        s.length = Some(1.5);
+        assert!(matches!(
+            s.check_ranges(),
+            Err(SchemaError::OutOfRange { name: "length", .. })
+        ));
+        s.length = None;
+        s.fraction = f32::NAN;
+        let error = s.check_ranges().expect_err("not finite");
+        assert_eq!(
+            error.to_string(),
+            "option fraction must be a finite number, not NaN"
+        );
+        s.fraction = 0.5;
+        s.on = true;
+        assert_eq!(s.to_flags(), ["--fraction 0.5", "--count 3", "--on"]);
+        s.count = 0;
+        s.length = Some(-1.0);
+        let error = s.check_ranges().expect_err("below");
+        assert_eq!(
+            error.spelled(super::flag),
+            "--length must be 0 to 1, not -1"
+        );
     }
 }

@@ -162,6 +162,21 @@ pub fn bake_schema() -> String {
     BakeSettings::schema_json().to_string()
 }
 
+/// The view schema, as JSON: the orbit camera's entries (`chamfer render`'s camera flags), from
+/// which the page builds its view panel; the view settings take the same keys.
+#[wasm_bindgen(js_name = viewSchema)]
+pub fn view_schema() -> String {
+    chamfer_runtime::camera::Orbit::schema_json().to_string()
+}
+
+/// The style schema, as JSON: the look's numbers (`chamfer render`'s `--edge-width`, `--samples`,
+/// the highlight's material and light), from which the page builds its style panel; the view
+/// settings take the same keys.
+#[wasm_bindgen(js_name = styleSchema)]
+pub fn style_schema() -> String {
+    chamfer_runtime::render::StyleSettings::schema_json().to_string()
+}
+
 /// The techniques the runtime has, as JSON: `[{name, summary, post_process}]`.
 #[wasm_bindgen]
 pub fn techniques() -> String {

@@ -4,12 +4,11 @@
 
 use chamfer_preprocess::draw::LineClass;
 pub use chamfer_preprocess::schema::BakeSettings;
-use chamfer_runtime::highlight::ggx::PbrMaterial;
-use chamfer_runtime::highlight::strip::Material;
 use chamfer_runtime::render::{
-    Camera, EdgeClasses, EdgeStyle, Highlight, Light, MeshLight, MeshStyle, Orbit, Shading,
-    Technique,
+    Camera, DEFAULT_LIGHT_DIRECTION, EdgeClasses, EdgeStyle, Light, MeshStyle, Orbit, Shading,
+    StyleSettings, Technique,
 };
+use chamfer_runtime::schema::Schema;
 use serde::Deserialize;
 
 /// How the chamfer highlight is shaded, if at all (`chamfer render --style chamfer --shading`).
@@ -25,26 +24,24 @@ pub enum HighlightModel {
     Pbr,
 }
 
-/// The view's settings (`chamfer render`'s flags of the same names).
+/// The view's settings (`chamfer render`'s flags of the same names). The camera's keys are the
+/// view schema's ([`Orbit`], which the page's view panel is made from), beside the others in one
+/// JSON object.
 #[derive(Clone, Debug, Deserialize, PartialEq)]
 #[serde(default, deny_unknown_fields)]
 pub struct ViewSettings {
-    /// `--azimuth`, degrees.
-    pub azimuth: f32,
-    /// `--elevation`, degrees.
-    pub elevation: f32,
-    /// `--distance`, mesh units (`None`: frame the model).
-    pub distance: Option<f32>,
-    /// `--ortho`.
-    pub ortho: bool,
+    /// `--azimuth`, `--elevation`, `--distance`, `--fov-y`, `--ortho`: read from the object's keys
+    /// of those names (see [`ViewSettings::from_json`]).
+    #[serde(skip)]
+    pub orbit: Orbit,
+    /// `--edge-width`, `--samples`, the highlight's material and light numbers: read from the
+    /// object's keys of the style schema's names.
+    #[serde(skip)]
+    pub look: StyleSettings,
     /// `--technique`, by name.
     pub technique: String,
-    /// `--edge-width`, pixels.
-    pub edge_width: f32,
     /// `--classes`, by name.
     pub classes: Vec<String>,
-    /// `--samples` (1 or 4).
-    pub samples: u32,
     /// `--style chamfer --shading blinn|pbr`, or plain edges.
     pub highlight: HighlightModel,
     /// Colour of every edge class, linear RGBA 0 to 1 (`None`: the runtime's colours per class).
@@ -56,14 +53,10 @@ pub struct ViewSettings {
 impl Default for ViewSettings {
     fn default() -> Self {
         Self {
-            azimuth: 35.0,
-            elevation: 25.0,
-            distance: None,
-            ortho: false,
+            orbit: Orbit::default(),
+            look: StyleSettings::default(),
             technique: Technique::default().name().to_owned(),
-            edge_width: 2.0,
             classes: CLASSES.iter().map(|(name, _)| (*name).to_owned()).collect(),
-            samples: 4,
             highlight: HighlightModel::Off,
             edge_color: None,
             background: [1.0; 4],
@@ -81,22 +74,6 @@ pub const CLASSES: [(&str, EdgeClasses); 6] = [
     ("intersection", EdgeClasses::INTERSECTION),
 ];
 
-/// The chamfer highlight's light: `chamfer render --light-dir`'s default.
-const LIGHT: Light = Light::Directional([0.4, 0.8, 0.45]);
-/// `chamfer render`'s Blinn material (`--diffuse`, `--specular`, `--shininess`) and `--ambient`.
-const BLINN: Material = Material {
-    diffuse: 0.75,
-    specular: 0.5,
-    shininess: 32.0,
-};
-const AMBIENT: f32 = 0.2;
-/// `chamfer render`'s PBR material (`--base-color`, `--metallic`, `--roughness`).
-const PBR: PbrMaterial = PbrMaterial {
-    base_color: [0.8; 3],
-    metallic: 0.0,
-    roughness: 0.4,
-};
-
 /// Reads bake settings from JSON; an empty string is the defaults.
 pub fn bake_settings(json: &str) -> Result<BakeSettings, String> {
     if json.trim().is_empty() {
@@ -106,33 +83,30 @@ pub fn bake_settings(json: &str) -> Result<BakeSettings, String> {
 }
 
 impl ViewSettings {
-    /// Reads settings from JSON and checks them; an empty string is the defaults.
+    /// Reads settings from JSON and checks them; an empty string is the defaults. The keys of
+    /// the view schema's entries go to the camera, the style schema's to the look, the others to
+    /// the rest, each refusing what it does not know (serde's `flatten` cannot refuse unknown
+    /// keys).
     pub fn from_json(json: &str) -> Result<Self, String> {
-        let settings: Self = if json.trim().is_empty() {
-            Self::default()
-        } else {
-            serde_json::from_str(json).map_err(|e| format!("view settings: {e}"))?
-        };
+        if json.trim().is_empty() {
+            return Ok(Self::default());
+        }
+        let error = |e: serde_json::Error| format!("view settings: {e}");
+        let mut keys: serde_json::Map<String, serde_json::Value> =
+            serde_json::from_str(json).map_err(error)?;
+        let camera = take_keys(&mut keys, Orbit::ENTRIES.iter().map(|e| e.name));
+        let look = take_keys(&mut keys, StyleSettings::ENTRIES.iter().map(|e| e.name));
+        let mut settings: Self =
+            serde_json::from_value(serde_json::Value::Object(keys)).map_err(error)?;
+        settings.orbit = serde_json::from_value(camera).map_err(error)?;
+        settings.look = serde_json::from_value(look).map_err(error)?;
         settings.check()?;
         Ok(settings)
     }
 
     fn check(&self) -> Result<(), String> {
-        if !self.azimuth.is_finite() || !self.elevation.is_finite() {
-            return Err("azimuth and elevation must be finite".into());
-        }
-        if self.distance.is_some_and(|d| !(d.is_finite() && d > 0.0)) {
-            return Err("distance must be a positive number".into());
-        }
-        if !(self.edge_width.is_finite() && (0.0..=1000.0).contains(&self.edge_width)) {
-            return Err(format!(
-                "edge_width must be 0 to 1000 pixels, not {}",
-                self.edge_width
-            ));
-        }
-        if self.samples != 1 && self.samples != 4 {
-            return Err(format!("samples must be 1 or 4, not {}", self.samples));
-        }
+        self.orbit.check().map_err(|e| e.to_string())?;
+        self.look.check().map_err(|e| e.to_string())?;
         let unit = |c: &[f32; 4]| c.iter().all(|v| v.is_finite() && (0.0..=1.0).contains(v));
         if !unit(&self.background) || self.edge_color.as_ref().is_some_and(|c| !unit(c)) {
             return Err("colours are four numbers from 0 to 1".into());
@@ -185,33 +159,19 @@ impl ViewSettings {
 
     /// The orbit camera framing `bounds` in a `viewport`, as `chamfer render` places it.
     pub fn camera(&self, bounds: [[f32; 3]; 2], viewport: [u32; 2]) -> Camera {
-        let orbit = Orbit {
-            azimuth_deg: self.azimuth,
-            elevation_deg: self.elevation,
-            distance: self.distance,
-            orthographic: self.ortho,
-            ..Orbit::default()
-        };
-        Camera::orbit(bounds, &orbit, viewport)
+        Camera::orbit(bounds, &self.orbit, viewport)
     }
 
     /// The edges' style, as `chamfer render` builds it from the same flags.
     pub fn edge_style(&self) -> Result<EdgeStyle, String> {
-        let highlight = self.shading().map(|shading| Highlight {
-            light: LIGHT,
-            color: [self.light_intensity(); 3],
-            shading,
-            ambient: AMBIENT,
-            k: None,
-            ..Highlight::default()
-        });
-        let mut style = EdgeStyle {
+        let mut style = self.look.edges(EdgeStyle {
             technique: self.technique()?,
             classes: self.classes()?,
-            highlight,
-            width_px: self.edge_width,
+            highlight: self
+                .shading()
+                .map(|shading| self.look.highlight(LIGHT, shading)),
             ..EdgeStyle::default()
-        };
+        });
         if let Some(color) = self.edge_color {
             style.colors = chamfer_runtime::render::EdgeColors::all(color);
         }
@@ -223,36 +183,28 @@ impl ViewSettings {
     pub fn mesh_style(&self) -> MeshStyle {
         match self.shading() {
             None => MeshStyle::default(),
-            Some(shading) => MeshStyle {
-                color: [BLINN.diffuse, BLINN.diffuse, BLINN.diffuse, 1.0],
-                light: MeshLight::Model(LIGHT),
-                light_color: [self.light_intensity(); 3],
-                ambient: AMBIENT,
-                specular: BLINN.specular,
-                shininess: BLINN.shininess,
-                pbr: match shading {
-                    Shading::Pbr(material) => Some(material),
-                    Shading::Blinn(_) => None,
-                },
-            },
+            Some(shading) => self.look.mesh_style(&self.look.highlight(LIGHT, shading)),
         }
     }
 
     fn shading(&self) -> Option<Shading> {
         match self.highlight {
             HighlightModel::Off => None,
-            HighlightModel::Blinn => Some(Shading::Blinn(BLINN)),
-            HighlightModel::Pbr => Some(Shading::Pbr(PBR)),
+            HighlightModel::Blinn => Some(Shading::Blinn(self.look.blinn())),
+            HighlightModel::Pbr => Some(Shading::Pbr(self.look.pbr(StyleSettings::BASE_COLOR))),
         }
     }
+}
 
-    /// `chamfer render --light-intensity`'s default: 1 for Blinn, π for PBR.
-    fn light_intensity(&self) -> f32 {
-        match self.highlight {
-            HighlightModel::Pbr => std::f32::consts::PI,
-            _ => 1.0,
-        }
-    }
+/// The chamfer highlight's light: `chamfer render --light-dir`'s default.
+const LIGHT: Light = Light::Directional(DEFAULT_LIGHT_DIRECTION);
+
+/// The entries of `keys` named in `names`, taken out of it, as one JSON object.
+fn take_keys<'a>(
+    keys: &mut serde_json::Map<String, serde_json::Value>,
+    names: impl Iterator<Item = &'a str>,
+) -> serde_json::Value {
+    serde_json::Value::Object(names.filter_map(|name| keys.remove_entry(name)).collect())
 }
 
 #[cfg(test)]
@@ -287,6 +239,9 @@ mod tests {
             ),
             (r#"{"zoom": 2}"#, "unknown field `zoom`"),
             (r#"{"azimuth": "left"}"#, "view settings"),
+            (r#"{"elevation": 95}"#, "elevation must be -90 to 90"),
+            (r#"{"fov_y": 0}"#, "fov_y must be 1 to 170"),
+            ("[1, 2]", "view settings"),
         ] {
             let error = ViewSettings::from_json(json).expect_err(json);
             assert!(error.contains(expected), "{json}: {error}");
@@ -307,12 +262,60 @@ mod tests {
         }
     }
 
+    /// Every entry of the style schema set to its example in the page's JSON reaches the look,
+    /// and changes the edges, the highlight or the mesh pass (with the highlight on).
+    #[test]
+    fn every_style_schema_entry_sets_the_look() {
+        let looks = |view: &ViewSettings| {
+            (
+                view.edge_style().expect("style"),
+                view.mesh_style(),
+                view.look.samples,
+            )
+        };
+        for highlight in ["blinn", "pbr"] {
+            let json = serde_json::json!({ "highlight": highlight });
+            let default = looks(&ViewSettings::from_json(&json.to_string()).expect("defaults"));
+            for entry in StyleSettings::ENTRIES {
+                let example = entry.example().expect("an example").to_json();
+                let json = serde_json::json!({ entry.name: example, "highlight": highlight });
+                let view = ViewSettings::from_json(&json.to_string()).expect(entry.name);
+                let mut look = StyleSettings::default();
+                entry.set_example(&mut look);
+                assert_eq!(view.look, look, "{}", entry.name);
+                // The Blinn numbers do not change a PBR highlight, nor the PBR ones a Blinn one.
+                let blinn_only = ["diffuse", "specular", "shininess"].contains(&entry.name);
+                let pbr_only = ["roughness", "metallic"].contains(&entry.name);
+                if (highlight == "pbr" && !blinn_only) || (highlight == "blinn" && !pbr_only) {
+                    assert_ne!(looks(&view), default, "{} with {highlight}", entry.name);
+                }
+            }
+        }
+    }
+
+    /// Every entry of the view schema set to its example in the page's JSON reaches the camera.
+    #[test]
+    fn every_view_schema_entry_sets_the_camera() {
+        let bounds = [[-1.0; 3], [1.0; 3]];
+        let default = ViewSettings::default().camera(bounds, [64, 48]);
+        for entry in Orbit::ENTRIES {
+            let example = entry.example().expect("an example").to_json();
+            let json = serde_json::json!({ entry.name: example, "technique": "joined" });
+            let view = ViewSettings::from_json(&json.to_string()).expect(entry.name);
+            let mut orbit = Orbit::default();
+            entry.set_example(&mut orbit);
+            assert_eq!(view.orbit, orbit, "{}", entry.name);
+            assert_ne!(view.camera(bounds, [64, 48]), default, "{}", entry.name);
+        }
+    }
+
     #[test]
     fn a_highlight_lights_strips_and_faces_with_one_model() {
         let view = ViewSettings::from_json(r#"{"highlight": "pbr"}"#).expect("pbr");
         let highlight = view.edge_style().expect("style").highlight.expect("on");
-        assert_eq!(highlight.shading, Shading::Pbr(PBR));
-        assert_eq!(view.mesh_style().pbr, Some(PBR));
+        let pbr = StyleSettings::default().pbr(StyleSettings::BASE_COLOR);
+        assert_eq!(highlight.shading, Shading::Pbr(pbr));
+        assert_eq!(view.mesh_style().pbr, Some(pbr));
         assert_eq!(highlight.color, [std::f32::consts::PI; 3]);
     }
 }

@@ -124,7 +124,7 @@ impl Viewer {
     #[wasm_bindgen(js_name = setView)]
     pub fn set_view(&mut self, json: &str) -> Result<(), JsError> {
         let view = ViewSettings::from_json(json).map_err(|e| JsError::new(&e))?;
-        if view.samples != self.view.samples {
+        if view.look.samples != self.view.look.samples {
             self.frame = None;
         }
         self.view = view;
@@ -234,7 +234,7 @@ impl Viewer {
         let formats = Target::new(
             FORMAT,
             Some(OffscreenTarget::depth_format(&self.device)),
-            self.view.samples,
+            self.view.look.samples as u32,
         );
         let target = OffscreenTarget::new(&self.device, size[0], size[1], formats)
             .map_err(|e| fail("cannot make the frame's attachments", &e))?;

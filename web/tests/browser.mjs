@@ -173,6 +173,82 @@ await check("every bake option of the schema is a control whose bake is chamfer 
   await page.close();
 });
 
+// Issue 40: the view panel is built from the wasm module's view schema, the table chamfer render's
+// camera flags come from: each entry, set in its control to the schema's example, draws the edges
+// chamfer render draws with that flag, and differs from the default view.
+await check("every view schema entry is a control whose picture is chamfer render's with its flag", async () => {
+  const page = await openPage(session);
+  await settled(page);
+  const schema = await page.evaluate(() => window.chamfer.viewSchema);
+  const controls = await page.evaluate(() => [...document.querySelectorAll("#view-options input")].map((i) => i.id));
+  expect(controls.length === schema.length && schema.every((e) => controls.includes(`view-${e.name}`)),
+    `controls ${controls} for ${schema.map((e) => e.name)}`);
+  const meshOnly = await capture(page, { classes: [] });
+  const defaults = edgesOf(await capture(page, { classes: ALL }), meshOnly);
+  for (const entry of schema) {
+    // Through the control, as a user sets it (its change event), then back to the default.
+    const set = (value) => page.evaluate((entry, value) => {
+      const input = document.getElementById(`view-${entry.name}`);
+      if (entry.kind === "flag") input.checked = value;
+      else input.value = value === null ? "" : String(value);
+      input.dispatchEvent(new Event("change"));
+    }, entry, value);
+    await set(entry.example);
+    const drawn = await capture(page, { classes: ALL });
+    const flag = `--${entry.name.replaceAll("_", "-")}`;
+    const flags = entry.kind === "flag" ? [flag] : [flag, String(entry.example)];
+    const mesh = await capture(page, { classes: [] });
+    await capture(page, { classes: ALL });
+    const pageEdges = edgesOf(drawn, mesh);
+    const cliEdges = edgesOf(render([fandisk, ...flags], `view-${entry.name}.png`),
+                             render([fandisk, ...flags, "--style", "mesh"], `view-${entry.name}-mesh.png`));
+    const [pageInCli, cliInPage] = overlap(pageEdges, cliEdges);
+    const [inDefault] = overlap(pageEdges, defaults);
+    console.log(`     ${entry.name} = ${entry.example}: within 1 px of chamfer render ${pageInCli.toFixed(4)} / ` +
+      `${cliInPage.toFixed(4)}; of the default view ${inDefault.toFixed(4)}`);
+    expect(pageInCli >= 0.95 && cliInPage >= 0.95, `${entry.name}: the page's edges and chamfer render's differ`);
+    expect(inDefault < 0.95, `${entry.name}: the picture did not change`);
+    await set(entry.default);
+  }
+  await page.close();
+});
+
+// The style panel likewise: each control sets its key of the view the page draws (the native tests
+// of web/src/settings.rs check each key's effect on the styles), and the ones that change plain
+// edges change the picture.
+await check("every style schema entry is a control the page draws with", async () => {
+  const page = await openPage(session);
+  await settled(page);
+  const schema = await page.evaluate(() => window.chamfer.styleSchema);
+  const controls = await page.evaluate(() => [...document.querySelectorAll("#style-options input")].map((i) => i.id));
+  expect(controls.length === schema.length && schema.every((e) => controls.includes(`style-${e.name}`)),
+    `controls ${controls} for ${schema.map((e) => e.name)}`);
+  const before = await capture(page);
+  for (const entry of schema) {
+    const sent = await page.evaluate((entry) => {
+      const input = document.getElementById(`style-${entry.name}`);
+      if (entry.kind === "flag") input.checked = entry.example;
+      else input.value = String(entry.example);
+      input.dispatchEvent(new Event("change"));
+      return window.chamfer.view[entry.name];
+    }, entry);
+    expect(sent === entry.example, `${entry.name}: the view holds ${sent}, not ${entry.example}`);
+    const after = await capture(page);
+    const changed = count(differing(before, after));
+    if (["edge_width", "depth_scaled", "samples"].includes(entry.name)) {
+      expect(changed > 100, `${entry.name}: only ${changed} pixels changed`);
+    }
+    expect(await page.evaluate(() => document.body.dataset.state !== "error"), `${entry.name}: the page shows an error`);
+    await page.evaluate((entry) => {
+      const input = document.getElementById(`style-${entry.name}`);
+      if (entry.kind === "flag") input.checked = entry.default;
+      else input.value = entry.default === null ? "" : String(entry.default);
+      input.dispatchEvent(new Event("change"));
+    }, entry);
+  }
+  await page.close();
+});
+
 await check("the downloads are the asset on screen and its SVG drawing", async () => {
   const folder = join(outDir, "downloads");
   rmSync(folder, { recursive: true, force: true });

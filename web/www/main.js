@@ -1,7 +1,8 @@
 // The page: files in (picker, drop, ?url=, or the bundled fandisk), bakes in worker.js, the asset
 // drawn by the wasm Viewer on WebGPU, the controls, the downloads. Query parameters: url (a file to
-// load), azimuth / elevation (the camera), size (WxH canvas pixels), technique.
-import init, { bakeSchema, createViewer, techniques } from "./pkg/chamfer_web.js";
+// load), any entry of the view and style schemas (azimuth, elevation, edge_width, ...), size (WxH
+// canvas pixels), technique.
+import init, { bakeSchema, createViewer, styleSchema, techniques, viewSchema } from "./pkg/chamfer_web.js";
 
 const $ = (id) => document.getElementById(id);
 const canvas = $("canvas");
@@ -13,12 +14,9 @@ const state = {
   viewer: null,
   asset: null,         // {name, bytes} on screen
   source: null,        // {name, files} of the last bake, for "bake again"
+  // The camera's and the look's keys (the view and style schemas') are added by setUpPanel.
   view: {
-    azimuth: Number(query.get("azimuth") ?? 35),
-    elevation: Number(query.get("elevation") ?? 25),
-    distance: null,
     technique: query.get("technique") ?? "joined",
-    edge_width: 2,
     classes: [...CLASSES],
     highlight: "off",
     edge_color: null,
@@ -87,6 +85,56 @@ function setUpBakeOptions(schema) {
       label.append(`${entry.name} `, input);
     }
     $("bake-options").append(label);
+  }
+}
+
+// A panel of controls, one per entry of a schema the wasm module exports (the view's: the camera;
+// the style's: edge width, samples, the highlight's numbers; the same tables chamfer render's flags
+// are made from), each starting at the entry's default or the query parameter of its name and
+// setting the view's key of that name. Dragging and zooming on the canvas move the camera's.
+const panels = [];
+function setUpPanel(schema, container) {
+  const prefix = container.replace("-options", "");
+  panels.push({ schema, prefix });
+  for (const entry of schema) {
+    const given = query.get(entry.name);
+    const value = given === null ? entry.default : entry.kind === "flag" ? given === "true" : Number(given);
+    state.view[entry.name] = value;
+    const label = document.createElement("label");
+    label.title = entry.help;
+    const input = document.createElement("input");
+    input.id = `${prefix}-${entry.name}`;
+    if (entry.kind === "flag") {
+      input.type = "checkbox";
+      input.addEventListener("change", () => { state.view[entry.name] = input.checked; redraw(); });
+      label.append(input, ` ${entry.name}`);
+    } else {
+      input.type = "number";
+      input.step = entry.kind === "count" ? "1" : "any";
+      if (entry.range) [input.min, input.max] = entry.range;
+      input.placeholder = entry.default ?? "default";
+      // Empty is the default (null: the camera's distance that frames the model, say).
+      input.addEventListener("change", () => {
+        state.view[entry.name] = input.value === "" ? entry.default : Number(input.value);
+        redraw();
+      });
+      label.append(`${entry.name} `, input);
+    }
+    $(container).append(label);
+  }
+  state[`${prefix}Schema`] = schema;
+  showPanels();
+}
+
+// The panels show the view the page draws.
+function showPanels() {
+  for (const { schema, prefix } of panels) {
+    for (const entry of schema) {
+      const input = $(`${prefix}-${entry.name}`);
+      const value = state.view[entry.name];
+      if (entry.kind === "flag") input.checked = value;
+      else input.value = value === null ? "" : Number(value.toPrecision(6));
+    }
   }
 }
 
@@ -217,6 +265,7 @@ function redraw() {
 function drawNow() {
   state.viewer.setView(JSON.stringify(state.view));
   state.viewer.draw(canvas.width, canvas.height);
+  showPanels();
   state.framesDrawn++;
   // Time from the page's start to its first drawn frame, for the benchmarks.
   state.firstFrameMs ??= performance.now();
@@ -295,11 +344,6 @@ function setUpControls(list) {
   };
   describe();
   select.addEventListener("change", () => { state.view.technique = select.value; describe(); redraw(); });
-  $("edge-width").addEventListener("input", (e) => {
-    state.view.edge_width = Number(e.target.value);
-    $("edge-width-value").textContent = e.target.value;
-    redraw();
-  });
   for (const name of CLASSES) {
     const label = document.createElement("label");
     const box = Object.assign(document.createElement("input"), { type: "checkbox", checked: true });
@@ -344,6 +388,8 @@ async function start() {
   await init();
   const size = query.get("size")?.match(/^(\d+)x(\d+)$/);
   if (size) [canvas.width, canvas.height] = [Number(size[1]), Number(size[2])];
+  setUpPanel(JSON.parse(viewSchema()), "view-options");
+  setUpPanel(JSON.parse(styleSchema()), "style-options");
   setUpControls(JSON.parse(techniques()));
   setUpBakeOptions(JSON.parse(bakeSchema()));
   try {

@@ -82,6 +82,7 @@ compile_error!(
 
 pub mod clusters;
 pub mod compact;
+pub mod corners;
 mod decode;
 mod encode;
 mod envelope;

@@ -62,10 +62,13 @@ pub struct Highlight {
     pub rounded_corners: bool,
 }
 
+/// The direction towards the default light (model space): above, to the right and in front.
+pub const DEFAULT_LIGHT_DIRECTION: [f32; 3] = [0.4, 0.8, 0.45];
+
 impl Default for Highlight {
     fn default() -> Self {
         Self {
-            light: Light::Directional([0.4, 0.8, 0.45]),
+            light: Light::Directional(DEFAULT_LIGHT_DIRECTION),
             color: [1.0; 3],
             shading: Shading::Blinn(Material {
                 diffuse: 0.7,

@@ -57,6 +57,7 @@ mod offscreen;
 mod pipelines;
 mod renderer;
 mod style;
+mod style_settings;
 mod target;
 mod technique;
 mod techniques;
@@ -65,7 +66,7 @@ pub use crate::camera::{Camera, Orbit};
 pub use derived::AssetExtras;
 pub use error::RenderError;
 pub use gpu_asset::GpuAsset;
-pub use lighting::{Highlight, Light, Shading};
+pub use lighting::{DEFAULT_LIGHT_DIRECTION, Highlight, Light, Shading};
 pub use mesh::{MeshLight, MeshRenderer, MeshStyle};
 pub use offscreen::{Image, Offscreen, OffscreenTarget};
 pub use pipelines::Pipelines;
@@ -73,5 +74,6 @@ pub use renderer::{
     DrawCounts, EdgeRenderer, FrameViews, Instance, Prepared, SceneRenderer, SceneStats,
 };
 pub use style::{CapMethod, EdgeClasses, EdgeColors, EdgeStyle};
+pub use style_settings::StyleSettings;
 pub use target::Target;
-pub use technique::{HardwareContour, HybridDepth, ImageSpace, Operator, Technique};
+pub use technique::{HardwareContour, HybridDepth, ImageSpace, Operator, Preset, Technique};

@@ -287,156 +287,65 @@ impl HardwareContour {
     }
 }
 
+/// A technique as the front ends offer it: its name (`chamfer render --technique`, the page's list,
+/// Bevy's viewer), a one-line summary (what it is and which seed section it follows) and its
+/// parameters. Each technique module lists its own; [`Technique::all`] is their concatenation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Preset {
+    /// The name, kebab-case.
+    pub name: &'static str,
+    /// What it is and which seed section it follows.
+    pub summary: &'static str,
+    /// The technique and its default parameters.
+    pub technique: Technique,
+}
+
+/// The preset among `presets` that is `technique`, else the first: a module whose presets differ by
+/// their parameters names a technique with other parameters after its first preset (see the
+/// modules that pick by a field instead).
+pub(crate) fn preset_of(presets: &'static [Preset], technique: &Technique) -> &'static Preset {
+    presets
+        .iter()
+        .find(|p| p.technique == *technique)
+        .unwrap_or(&presets[0])
+}
+
 impl Technique {
+    /// Every named technique, module by module, as the modules list them.
+    pub fn presets() -> impl Iterator<Item = &'static Preset> {
+        techniques::MODULES.iter().flat_map(|m| m.presets())
+    }
+
     /// Every technique with its default parameters, in the order of [`Technique::names`].
     pub fn all() -> Vec<Self> {
-        let mut all = vec![
-            Self::Joined,
-            Self::McGuireHughes,
-            Self::HalfHex,
-            Self::Plug,
-            Self::HalfHexPlug,
-            Self::House,
-            Self::Fins {
-                world_thickness: None,
-                z_bias: None,
-            },
-            Self::Wireframe {
-                feature_only: false,
-                smooth: true,
-                naive_threshold: None,
-            },
-            Self::Wireframe {
-                feature_only: true,
-                smooth: true,
-                naive_threshold: None,
-            },
-        ];
-        all.extend(HardwareContour::ALL.map(Self::Hardware));
-        all.extend([
-            Self::SurfaceAngle { threshold: 0.2 },
-            Self::InvertedHull {
-                smooth_normals: false,
-            },
-            Self::InvertedHull {
-                smooth_normals: true,
-            },
-            Self::Hybrid(HybridDepth::EDGES),
-            Self::Hybrid(HybridDepth::AMBIENT),
-            Self::Hybrid(HybridDepth::BOTH),
-        ]);
-        all.extend(Operator::ALL.map(|o| Self::ImageSpace(ImageSpace::new(o))));
-        all
+        Self::presets().map(|p| p.technique).collect()
+    }
+
+    /// The preset this technique is, or is a variant of (its name and summary).
+    pub fn preset(&self) -> &'static Preset {
+        techniques::module(self).preset(self)
     }
 
     /// The technique's name, as `chamfer render --technique` takes it.
     pub fn name(&self) -> &'static str {
-        match self {
-            Self::Joined => "joined",
-            Self::McGuireHughes => "mcguire-hughes",
-            Self::HalfHex => "half-hex",
-            Self::Plug => "plug",
-            Self::HalfHexPlug => "half-hex-plug",
-            Self::House => "house",
-            Self::Fins { .. } => "fins",
-            Self::Wireframe {
-                feature_only: false,
-                ..
-            } => "wireframe",
-            Self::Wireframe { .. } => "wireframe-features",
-            Self::Hardware(method) => method.name(),
-            Self::SurfaceAngle { .. } => "surface-angle",
-            Self::InvertedHull {
-                smooth_normals: false,
-            } => "inverted-hull",
-            Self::InvertedHull { .. } => "inverted-hull-smooth",
-            Self::Hybrid(p) if p.eq(&HybridDepth::EDGES) => "hybrid-edges",
-            Self::Hybrid(p) if p.eq(&HybridDepth::AMBIENT) => "hybrid-ambient",
-            Self::Hybrid(p) if p.eq(&HybridDepth::BOTH) => "hybrid-both",
-            Self::Hybrid(_) => "hybrid",
-            Self::ImageSpace(p) => match p.operator {
-                Operator::Sobel => "image-sobel",
-                Operator::Prewitt => "image-prewitt",
-                Operator::Scharr => "image-scharr",
-                Operator::Roberts => "image-roberts",
-            },
-        }
+        self.preset().name
     }
 
     /// Every technique's name.
     pub fn names() -> Vec<&'static str> {
-        Self::all().iter().map(Self::name).collect()
+        Self::presets().map(|p| p.name).collect()
     }
 
     /// The technique called `name`, with its default parameters.
     pub fn from_name(name: &str) -> Option<Self> {
-        Self::all().into_iter().find(|t| t.name() == name)
+        Self::presets()
+            .find(|p| p.name == name)
+            .map(|p| p.technique)
     }
 
     /// A one-line description: what it is and which seed section it follows.
     pub fn summary(&self) -> &'static str {
-        match self {
-            Self::Joined => {
-                "compacted edges with gap-free joins and round caps (thesis §10, §13; the default)"
-            }
-            Self::McGuireHughes => {
-                "McGuire-Hughes: every edge a quad classified per vertex, two cap passes (thesis §8)"
-            }
-            Self::HalfHex => "half-hex contours: half quad and caps in one pass (thesis §9.3)",
-            Self::Plug => "plug edges: full quad and end caps in one pass (thesis §9.3)",
-            Self::HalfHexPlug => "half-hex contours with plug edges for the rest (thesis §9.3)",
-            Self::House => "house edges, for their artifacts (thesis §9.3)",
-            Self::Fins { .. } => "fins extruded along the normals, with a z-bias (seed 003)",
-            Self::Wireframe {
-                feature_only: false,
-                ..
-            } => "barycentric thick wireframe of every triangle (seed 001)",
-            Self::Wireframe { .. } => "barycentric thick wireframe of the feature edges (seed 001)",
-            Self::Hardware(HardwareContour::RossignacVanEmmerik) => {
-                "thick wireframe pushed behind the mesh's depth (thesis §4.1)"
-            }
-            Self::Hardware(HardwareContour::GoochWireframe) => {
-                "back faces' wireframe over the front faces (thesis §4.1, Gooch)"
-            }
-            Self::Hardware(HardwareContour::BackFaces) => {
-                "back faces filled with LessEqual (thesis §4.2)"
-            }
-            Self::Hardware(HardwareContour::OffsetBackFaces) => {
-                "back faces pulled towards the camera (thesis §4.3)"
-            }
-            Self::Hardware(HardwareContour::FattenedBackFaces) => {
-                "back faces fattened by the line width (thesis §4.4)"
-            }
-            Self::Hardware(HardwareContour::StencilShifted) => {
-                "stencil of the mesh shifted four ways (thesis §4.5)"
-            }
-            Self::Hardware(HardwareContour::InvertedStencil) => {
-                "front-face wireframe inverting the stencil (thesis §4.6)"
-            }
-            Self::Hardware(HardwareContour::Raskar { .. }) => {
-                "Raskar's fattened back faces and rotated crease quads (thesis §4.7)"
-            }
-            Self::SurfaceAngle { .. } => {
-                "pixels whose normal is nearly perpendicular to the view (thesis §7.1)"
-            }
-            Self::InvertedHull {
-                smooth_normals: false,
-            } => "the mesh pushed out along its normals, front faces culled (thesis §7.2)",
-            Self::InvertedHull { .. } => "inverted hull along smooth normals (thesis §7.2)",
-            Self::Hybrid(p) if p.eq(&HybridDepth::EDGES) => {
-                "hybrid depth shader, edge setting: post-process of the depth alone (seed 004)"
-            }
-            Self::Hybrid(p) if p.eq(&HybridDepth::AMBIENT) => {
-                "hybrid depth shader, ambient-shading setting (seed 004)"
-            }
-            Self::Hybrid(p) if p.eq(&HybridDepth::BOTH) => {
-                "hybrid depth shader, edges and ambient shading at once (seed 004)"
-            }
-            Self::Hybrid(_) => "hybrid depth shader, own parameters (seed 004)",
-            Self::ImageSpace(_) => {
-                "gradient operator over depth and normal buffers, thresholded (thesis §5)"
-            }
-        }
+        self.preset().summary
     }
 
     /// What an asset must be uploaded with for this technique (see [`GpuAsset::for_techniques`]).
@@ -455,5 +364,29 @@ impl Technique {
     /// True if the technique needs a stencil aspect in the target's depth format.
     pub fn needs_stencil(&self) -> bool {
         techniques::module(self).needs_stencil(self)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Technique;
+
+    /// Each module's presets name themselves, and no two share a name.
+    #[test]
+    fn every_preset_names_itself_once() {
+        let names = Technique::names();
+        for preset in Technique::presets() {
+            assert_eq!(preset.technique.name(), preset.name);
+            assert_eq!(preset.technique.summary(), preset.summary);
+            assert_eq!(Technique::from_name(preset.name), Some(preset.technique));
+            assert_eq!(
+                names.iter().filter(|&&n| n == preset.name).count(),
+                1,
+                "{}",
+                preset.name
+            );
+        }
+        assert_eq!(names.len(), 27);
+        assert_eq!(Technique::default(), Technique::all()[0]);
     }
 }

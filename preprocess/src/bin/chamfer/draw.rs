@@ -104,9 +104,7 @@ pub fn run(args: &DrawArgs) -> anyhow::Result<()> {
         .with_mm_per_unit(args.scale)
         .with_title(name)
         .with_description(format!(
-            "Camera: chamfer render --width {} --height {} {}.",
-            args.camera.width,
-            args.camera.height,
+            "Camera: chamfer render {}.",
             args.camera.describe()
         ));
     let start = Instant::now();

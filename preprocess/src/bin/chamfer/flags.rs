@@ -3,6 +3,8 @@
 //! command line gives is set into the schema's struct; the rest keeps the struct's defaults.
 
 use chamfer_preprocess::BakeSettings;
+use chamfer_runtime::camera::Orbit;
+use chamfer_runtime::render::StyleSettings;
 use chamfer_runtime::schema::{Entry, Kind, Schema, Value, flag};
 use clap::error::ErrorKind;
 use clap::{Arg, ArgAction, ArgMatches, Args, Command, FromArgMatches, value_parser};
@@ -26,7 +28,10 @@ fn arg<S: Schema>(entry: &Entry<S>) -> Arg {
         .fold(arg, |arg, &needed| arg.requires(needed));
     let arg = match entry.kind {
         Kind::Flag => return arg.action(ArgAction::SetTrue).help(help),
-        Kind::Number => arg.value_parser(value_parser!(f32)),
+        // `--azimuth -50`: a number may be negative (a range refuses it where it must not be).
+        Kind::Number => arg
+            .value_parser(value_parser!(f32))
+            .allow_negative_numbers(true),
         Kind::Count => arg.value_parser(value_parser!(u64)),
     };
     if let Some(default) = entry.default() {
@@ -60,16 +65,16 @@ fn read<S: Schema>(matches: &ArgMatches, group: &str, settings: &mut S) -> Resul
     Ok(())
 }
 
-/// Flags for the entries of one group of [`BakeSettings`].
+/// Flags for the entries of one group of a schema.
 macro_rules! group_flags {
-    ($(#[$meta:meta])* $name:ident, $group:literal) => {
+    ($(#[$meta:meta])* $name:ident($schema:ty), $group:literal) => {
         $(#[$meta])*
         #[derive(Clone, Default)]
-        pub struct $name(pub BakeSettings);
+        pub struct $name(pub $schema);
 
         impl FromArgMatches for $name {
             fn from_arg_matches(matches: &ArgMatches) -> Result<Self, clap::Error> {
-                let mut settings = BakeSettings::default();
+                let mut settings = <$schema>::default();
                 read(matches, $group, &mut settings)?;
                 Ok(Self(settings))
             }
@@ -81,11 +86,11 @@ macro_rules! group_flags {
 
         impl Args for $name {
             fn augment_args(command: Command) -> Command {
-                augment::<BakeSettings>(command, $group)
+                augment::<$schema>(command, $group)
             }
 
             fn augment_args_for_update(command: Command) -> Command {
-                augment::<BakeSettings>(command, $group)
+                augment::<$schema>(command, $group)
             }
         }
     };
@@ -93,13 +98,23 @@ macro_rules! group_flags {
 
 group_flags!(
     /// The bake options as flags (`chamfer bake`, `demo`, `annotate`, `draw`, `render`).
-    BakeFlags,
+    BakeFlags(BakeSettings),
     "bake"
 );
 group_flags!(
     /// How the asset is stored (`chamfer bake`, `demo`).
-    EncodingFlags,
+    EncodingFlags(BakeSettings),
     "encoding"
+);
+group_flags!(
+    /// The orbit camera as flags (`chamfer render`, `draw`).
+    ViewFlags(Orbit),
+    "view"
+);
+group_flags!(
+    /// The look's numbers as flags (`chamfer render`, `demo`).
+    StyleFlags(StyleSettings),
+    "style"
 );
 
 impl BakeFlags {

@@ -8,17 +8,17 @@ use chamfer_preprocess::Limits;
 use chamfer_preprocess::environment::read_environment;
 use chamfer_preprocess::write::{ensure_not_an_input, ensure_replaceable, write_atomically};
 use chamfer_runtime::asset::Asset;
-use chamfer_runtime::highlight::ggx::PbrMaterial;
-use chamfer_runtime::highlight::strip::Material;
 use chamfer_runtime::render::{
-    Camera, CapMethod, EdgeClasses, EdgeStyle, GpuAsset, Highlight, HybridDepth, Image, Instance,
-    Light, MeshLight, MeshRenderer, MeshStyle, Offscreen, Orbit, Pipelines, SceneRenderer,
-    Shading as ShadingModel, Technique,
+    Camera, CapMethod, DEFAULT_LIGHT_DIRECTION, EdgeClasses, EdgeStyle, GpuAsset, Highlight,
+    HybridDepth, Image, Instance, Light, MeshRenderer, MeshStyle, Offscreen, Pipelines,
+    SceneRenderer, Shading as ShadingModel, StyleSettings, Technique,
 };
 use clap::{Args, ValueEnum};
 use glam::Mat4;
 
-use crate::flags::BakeFlags;
+use chamfer_runtime::schema::flag;
+
+use crate::flags::{BakeFlags, StyleFlags, ViewFlags};
 
 /// Render an asset (`.chamfer`) or a mesh (baked on the fly with the bake flags) to a PNG.
 #[derive(Args)]
@@ -45,18 +45,8 @@ pub struct CameraArgs {
     /// Image height in pixels.
     #[arg(long, default_value_t = 768)]
     pub height: u32,
-    /// Camera turn around the vertical axis, degrees (0 looks from +Z).
-    #[arg(long, default_value_t = 35.0, allow_negative_numbers = true)]
-    azimuth: f32,
-    /// Camera height above the horizontal plane, degrees.
-    #[arg(long, default_value_t = 25.0, allow_negative_numbers = true)]
-    elevation: f32,
-    /// Camera distance from the model's centre, mesh units (default: frame the model).
-    #[arg(long)]
-    distance: Option<f32>,
-    /// Orthographic camera.
-    #[arg(long)]
-    ortho: bool,
+    #[command(flatten)]
+    view: ViewFlags,
 }
 
 impl CameraArgs {
@@ -68,37 +58,20 @@ impl CameraArgs {
                 self.height
             );
         }
-        if !self.azimuth.is_finite() || !self.elevation.is_finite() {
-            bail!("--azimuth and --elevation must be finite");
-        }
-        if self.distance.is_some_and(|d| !(d.is_finite() && d > 0.0)) {
-            bail!("--distance must be a positive number");
-        }
-        Ok(())
+        self.view
+            .0
+            .check()
+            .map_err(|e| anyhow::anyhow!(e.spelled(flag)))
     }
 
-    /// The camera flags that are not the frame size, as they would be typed.
+    /// The camera flags, as they would be typed.
     pub fn describe(&self) -> String {
-        let mut flags = format!("--azimuth {} --elevation {}", self.azimuth, self.elevation);
-        if let Some(d) = self.distance {
-            flags += &format!(" --distance {d}");
-        }
-        if self.ortho {
-            flags += " --ortho";
-        }
-        flags
+        self.view.0.flags([self.width, self.height])
     }
 
     /// The orbit camera framing `bounds` (the asset's), as `chamfer render` uses it.
     pub fn camera(&self, bounds: [[f32; 3]; 2]) -> Camera {
-        let orbit = Orbit {
-            azimuth_deg: self.azimuth,
-            elevation_deg: self.elevation,
-            distance: self.distance,
-            orthographic: self.ortho,
-            ..Orbit::default()
-        };
-        Camera::orbit(bounds, &orbit, [self.width, self.height])
+        Camera::orbit(bounds, &self.view.0, [self.width, self.height])
     }
 }
 
@@ -107,15 +80,11 @@ impl CameraArgs {
 pub struct ViewArgs {
     #[command(flatten)]
     camera: CameraArgs,
-    /// Edge width in pixels.
-    #[arg(long, default_value_t = 2.0)]
-    edge_width: f32,
-    /// Scale edge widths with depth (thesis §9.1), never below 1 px.
-    #[arg(long)]
-    depth_scaled: bool,
     /// What to draw.
     #[arg(long, value_enum, default_value_t = Style::Edges)]
     style: Style,
+    #[command(flatten)]
+    look: StyleFlags,
     /// Which technique draws the edges (`--style edges`).
     #[arg(long, default_value = "joined", value_parser = technique_names(),
           long_help = technique_help())]
@@ -156,12 +125,9 @@ pub struct ViewArgs {
     /// How edges join.
     #[arg(long, value_enum, default_value_t = Caps::NextIndex)]
     caps: Caps,
-    /// Samples per pixel (1 or 4).
-    #[arg(long, default_value_t = 4)]
-    samples: u32,
     /// `--style chamfer`: direction towards a parallel light, model space.
     #[arg(long, value_name = "X,Y,Z", value_delimiter = ',', allow_hyphen_values = true,
-          default_values_t = [0.4, 0.8, 0.45], conflicts_with = "light_pos")]
+          default_values_t = DEFAULT_LIGHT_DIRECTION, conflicts_with = "light_pos")]
     light_dir: Vec<f32>,
     /// `--style chamfer`: position of a point light, model space (instead of --light-dir).
     #[arg(
@@ -171,35 +137,13 @@ pub struct ViewArgs {
         allow_hyphen_values = true
     )]
     light_pos: Option<Vec<f32>>,
-    /// `--style chamfer`: diffuse reflectance R_d.
-    #[arg(long, default_value_t = 0.75)]
-    diffuse: f32,
-    /// `--style chamfer`: specular reflectance R_s.
-    #[arg(long, default_value_t = 0.5)]
-    specular: f32,
-    /// `--style chamfer`: share of the diffuse colour lit regardless of the light (0 in the paper).
-    #[arg(long, default_value_t = 0.2)]
-    ambient: f32,
-    /// `--style chamfer`: specular exponent n, 1 to 128.
-    #[arg(long, default_value_t = 32.0)]
-    shininess: f32,
     /// `--style chamfer`: Blinn's model of seed 000 (--diffuse, --specular, --shininess) or glTF's
     /// metallic-roughness model (--base-color, --metallic, --roughness).
     #[arg(long, value_enum, default_value_t = Shading::Blinn)]
     shading: Shading,
-    /// `--shading pbr`: perceptual roughness, 0.045 to 1.
-    #[arg(long, default_value_t = 0.4)]
-    roughness: f32,
-    /// `--shading pbr`: metallic, 0 (dielectric) to 1 (metal).
-    #[arg(long, default_value_t = 0.0)]
-    metallic: f32,
     /// `--shading pbr`: base colour, linear RGB 0 to 1.
-    #[arg(long, value_name = "R,G,B", value_delimiter = ',', default_values_t = [0.8, 0.8, 0.8])]
+    #[arg(long, value_name = "R,G,B", value_delimiter = ',', default_values_t = StyleSettings::BASE_COLOR)]
     base_color: Vec<f32>,
-    /// `--style chamfer`: the light's intensity (default 1 for Blinn; π for PBR, which lights a
-    /// white face seen head-on to 1; point and spot lights fall off as 1/d² under PBR).
-    #[arg(long)]
-    light_intensity: Option<f32>,
     /// `--shading pbr`: light strips and faces by this environment too (an equirectangular Radiance
     /// .hdr, +Y up, its middle facing -Z, in model space), prefiltered for --roughness.
     #[arg(long, value_name = "FILE.hdr")]
@@ -216,14 +160,6 @@ pub struct ViewArgs {
     /// `--spot-dir`: the cone's inner and outer half-angles, degrees.
     #[arg(long, value_name = "INNER,OUTER", value_delimiter = ',', default_values_t = [20.0, 30.0])]
     spot_angles: Vec<f32>,
-    /// `--style chamfer`: K of the blend weight W = K r_e / (d r_max) (default: the camera's distance
-    /// to the model's centre).
-    #[arg(long)]
-    k: Option<f32>,
-    /// `--style chamfer`: let the strips end in a notch where chamfer edges meet, as seed 000 does,
-    /// instead of drawing the rounded corner (a sphere patch) there.
-    #[arg(long)]
-    sharp_corners: bool,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -306,34 +242,12 @@ impl ViewArgs {
 
     fn check(&self) -> anyhow::Result<()> {
         self.camera.check()?;
-        if !(self.edge_width.is_finite() && (0.0..=1000.0).contains(&self.edge_width)) {
-            bail!(
-                "--edge-width must be 0 to 1000 pixels, not {}",
-                self.edge_width
-            );
-        }
-        if self.samples != 1 && self.samples != 4 {
-            bail!("--samples must be 1 or 4, not {}", self.samples);
-        }
-        if !(self.shininess.is_finite() && (1.0..=128.0).contains(&self.shininess)) {
-            bail!("--shininess must be 1 to 128, not {}", self.shininess);
-        }
-        if !(self.ambient.is_finite() && (0.0..=1.0).contains(&self.ambient)) {
-            bail!("--ambient must be 0 to 1, not {}", self.ambient);
-        }
-        for (name, value) in [("--diffuse", self.diffuse), ("--specular", self.specular)] {
-            if !(value.is_finite() && (0.0..=10.0).contains(&value)) {
-                bail!("{name} must be 0 to 10, not {value}");
-            }
-        }
-        if !(self.roughness.is_finite() && (0.0..=1.0).contains(&self.roughness)) {
-            bail!("--roughness must be 0 to 1, not {}", self.roughness);
-        }
+        self.look
+            .0
+            .check()
+            .map_err(|e| anyhow::anyhow!(e.spelled(flag)))?;
         if self.env.is_some() && (self.style != Style::Chamfer || self.shading != Shading::Pbr) {
             bail!("--env needs --style chamfer --shading pbr");
-        }
-        if !(self.metallic.is_finite() && (0.0..=1.0).contains(&self.metallic)) {
-            bail!("--metallic must be 0 to 1, not {}", self.metallic);
         }
         if self.base_color.len() != 3
             || !self
@@ -342,12 +256,6 @@ impl ViewArgs {
                 .all(|c| c.is_finite() && (0.0..=1.0).contains(c))
         {
             bail!("--base-color needs three numbers from 0 to 1");
-        }
-        if self
-            .light_intensity
-            .is_some_and(|i| !(i.is_finite() && (0.0..=1e9).contains(&i)))
-        {
-            bail!("--light-intensity must be a number from 0 to 1e9");
         }
         if self.spot_dir.as_ref().is_some_and(|d| {
             d.len() != 3 || !d.iter().all(|c| c.is_finite()) || d.iter().all(|&c| c == 0.0)
@@ -379,9 +287,6 @@ impl ViewArgs {
                 bail!("{name} must be a number of at least 0");
             }
         }
-        if self.k.is_some_and(|k| !(k.is_finite() && k >= 0.0)) {
-            bail!("--k must be a number of at least 0");
-        }
         Ok(())
     }
 
@@ -396,34 +301,18 @@ impl ViewArgs {
                 Class::Intersection => EdgeClasses::INTERSECTION,
             }
         });
-        let highlight = (self.style == Style::Chamfer).then(|| Highlight {
-            light: self.light(),
-            color: [self.light_intensity(); 3],
-            shading: match self.pbr() {
-                Some(material) => ShadingModel::Pbr(material),
-                None => ShadingModel::Blinn(Material {
-                    diffuse: self.diffuse,
-                    specular: self.specular,
-                    shininess: self.shininess,
-                }),
-            },
-            ambient: self.ambient,
-            k: self.k,
-            rounded_corners: !self.sharp_corners,
-        });
-        EdgeStyle {
+        let highlight = (self.style == Style::Chamfer).then(|| self.highlight());
+        self.look.0.edges(EdgeStyle {
             technique: self.technique().unwrap_or_default(),
             classes,
             highlight,
-            width_px: self.edge_width,
-            depth_scaled: self.depth_scaled,
             caps: match self.caps {
                 Caps::NextIndex => CapMethod::NextIndex,
                 Caps::CapBuffer => CapMethod::CapBuffer,
                 Caps::None => CapMethod::None,
             },
             ..EdgeStyle::default()
-        }
+        })
     }
 }
 
@@ -442,36 +331,25 @@ impl ViewArgs {
         }
     }
 
-    fn light_intensity(&self) -> f32 {
-        let default = match self.shading {
-            Shading::Blinn => 1.0,
-            Shading::Pbr => std::f32::consts::PI,
+    /// The chamfer highlight as `--style chamfer` draws it.
+    fn highlight(&self) -> Highlight {
+        let look = &self.look.0;
+        let shading = match self.shading {
+            Shading::Pbr => ShadingModel::Pbr(look.pbr([
+                self.base_color[0],
+                self.base_color[1],
+                self.base_color[2],
+            ])),
+            Shading::Blinn => ShadingModel::Blinn(look.blinn()),
         };
-        self.light_intensity.unwrap_or(default)
-    }
-
-    fn pbr(&self) -> Option<PbrMaterial> {
-        (self.shading == Shading::Pbr).then(|| PbrMaterial {
-            base_color: [self.base_color[0], self.base_color[1], self.base_color[2]],
-            metallic: self.metallic,
-            roughness: self.roughness,
-        })
+        look.highlight(self.light(), shading)
     }
 
     fn mesh_style(&self) -> MeshStyle {
         if self.style != Style::Chamfer {
             return MeshStyle::default();
         }
-        // The highlight's own model, so a strip and the faces around it are lit alike.
-        MeshStyle {
-            color: [self.diffuse, self.diffuse, self.diffuse, 1.0],
-            light: MeshLight::Model(self.light()),
-            light_color: [self.light_intensity(); 3],
-            ambient: self.ambient,
-            specular: self.specular,
-            shininess: self.shininess,
-            pbr: self.pbr(),
-        }
+        self.look.0.mesh_style(&self.highlight())
     }
 }
 
@@ -530,7 +408,11 @@ pub fn render_scene(
     view.check()?;
     let gpu = Offscreen::new()?;
     fits_the_device(&gpu.device.limits(), view)?;
-    let target = gpu.target(view.camera.width, view.camera.height, view.samples)?;
+    let target = gpu.target(
+        view.camera.width,
+        view.camera.height,
+        view.look.0.samples as u32,
+    )?;
     let pipelines = Pipelines::new(&gpu.device, &target.formats())?;
     let technique = view.technique()?;
     let environment = match &view.env {

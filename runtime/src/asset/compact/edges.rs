@@ -15,40 +15,7 @@
 
 use std::ops::Range;
 
-/// The corners (`3 * triangle + k`) at each vertex, in increasing order.
-pub(crate) struct VertexCorners {
-    starts: Vec<u32>,
-    corners: Vec<u32>,
-}
-
-impl VertexCorners {
-    /// Every index of `triangles` must be below `vertex_count`, and there are fewer than 2^32
-    /// corners.
-    pub(crate) fn new(triangles: &[u32], vertex_count: usize) -> Self {
-        let mut starts = vec![0u32; vertex_count + 1];
-        for &v in triangles {
-            starts[v as usize + 1] += 1;
-        }
-        for v in 0..vertex_count {
-            starts[v + 1] += starts[v];
-        }
-        let mut cursor = starts.clone();
-        let mut corners = vec![0u32; triangles.len()];
-        for (c, &v) in triangles.iter().enumerate() {
-            corners[cursor[v as usize] as usize] = c as u32;
-            cursor[v as usize] += 1;
-        }
-        Self { starts, corners }
-    }
-
-    fn of(&self, v: u32) -> &[u32] {
-        &self.corners[self.starts[v as usize] as usize..self.starts[v as usize + 1] as usize]
-    }
-
-    pub(crate) fn vertex_count(&self) -> usize {
-        self.starts.len() - 1
-    }
-}
+pub(crate) use crate::asset::corners::VertexCorners;
 
 /// The corner before `c` in its triangle.
 fn corner_before(c: usize) -> usize {

@@ -32,6 +32,29 @@ pub(crate) struct AlternateParams {
 }
 
 impl Pull for Alternate {
+    const PRESETS: &'static [crate::render::Preset] = &[
+        crate::render::Preset {
+            name: "half-hex",
+            summary: "half-hex contours: half quad and caps in one pass (thesis §9.3)",
+            technique: crate::render::Technique::HalfHex,
+        },
+        crate::render::Preset {
+            name: "plug",
+            summary: "plug edges: full quad and end caps in one pass (thesis §9.3)",
+            technique: crate::render::Technique::Plug,
+        },
+        crate::render::Preset {
+            name: "half-hex-plug",
+            summary: "half-hex contours with plug edges for the rest (thesis §9.3)",
+            technique: crate::render::Technique::HalfHexPlug,
+        },
+        crate::render::Preset {
+            name: "house",
+            summary: "house edges, for their artifacts (thesis §9.3)",
+            technique: crate::render::Technique::House,
+        },
+    ];
+
     type Params = AlternateParams;
     /// True for the house's fan of triangles.
     type Draw = bool;

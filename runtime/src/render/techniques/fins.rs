@@ -28,6 +28,15 @@ pub(crate) struct FinParams {
 }
 
 impl Pull for Fins {
+    const PRESETS: &'static [crate::render::Preset] = &[crate::render::Preset {
+        name: "fins",
+        summary: "fins extruded along the normals, with a z-bias (seed 003)",
+        technique: crate::render::Technique::Fins {
+            world_thickness: None,
+            z_bias: None,
+        },
+    }];
+
     type Params = FinParams;
     type Draw = ();
     const BINDINGS: &'static Bindings = &Bindings::draw(

@@ -21,6 +21,38 @@ use crate::render::{
 
 pub(crate) static MODULE: Hardware = Hardware;
 
+/// One preset per method, in [`HardwareContour::ALL`]'s order, named as the method.
+///
+/// [`HardwareContour::ALL`]: crate::render::HardwareContour::ALL
+static PRESETS: [crate::render::Preset; 8] = {
+    const SUMMARIES: [&str; 8] = [
+        "thick wireframe pushed behind the mesh's depth (thesis §4.1)",
+        "back faces' wireframe over the front faces (thesis §4.1, Gooch)",
+        "back faces filled with LessEqual (thesis §4.2)",
+        "back faces pulled towards the camera (thesis §4.3)",
+        "back faces fattened by the line width (thesis §4.4)",
+        "stencil of the mesh shifted four ways (thesis §4.5)",
+        "front-face wireframe inverting the stencil (thesis §4.6)",
+        "Raskar's fattened back faces and rotated crease quads (thesis §4.7)",
+    ];
+    let methods = crate::render::HardwareContour::ALL;
+    let mut presets = [crate::render::Preset {
+        name: "",
+        summary: "",
+        technique: crate::render::Technique::Joined,
+    }; 8];
+    let mut k = 0;
+    while k < 8 {
+        presets[k] = crate::render::Preset {
+            name: methods[k].name(),
+            summary: SUMMARIES[k],
+            technique: crate::render::Technique::Hardware(methods[k]),
+        };
+        k += 1;
+    }
+    presets
+};
+
 const BINDINGS: Bindings = Bindings::draw(
     "hardware contours",
     &[FRAME, PARAMS, asset::RENDER_POSITIONS, asset::MESH_INDICES],
@@ -83,6 +115,21 @@ fn shader() -> Shader {
 }
 
 impl Module for Hardware {
+    fn presets(&self) -> &'static [crate::render::Preset] {
+        &PRESETS
+    }
+
+    /// By the method, whatever its parameters.
+    fn preset(&self, technique: &crate::render::Technique) -> &'static crate::render::Preset {
+        let index = match technique {
+            crate::render::Technique::Hardware(method) => crate::render::HardwareContour::ALL
+                .iter()
+                .position(|m| m.name() == method.name()),
+            _ => None,
+        };
+        &PRESETS[index.unwrap_or(0)]
+    }
+
     fn shaders(&self, _target: &Target) -> Vec<Shader> {
         vec![shader()]
     }

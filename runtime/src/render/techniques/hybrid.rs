@@ -12,6 +12,14 @@ use crate::render::{HybridDepth, Target, Technique};
 
 pub(crate) static MODULE: PostModule<Hybrid> = PostModule::new();
 
+/// The name and summary of the hybrid shader with parameters of the caller's own (not offered as a
+/// preset: it has no default parameters of its own).
+static OWN_PARAMETERS: crate::render::Preset = crate::render::Preset {
+    name: "hybrid",
+    summary: "hybrid depth shader, own parameters (seed 004)",
+    technique: crate::render::Technique::Hybrid(crate::render::HybridDepth::EDGES),
+};
+
 /// `HybridParams` in `shaders/hybrid.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
@@ -36,6 +44,32 @@ fn finite(value: f32, fallback: f32) -> f32 {
 }
 
 impl PostProcess for Hybrid {
+    const PRESETS: &'static [crate::render::Preset] = &[
+        crate::render::Preset {
+            name: "hybrid-edges",
+            summary: "hybrid depth shader, edge setting: post-process of the depth alone (seed 004)",
+            technique: crate::render::Technique::Hybrid(crate::render::HybridDepth::EDGES),
+        },
+        crate::render::Preset {
+            name: "hybrid-ambient",
+            summary: "hybrid depth shader, ambient-shading setting (seed 004)",
+            technique: crate::render::Technique::Hybrid(crate::render::HybridDepth::AMBIENT),
+        },
+        crate::render::Preset {
+            name: "hybrid-both",
+            summary: "hybrid depth shader, edges and ambient shading at once (seed 004)",
+            technique: crate::render::Technique::Hybrid(crate::render::HybridDepth::BOTH),
+        },
+    ];
+
+    /// A preset's parameters, or [`OWN_PARAMETERS`] for any others.
+    fn preset(technique: &crate::render::Technique) -> &'static crate::render::Preset {
+        Self::PRESETS
+            .iter()
+            .find(|p| p.technique == *technique)
+            .unwrap_or(&OWN_PARAMETERS)
+    }
+
     type Params = HybridParams;
     const BINDINGS: &'static Bindings = &BINDINGS;
     const OWN: Binding = MASK;

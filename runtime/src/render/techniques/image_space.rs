@@ -31,6 +31,50 @@ const NORMALS: Binding = Binding::new(17, "normals", Kind::Texture);
 const BINDINGS: Bindings = Bindings::draw("image-space edges", &[POST, PARAMS, DEPTH, NORMALS]);
 
 impl PostProcess for ImageSpace {
+    const PRESETS: &'static [crate::render::Preset] = &[
+        crate::render::Preset {
+            name: "image-sobel",
+            summary: "gradient operator over depth and normal buffers, thresholded (thesis §5)",
+            technique: crate::render::Technique::ImageSpace(crate::render::ImageSpace::new(
+                crate::render::Operator::Sobel,
+            )),
+        },
+        crate::render::Preset {
+            name: "image-prewitt",
+            summary: "gradient operator over depth and normal buffers, thresholded (thesis §5)",
+            technique: crate::render::Technique::ImageSpace(crate::render::ImageSpace::new(
+                crate::render::Operator::Prewitt,
+            )),
+        },
+        crate::render::Preset {
+            name: "image-scharr",
+            summary: "gradient operator over depth and normal buffers, thresholded (thesis §5)",
+            technique: crate::render::Technique::ImageSpace(crate::render::ImageSpace::new(
+                crate::render::Operator::Scharr,
+            )),
+        },
+        crate::render::Preset {
+            name: "image-roberts",
+            summary: "gradient operator over depth and normal buffers, thresholded (thesis §5)",
+            technique: crate::render::Technique::ImageSpace(crate::render::ImageSpace::new(
+                crate::render::Operator::Roberts,
+            )),
+        },
+    ];
+
+    /// By the operator, whatever the thresholds (the presets are in [`Operator::ALL`]'s order).
+    ///
+    /// [`Operator::ALL`]: crate::render::Operator::ALL
+    fn preset(technique: &crate::render::Technique) -> &'static crate::render::Preset {
+        let index = match technique {
+            crate::render::Technique::ImageSpace(p) => crate::render::Operator::ALL
+                .iter()
+                .position(|o| *o == p.operator),
+            _ => None,
+        };
+        &Self::PRESETS[index.unwrap_or(0)]
+    }
+
     type Params = ImageParams;
     const BINDINGS: &'static Bindings = &BINDINGS;
     const OWN: Binding = NORMALS;

@@ -26,6 +26,34 @@ pub(crate) struct HullParams {
 }
 
 impl Pull for InvertedHull {
+    const PRESETS: &'static [crate::render::Preset] = &[
+        crate::render::Preset {
+            name: "inverted-hull",
+            summary: "the mesh pushed out along its normals, front faces culled (thesis §7.2)",
+            technique: crate::render::Technique::InvertedHull {
+                smooth_normals: false,
+            },
+        },
+        crate::render::Preset {
+            name: "inverted-hull-smooth",
+            summary: "inverted hull along smooth normals (thesis §7.2)",
+            technique: crate::render::Technique::InvertedHull {
+                smooth_normals: true,
+            },
+        },
+    ];
+
+    /// By `smooth_normals`.
+    fn preset(technique: &crate::render::Technique) -> &'static crate::render::Preset {
+        let smooth = matches!(
+            technique,
+            crate::render::Technique::InvertedHull {
+                smooth_normals: true
+            }
+        );
+        &Self::PRESETS[usize::from(smooth)]
+    }
+
     type Params = HullParams;
     type Draw = ();
     const BINDINGS: &'static Bindings = &Bindings::draw(

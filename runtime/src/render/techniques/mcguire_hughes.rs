@@ -35,6 +35,12 @@ const BINDINGS: Bindings = Bindings::draw(
 );
 
 impl Pull for McGuireHughes {
+    const PRESETS: &'static [crate::render::Preset] = &[crate::render::Preset {
+        name: "mcguire-hughes",
+        summary: "McGuire-Hughes: every edge a quad classified per vertex, two cap passes (thesis §8)",
+        technique: crate::render::Technique::McGuireHughes,
+    }];
+
     type Params = ();
     /// Whether the two cap passes run.
     type Draw = bool;

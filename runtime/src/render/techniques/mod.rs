@@ -30,6 +30,7 @@ use std::sync::Arc;
 
 use super::layout::{Frame, InstanceFrame, Layout};
 use super::modules::Shader;
+use super::technique::{Preset, preset_of};
 use super::{
     AssetExtras, Camera, DrawCounts, EdgeColors, EdgeStyle, FrameViews, GpuAsset, Pipelines,
     RenderError, Target, Technique,
@@ -53,21 +54,39 @@ pub(crate) fn module(technique: &Technique) -> &'static dyn Module {
     }
 }
 
-/// Every technique module, once each (from [`Technique::all`]: nothing to keep in step).
+/// Every technique module, in the order their presets are offered: [`Technique::all`], names and
+/// summaries come from here (each module lists its presets), so this list and [`module`] are the
+/// only places the core names a technique.
+pub(crate) static MODULES: [&'static dyn Module; 10] = [
+    &joined::MODULE,
+    &mcguire_hughes::MODULE,
+    &alternate::MODULE,
+    &fins::MODULE,
+    &wireframe::MODULE,
+    &hardware::MODULE,
+    &surface_angle::MODULE,
+    &inverted_hull::MODULE,
+    &hybrid::MODULE,
+    &image_space::MODULE,
+];
+
+/// Every technique module, once each.
 #[cfg(test)]
 pub(crate) fn modules() -> Vec<&'static dyn Module> {
-    let mut all: Vec<&'static dyn Module> = Vec::new();
-    for technique in Technique::all() {
-        let module = module(&technique);
-        if !all.iter().any(|m| m.id() == module.id()) {
-            all.push(module);
-        }
-    }
-    all
+    MODULES.to_vec()
 }
 
 /// What a technique module declares. One `static` value per module implements it.
 pub(crate) trait Module: Sync + 'static {
+    /// The techniques this module draws, named and summarized, with their default parameters.
+    fn presets(&self) -> &'static [Preset];
+
+    /// The preset `technique` (one of this module's) is, or is a variant of: the one equal to it,
+    /// else the first. Modules whose presets differ by a parameter pick by that parameter.
+    fn preset(&self, technique: &Technique) -> &'static Preset {
+        preset_of(self.presets(), technique)
+    }
+
     /// The WGSL modules the technique compiles for `target` and the pipelines made of each (the
     /// same declarations its [`PipelineSet`](super::pipelines::PipelineSet) compiles; the CPU tests
     /// of `modules.rs` read them).

@@ -352,6 +352,14 @@ pub(crate) fn depth_source(target: &crate::render::Target) -> &'static str {
 /// [`PostProcess::params`] asks), and after it runs one full-screen pass over the finished colour,
 /// reading the application's depth and that texture.
 pub(crate) trait PostProcess: std::fmt::Debug + Send + Sync + 'static {
+    /// The techniques of this module ([`Module::presets`](super::Module::presets)).
+    const PRESETS: &'static [crate::render::Preset];
+
+    /// [`Module::preset`](super::Module::preset): the preset equal to `technique`, else the first.
+    fn preset(technique: &crate::render::Technique) -> &'static crate::render::Preset {
+        crate::render::technique::preset_of(Self::PRESETS, technique)
+    }
+
     /// The parameters (`#[repr(C)]`, its WGSL twin named in [`PostProcess::structs`]), at
     /// [`PARAMS`].
     type Params: bytemuck::Pod + std::fmt::Debug + Send + Sync;
@@ -389,6 +397,14 @@ impl<T> PostModule<T> {
 }
 
 impl<T: PostProcess> super::Module for PostModule<T> {
+    fn presets(&self) -> &'static [crate::render::Preset] {
+        T::PRESETS
+    }
+
+    fn preset(&self, technique: &crate::render::Technique) -> &'static crate::render::Preset {
+        T::preset(technique)
+    }
+
     fn shaders(&self, target: &crate::render::Target) -> Vec<crate::render::modules::Shader> {
         vec![T::shader(target)]
     }

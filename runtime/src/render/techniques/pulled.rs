@@ -17,10 +17,19 @@ use crate::render::bindings::{self, Binding, Bindings};
 use crate::render::layout::{Frame, Layout};
 use crate::render::modules::{Program, Shader};
 use crate::render::pipelines::{PipelineSet, Raster};
-use crate::render::{AssetExtras, GpuAsset, Pipelines, RenderError, Target, Technique};
+use crate::render::technique::preset_of;
+use crate::render::{AssetExtras, GpuAsset, Pipelines, Preset, RenderError, Target, Technique};
 
 /// What a vertex-pulled technique declares; the rest is [`PullModule`]'s.
 pub(crate) trait Pull: std::fmt::Debug + Send + Sync + 'static {
+    /// The techniques of this module ([`Module::presets`]).
+    const PRESETS: &'static [Preset];
+
+    /// [`Module::preset`]: the preset equal to `technique`, else the first.
+    fn preset(technique: &Technique) -> &'static Preset {
+        preset_of(Self::PRESETS, technique)
+    }
+
     /// The parameters block (`#[repr(C)]`, its WGSL twin named in [`Pull::structs`]); `()` for
     /// none, and then [`Pull::BINDINGS`] has no [`bindings::PARAMS`].
     type Params: bytemuck::Pod + std::fmt::Debug + Send + Sync;
@@ -154,6 +163,14 @@ impl<T> PullModule<T> {
 }
 
 impl<T: Pull> Module for PullModule<T> {
+    fn presets(&self) -> &'static [Preset] {
+        T::PRESETS
+    }
+
+    fn preset(&self, technique: &Technique) -> &'static Preset {
+        T::preset(technique)
+    }
+
     fn shaders(&self, _target: &Target) -> Vec<Shader> {
         vec![T::shader()]
     }

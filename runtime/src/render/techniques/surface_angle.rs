@@ -26,6 +26,12 @@ pub(crate) struct AngleParams {
 }
 
 impl Pull for SurfaceAngle {
+    const PRESETS: &'static [crate::render::Preset] = &[crate::render::Preset {
+        name: "surface-angle",
+        summary: "pixels whose normal is nearly perpendicular to the view (thesis §7.1)",
+        technique: crate::render::Technique::SurfaceAngle { threshold: 0.2 },
+    }];
+
     type Params = AngleParams;
     type Draw = ();
     const BINDINGS: &'static Bindings = &Bindings::draw("surface angle", &[FRAME, PARAMS]);

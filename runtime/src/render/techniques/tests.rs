@@ -49,6 +49,12 @@ struct Silhouette;
 static SILHOUETTE: PullModule<Silhouette> = PullModule::new();
 
 impl Pull for Silhouette {
+    // Not offered to the front ends (it is in no list); a preset only names it.
+    const PRESETS: &'static [crate::render::Preset] = &[crate::render::Preset {
+        name: "silhouette",
+        summary: "a flat-colour silhouette (test)",
+        technique: crate::render::Technique::Joined,
+    }];
     type Params = SilhouetteParams;
     type Draw = ();
     const BINDINGS: &'static Bindings = &Bindings::draw("silhouette", &[FRAME, PARAMS]);

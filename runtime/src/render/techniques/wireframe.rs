@@ -38,6 +38,39 @@ fn feature_only(technique: &Technique) -> bool {
 }
 
 impl Pull for Wireframe {
+    const PRESETS: &'static [crate::render::Preset] = &[
+        crate::render::Preset {
+            name: "wireframe",
+            summary: "barycentric thick wireframe of every triangle (seed 001)",
+            technique: crate::render::Technique::Wireframe {
+                feature_only: false,
+                smooth: true,
+                naive_threshold: None,
+            },
+        },
+        crate::render::Preset {
+            name: "wireframe-features",
+            summary: "barycentric thick wireframe of the feature edges (seed 001)",
+            technique: crate::render::Technique::Wireframe {
+                feature_only: true,
+                smooth: true,
+                naive_threshold: None,
+            },
+        },
+    ];
+
+    /// By `feature_only`, whatever the other parameters.
+    fn preset(technique: &crate::render::Technique) -> &'static crate::render::Preset {
+        let features = matches!(
+            technique,
+            crate::render::Technique::Wireframe {
+                feature_only: true,
+                ..
+            }
+        );
+        &Self::PRESETS[usize::from(features)]
+    }
+
     type Params = WireParams;
     type Draw = ();
     const BINDINGS: &'static Bindings = &Bindings::draw(

@@ -51,6 +51,14 @@ pub(crate) static MODULE: Joined = Joined;
 pub(crate) struct Joined;
 
 impl Module for Joined {
+    fn presets(&self) -> &'static [crate::render::Preset] {
+        &[crate::render::Preset {
+            name: "joined",
+            summary: "compacted edges with gap-free joins and round caps (thesis §10, §13; the default)",
+            technique: crate::render::Technique::Joined,
+        }]
+    }
+
     fn shaders(&self, target: &Target) -> Vec<Shader> {
         pipelines::shaders(target)
     }
