@@ -177,6 +177,13 @@ pub fn style_schema() -> String {
     chamfer_runtime::render::StyleSettings::schema_json().to_string()
 }
 
+/// The edge classes' names, as JSON (`chamfer render --classes` takes the same).
+#[wasm_bindgen(js_name = edgeClasses)]
+pub fn edge_classes() -> String {
+    serde_json::Value::from(chamfer_runtime::render::EdgeClasses::names().collect::<Vec<_>>())
+        .to_string()
+}
+
 /// The techniques the runtime has, as JSON: `[{name, summary, post_process}]`.
 #[wasm_bindgen]
 pub fn techniques() -> String {

@@ -56,23 +56,13 @@ impl Default for ViewSettings {
             orbit: Orbit::default(),
             look: StyleSettings::default(),
             technique: Technique::default().name().to_owned(),
-            classes: CLASSES.iter().map(|(name, _)| (*name).to_owned()).collect(),
+            classes: EdgeClasses::names().map(str::to_owned).collect(),
             highlight: HighlightModel::Off,
             edge_color: None,
             background: [1.0; 4],
         }
     }
 }
-
-/// The edge classes by name, as `chamfer render --classes` spells them.
-pub const CLASSES: [(&str, EdgeClasses); 6] = [
-    ("contour", EdgeClasses::CONTOUR),
-    ("boundary", EdgeClasses::BOUNDARY),
-    ("marked", EdgeClasses::MARKED),
-    ("ridge", EdgeClasses::RIDGE),
-    ("valley", EdgeClasses::VALLEY),
-    ("intersection", EdgeClasses::INTERSECTION),
-];
 
 /// Reads bake settings from JSON; an empty string is the defaults.
 pub fn bake_settings(json: &str) -> Result<BakeSettings, String> {
@@ -128,15 +118,8 @@ impl ViewSettings {
     }
 
     fn classes(&self) -> Result<EdgeClasses, String> {
-        self.classes
-            .iter()
-            .try_fold(EdgeClasses::NONE, |all, name| {
-                let (_, class) = CLASSES
-                    .iter()
-                    .find(|(known, _)| known == name)
-                    .ok_or_else(|| format!("no edge class '{name}'"))?;
-                Ok(EdgeClasses(all.0 | class.0))
-            })
+        EdgeClasses::from_names(self.classes.iter().map(String::as_str))
+            .map_err(|name| format!("no edge class '{name}'"))
     }
 
     /// The drawing's line classes for the classes drawn (ridges and valleys are its creases).

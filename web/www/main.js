@@ -2,13 +2,13 @@
 // drawn by the wasm Viewer on WebGPU, the controls, the downloads. Query parameters: url (a file to
 // load), any entry of the view and style schemas (azimuth, elevation, edge_width, ...), size (WxH
 // canvas pixels), technique.
-import init, { bakeSchema, createViewer, styleSchema, techniques, viewSchema } from "./pkg/chamfer_web.js";
+import init, { bakeSchema, createViewer, edgeClasses, styleSchema, techniques, viewSchema } from "./pkg/chamfer_web.js";
 
 const $ = (id) => document.getElementById(id);
 const canvas = $("canvas");
 const query = new URLSearchParams(location.search);
 const MESH = /\.(obj|gltf|glb|ply|ply\.gz|stl|stl\.gz|3mf)$/i;
-const CLASSES = ["contour", "boundary", "marked", "ridge", "valley", "intersection"];
+let CLASSES = [];  // the runtime's class names (edgeClasses()), set at the start
 
 const state = {
   viewer: null,
@@ -17,7 +17,7 @@ const state = {
   // The camera's and the look's keys (the view and style schemas') are added by setUpPanel.
   view: {
     technique: query.get("technique") ?? "joined",
-    classes: [...CLASSES],
+    classes: [],  // all of CLASSES, set at the start
     highlight: "off",
     edge_color: null,
     background: [1, 1, 1, 1],
@@ -388,6 +388,8 @@ async function start() {
   await init();
   const size = query.get("size")?.match(/^(\d+)x(\d+)$/);
   if (size) [canvas.width, canvas.height] = [Number(size[1]), Number(size[2])];
+  CLASSES = JSON.parse(edgeClasses());
+  state.view.classes = [...CLASSES];
   setUpPanel(JSON.parse(viewSchema()), "view-options");
   setUpPanel(JSON.parse(styleSchema()), "style-options");
   setUpControls(JSON.parse(techniques()));

@@ -33,6 +33,33 @@ impl EdgeClasses {
     /// No class: nothing is drawn.
     pub const NONE: Self = Self(0);
 
+    /// Each class by name, as `chamfer render --classes`, the page and its settings spell them:
+    /// the one table of class names.
+    pub const NAMED: [(&'static str, Self); 6] = [
+        ("contour", Self::CONTOUR),
+        ("boundary", Self::BOUNDARY),
+        ("marked", Self::MARKED),
+        ("ridge", Self::RIDGE),
+        ("valley", Self::VALLEY),
+        ("intersection", Self::INTERSECTION),
+    ];
+
+    /// Every class's name, in [`EdgeClasses::NAMED`]'s order.
+    pub fn names() -> impl Iterator<Item = &'static str> {
+        Self::NAMED.iter().map(|(name, _)| *name)
+    }
+
+    /// The classes named in `names`; `Err` with the first unknown name.
+    pub fn from_names<'a>(names: impl IntoIterator<Item = &'a str>) -> Result<Self, &'a str> {
+        names.into_iter().try_fold(Self::NONE, |all, name| {
+            Self::NAMED
+                .iter()
+                .find(|(known, _)| *known == name)
+                .map(|(_, class)| all | *class)
+                .ok_or(name)
+        })
+    }
+
     /// True if every class of `other` is in `self`.
     pub const fn contains(self, other: Self) -> bool {
         self.0 & other.0 == other.0
@@ -194,5 +221,18 @@ impl EdgeStyle {
         self.depth_bias_px
             .filter(|b| b.is_finite())
             .unwrap_or(1.0 + 1.5 * self.width())
+    }
+}
+
+#[cfg(test)]
+mod named_tests {
+    use super::EdgeClasses;
+
+    #[test]
+    fn the_named_classes_are_all_the_classes_once() {
+        let all = EdgeClasses::from_names(EdgeClasses::names()).expect("known");
+        assert_eq!(all, EdgeClasses::ALL);
+        assert_eq!(EdgeClasses::from_names(["ridge", "seam"]), Err("seam"));
+        assert_eq!(EdgeClasses::from_names([]), Ok(EdgeClasses::NONE));
     }
 }

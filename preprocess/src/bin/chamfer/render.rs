@@ -114,14 +114,14 @@ pub struct ViewArgs {
     /// `--technique hybrid-*`: over the model only, with its Laplacian outline (§3.1).
     #[arg(long)]
     hybrid_object: bool,
-    /// Edge classes to draw.
+    /// Edge classes to draw (intersection edges need `bake --intersections`).
     #[arg(
         long,
-        value_enum,
         value_delimiter = ',',
-        default_value = "contour,boundary,marked,ridge,valley,intersection"
+        value_parser = clap::builder::PossibleValuesParser::new(EdgeClasses::names()),
+        default_values_t = EdgeClasses::names().map(str::to_owned)
     )]
-    classes: Vec<Class>,
+    classes: Vec<String>,
     /// How edges join.
     #[arg(long, value_enum, default_value_t = Caps::NextIndex)]
     caps: Caps,
@@ -179,17 +179,6 @@ enum Style {
     /// Blinn-lit mesh, chamfer edges (those with a radius: see --radius) as lit rounded strips
     /// (seed 000), contours as lines.
     Chamfer,
-}
-
-#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
-enum Class {
-    Contour,
-    Boundary,
-    Marked,
-    Ridge,
-    Valley,
-    /// Intersection edges (baked with `bake --intersections`).
-    Intersection,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -291,16 +280,9 @@ impl ViewArgs {
     }
 
     fn edge_style(&self) -> EdgeStyle {
-        let classes = self.classes.iter().fold(EdgeClasses::NONE, |all, class| {
-            all | match class {
-                Class::Contour => EdgeClasses::CONTOUR,
-                Class::Boundary => EdgeClasses::BOUNDARY,
-                Class::Marked => EdgeClasses::MARKED,
-                Class::Ridge => EdgeClasses::RIDGE,
-                Class::Valley => EdgeClasses::VALLEY,
-                Class::Intersection => EdgeClasses::INTERSECTION,
-            }
-        });
+        // The parser took only the names of the table.
+        let classes = EdgeClasses::from_names(self.classes.iter().map(String::as_str))
+            .unwrap_or(EdgeClasses::ALL);
         let highlight = (self.style == Style::Chamfer).then(|| self.highlight());
         self.look.0.edges(EdgeStyle {
             technique: self.technique().unwrap_or_default(),
