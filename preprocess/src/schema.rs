@@ -112,12 +112,21 @@ pub enum SettingsError {
 impl BakeSettings {
     /// The bake options and, with `compact`, the compact encoding's; refused values say why.
     pub fn options(&self) -> Result<(BakeOptions, Option<CompactOptions>), SettingsError> {
-        Ok((self.bake_options()?, self.compact_options()?))
+        self.check_combinations()?;
+        Ok((
+            self.checked_bake_options()?,
+            self.checked_compact_options()?,
+        ))
     }
 
     /// The bake options (the "bake" group), checked.
     pub fn bake_options(&self) -> Result<BakeOptions, SettingsError> {
         self.check_combinations()?;
+        self.checked_bake_options()
+    }
+
+    /// The bake options, the combinations already checked.
+    fn checked_bake_options(&self) -> Result<BakeOptions, SettingsError> {
         let options = BakeOptions::DEFAULT
             .with_weld(match self.weld_epsilon {
                 Some(distance) => WeldTolerance::Absolute(distance),
@@ -150,6 +159,11 @@ impl BakeSettings {
     /// The compact encoding (the "encoding" group), checked; `None` for the uncompressed format.
     pub fn compact_options(&self) -> Result<Option<CompactOptions>, SettingsError> {
         self.check_combinations()?;
+        self.checked_compact_options()
+    }
+
+    /// The compact encoding, the combinations already checked.
+    fn checked_compact_options(&self) -> Result<Option<CompactOptions>, SettingsError> {
         let bits = |n: u64| u32::try_from(n).unwrap_or(u32::MAX);
         let compact = CompactOptions {
             position_bits: bits(self.position_bits),
