@@ -48,9 +48,11 @@ pub fn draw_svg(
     title: Option<String>,
     options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<String> {
-    if !(1..=16_384).contains(&width) || !(1..=16_384).contains(&height) {
+    let frame = 1..=chamfer_runtime::camera::MAX_VIEWPORT;
+    if !frame.contains(&width) || !frame.contains(&height) {
         return Err(errors::options(format!(
-            "width and height must be 1 to 16384 pixels, not {width}x{height}"
+            "width and height must be 1 to {} pixels, not {width}x{height}",
+            frame.end()
         )));
     }
     let (orbit, options) = options::view_from_kwargs(py, options)?;

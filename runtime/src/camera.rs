@@ -95,6 +95,9 @@ impl Camera {
     }
 }
 
+/// The widest and tallest frame the front ends render or draw, in pixels.
+pub const MAX_VIEWPORT: u32 = 16_384;
+
 /// The nearest an orbit camera may be to the box's centre.
 const MIN_DISTANCE: f64 = 1e-6;
 

@@ -68,24 +68,31 @@ const PAGE_DEFAULTS = { compact: true };
 function setUpBakeOptions(schema) {
   state.bakeSchema = schema;
   for (const entry of schema) {
-    const label = document.createElement("label");
-    label.title = entry.help;
-    const input = document.createElement("input");
-    input.id = `bake-${entry.name}`;
+    const { label, input } = control(entry, `bake-${entry.name}`, "none");
     input.dataset.kind = entry.kind;
-    if (entry.kind === "flag") {
-      input.type = "checkbox";
-      input.checked = PAGE_DEFAULTS[entry.name] ?? false;
-      label.append(input, ` ${entry.name}`);
-    } else {
-      input.type = "number";
-      input.step = entry.kind === "count" ? "1" : "any";
-      if (entry.range) [input.min, input.max] = entry.range;
-      input.placeholder = entry.default ?? "none";
-      label.append(`${entry.name} `, input);
-    }
+    if (entry.kind === "flag") input.checked = PAGE_DEFAULTS[entry.name] ?? false;
     $("bake-options").append(label);
   }
+}
+
+// One schema entry's control: a checkbox for a flag, a number field (within the entry's range)
+// for a number or a count, labelled with its name and titled with its help.
+function control(entry, id, placeholder) {
+  const label = document.createElement("label");
+  label.title = entry.help;
+  const input = document.createElement("input");
+  input.id = id;
+  if (entry.kind === "flag") {
+    input.type = "checkbox";
+    label.append(input, ` ${entry.name}`);
+  } else {
+    input.type = "number";
+    input.step = entry.kind === "count" ? "1" : "any";
+    if (entry.range) [input.min, input.max] = entry.range;
+    input.placeholder = entry.default ?? placeholder;
+    label.append(`${entry.name} `, input);
+  }
+  return { label, input };
 }
 
 // A panel of controls, one per entry of a schema the wasm module exports (the view's: the camera;
@@ -98,28 +105,14 @@ function setUpPanel(schema, container) {
   panels.push({ schema, prefix });
   for (const entry of schema) {
     const given = query.get(entry.name);
-    const value = given === null ? entry.default : entry.kind === "flag" ? given === "true" : Number(given);
-    state.view[entry.name] = value;
-    const label = document.createElement("label");
-    label.title = entry.help;
-    const input = document.createElement("input");
-    input.id = `${prefix}-${entry.name}`;
-    if (entry.kind === "flag") {
-      input.type = "checkbox";
-      input.addEventListener("change", () => { state.view[entry.name] = input.checked; redraw(); });
-      label.append(input, ` ${entry.name}`);
-    } else {
-      input.type = "number";
-      input.step = entry.kind === "count" ? "1" : "any";
-      if (entry.range) [input.min, input.max] = entry.range;
-      input.placeholder = entry.default ?? "default";
-      // Empty is the default (null: the camera's distance that frames the model, say).
-      input.addEventListener("change", () => {
-        state.view[entry.name] = input.value === "" ? entry.default : Number(input.value);
-        redraw();
-      });
-      label.append(`${entry.name} `, input);
-    }
+    state.view[entry.name] = given === null ? entry.default : entry.kind === "flag" ? given === "true" : Number(given);
+    const { label, input } = control(entry, `${prefix}-${entry.name}`, "default");
+    // Empty is the default (null: the camera's distance that frames the model, say).
+    input.addEventListener("change", () => {
+      state.view[entry.name] = entry.kind === "flag" ? input.checked
+        : input.value === "" ? entry.default : Number(input.value);
+      redraw();
+    });
     $(container).append(label);
   }
   state[`${prefix}Schema`] = schema;

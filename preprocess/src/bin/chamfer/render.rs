@@ -51,9 +51,11 @@ pub struct CameraArgs {
 
 impl CameraArgs {
     pub fn check(&self) -> anyhow::Result<()> {
-        if !(1..=16_384).contains(&self.width) || !(1..=16_384).contains(&self.height) {
+        let frame = 1..=chamfer_runtime::camera::MAX_VIEWPORT;
+        if !frame.contains(&self.width) || !frame.contains(&self.height) {
             bail!(
-                "--width and --height must be 1 to 16384 pixels, not {}x{}",
+                "--width and --height must be 1 to {} pixels, not {}x{}",
+                frame.end(),
                 self.width,
                 self.height
             );
