@@ -29,7 +29,8 @@ fi
 
 # The Python package (python/, issue 27): a virtual environment .venv/ with what building and testing it
 # needs (python/requirements-test.txt, installed only when missing), then the package built by maturin from
-# this tree (release; the library without the wgpu renderer) and installed into it as a wheel.
+# this tree (release; the library without the wgpu renderer) and installed into it as a wheel (not
+# under test.sh, see below).
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 if [[ ! -x "$root/.venv/bin/python" ]]; then
     echo "setup: creating $root/.venv"
@@ -57,6 +58,11 @@ PY
 then
     echo "setup: installing the Python test requirements into .venv"
     "$root/.venv/bin/python" -m pip install -q --disable-pip-version-check -r "$root/python/requirements-test.txt"
+fi
+# test.sh builds and installs the package from its sdist instead (what PyPI users get): it sets
+# CHAMFER_SETUP_WHEEL=no, so the same crates are not compiled twice.
+if [[ "${CHAMFER_SETUP_WHEEL:-yes}" == no ]]; then
+    return 0 2>/dev/null || exit 0
 fi
 echo "setup: building the Python package (maturin)"
 rm -rf "$root/target/wheels/tree"

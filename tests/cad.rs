@@ -32,22 +32,12 @@ fn kept_segments(asset: &Asset) -> BTreeSet<[[u32; 3]; 2]> {
 
 /// A mesh as a binary STL: every triangle with its own three vertices, as CAD tools write it.
 fn soup_stl(mesh: &chamfer_preprocess::mesh::Mesh) -> Vec<u8> {
-    let mut bytes = b"solid exported by a CAD tool".to_vec();
-    bytes.resize(80, b' ');
-    bytes.extend((mesh.triangles.len() as u32).to_le_bytes());
-    for t in &mesh.triangles {
-        bytes.extend([0u8; 12]);
-        for &v in t {
-            bytes.extend(
-                mesh.positions[v as usize]
-                    .to_array()
-                    .map(f32::to_le_bytes)
-                    .concat(),
-            );
-        }
-        bytes.extend([0u8; 2]);
-    }
-    bytes
+    let corner = |v: u32| mesh.positions[v as usize].to_array();
+    chamfer_tests::files::binary_stl(
+        b"solid exported by a CAD tool",
+        mesh.triangles.len() as u32,
+        mesh.triangles.iter().map(|t| t.map(corner)),
+    )
 }
 
 #[test]

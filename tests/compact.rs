@@ -153,6 +153,82 @@ fn lossy_files_keep_every_index_and_stay_within_their_stated_bounds() {
     }
 }
 
+/// Issue 44: a position error picks the grid: the fewest bits whose stated bound is within it
+/// (one bit fewer would not be), every decoded position within the bound; an error no 16-bit grid
+/// meets keeps the positions exact; a coarser error makes a smaller file.
+#[test]
+fn a_position_error_picks_the_fewest_grid_bits_within_it() {
+    for (name, asset) in assets() {
+        let diagonal = {
+            let points = asset
+                .topology_positions
+                .iter()
+                .map(|&p| glam::Vec3::from(p));
+            let lo = points.clone().fold(glam::Vec3::INFINITY, glam::Vec3::min);
+            let hi = points.fold(glam::Vec3::NEG_INFINITY, glam::Vec3::max);
+            (hi - lo).length()
+        };
+        let mut sizes = Vec::new();
+        for share in [1e-2, 1e-4] {
+            let error = diagonal * share;
+            let options = CompactOptions {
+                position_error: Some(error),
+                ..CompactOptions::DEFAULT
+            };
+            let bytes = compact(&asset, &options);
+            let precision = Asset::precision(&bytes).expect("precision");
+            assert!(
+                (1..=16).contains(&precision.position_bits),
+                "{name}: {} bits",
+                precision.position_bits
+            );
+            assert!(
+                precision.position_error <= error,
+                "{name}: {precision:?} over {error}"
+            );
+            let fewer = CompactOptions {
+                position_bits: precision.position_bits - 1,
+                ..CompactOptions::DEFAULT
+            };
+            if fewer.position_bits > 0 {
+                let looser = Asset::precision(&compact(&asset, &fewer)).expect("precision");
+                assert!(
+                    looser.position_error > error,
+                    "{name}: {looser:?} is within {error}"
+                );
+            }
+            let decoded = Asset::decode(&bytes).expect("decodes");
+            for (p, q) in asset
+                .topology_positions
+                .iter()
+                .zip(&decoded.topology_positions)
+            {
+                assert!(
+                    (0..3).all(|k| (p[k] - q[k]).abs() <= error),
+                    "{name}: {p:?} -> {q:?}"
+                );
+            }
+            sizes.push(bytes.len());
+        }
+        assert!(sizes[0] < sizes[1], "{name}: {sizes:?} bytes");
+        let exact = CompactOptions {
+            position_error: Some(diagonal * 1e-9),
+            ..CompactOptions::DEFAULT
+        };
+        let bytes = compact(&asset, &exact);
+        assert_eq!(
+            Asset::precision(&bytes).expect("precision").position_bits,
+            32,
+            "{name}"
+        );
+        let decoded = Asset::decode(&bytes).expect("decodes");
+        assert_eq!(
+            decoded.topology_positions, asset.topology_positions,
+            "{name}"
+        );
+    }
+}
+
 /// Every edge's end points lie in its cluster's sphere, and each of its faces' normals (exact,
 /// from the decoded positions) lies in the cluster's cone; each cluster's flags are its edges'.
 fn check_clusters_hold_their_edges(name: &str, asset: &Asset) {
@@ -269,6 +345,7 @@ fn every_technique_draws_the_same_picture_from_a_compact_file() {
         &CompactOptions {
             position_bits: 6,
             normal_bits: 4,
+            ..CompactOptions::DEFAULT
         },
     ))
     .expect("decodes");

@@ -8,14 +8,10 @@ use std::path::PathBuf;
 
 use chamfer_preprocess::mesh::Mesh;
 
+pub mod files;
 pub mod rounded;
 
-/// A file under `fixtures/`.
-pub fn fixture(relative: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../fixtures")
-        .join(relative)
-}
+pub use files::fixture;
 
 /// Every mesh in `fixtures/meshes/` (a copy of `shared/meshes/`), sorted by name.
 pub fn public_meshes() -> Vec<PathBuf> {

@@ -3,7 +3,7 @@
 
 use chamfer_preprocess::mesh::Mesh;
 use chamfer_runtime::render::{
-    Camera, GpuAsset, Image, Instance, MeshRenderer, Orbit, SceneRenderer, Technique,
+    Camera, FinSettings, GpuAsset, Image, Instance, MeshRenderer, Orbit, SceneRenderer, Technique,
 };
 use chamfer_tests::cube::*;
 use chamfer_tests::{bake_fixture, gpu};
@@ -280,10 +280,7 @@ fn a_scene_drawn_in_batches_equals_it_drawn_instance_by_instance() {
     let techniques = [
         Technique::Joined,
         Technique::McGuireHughes,
-        Technique::Fins {
-            world_thickness: None,
-            z_bias: None,
-        },
+        Technique::Fins(FinSettings::default()),
     ];
     let assets: Vec<GpuAsset> = [
         "shapes/cube.obj",

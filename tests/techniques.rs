@@ -3,8 +3,8 @@
 //! asserted per technique, so a technique that starts or stops leaving gaps fails.
 
 use chamfer_runtime::render::{
-    Camera, CapMethod, EdgeColors, EdgeRenderer, EdgeStyle, GpuAsset, HybridDepth, Image,
-    ImageSpace, MeshRenderer, Operator, Orbit, Technique,
+    Camera, CapMethod, EdgeColors, EdgeRenderer, EdgeStyle, FinSettings, GpuAsset, HybridDepth,
+    Image, ImageSpace, MeshRenderer, Operator, Orbit, SurfaceAngleSettings, Technique,
 };
 use chamfer_tests::cube::*;
 use chamfer_tests::{bake_fixture, draw_frame, gpu};
@@ -38,10 +38,7 @@ fn object_space() -> Vec<Technique> {
         Technique::Plug,
         Technique::HalfHexPlug,
         Technique::House,
-        Technique::Fins {
-            world_thickness: None,
-            z_bias: None,
-        },
+        Technique::Fins(FinSettings::default()),
     ]
 }
 
@@ -139,10 +136,7 @@ fn thick_joints_leave_gaps_exactly_where_the_seeds_say() {
         (Technique::HalfHexPlug, CapMethod::NextIndex),
         (Technique::House, CapMethod::NextIndex),
         (
-            Technique::Fins {
-                world_thickness: None,
-                z_bias: None,
-            },
+            Technique::Fins(FinSettings::default()),
             CapMethod::NextIndex,
         ),
     ]
@@ -185,10 +179,10 @@ fn valley_speckle(z_bias: f32) -> f32 {
     let camera = Camera::orbit([[0.0; 3], [2.0, 2.0, 1.0]], &orbit, [320, 320]);
     let thickness = 0.12;
     let style = EdgeStyle {
-        technique: Technique::Fins {
-            world_thickness: Some(thickness),
+        technique: Technique::Fins(FinSettings {
+            thickness: Some(thickness),
             z_bias: Some(z_bias),
-        },
+        }),
         colors: EdgeColors {
             valley: RED,
             ..EdgeColors::all([0.0, 0.0, 0.0, 1.0])
@@ -354,7 +348,7 @@ fn contour_methods_outline_a_sphere_as_the_thesis_says() {
         Technique::Hardware(H::StencilShifted),
         Technique::Hardware(H::InvertedStencil),
         Technique::Hardware(H::Raskar { crease_deg: 30.0 }),
-        Technique::SurfaceAngle { threshold: 0.2 },
+        Technique::SurfaceAngle(SurfaceAngleSettings { threshold: 0.2 }),
         Technique::InvertedHull {
             smooth_normals: false,
         },

@@ -26,7 +26,10 @@ pub use asset::{ChamferAsset, ChamferLoadError, ChamferLoader, render_mesh};
 pub use bake::{BakeError, ChamferBake, bake_to_asset};
 pub use chamfer_preprocess::schema::BakeSettings;
 pub use chamfer_runtime::highlight::ggx::PbrMaterial;
-pub use chamfer_runtime::render::{EdgeClasses, EdgeStyle, Highlight, Light, Shading, Technique};
+pub use chamfer_runtime::render::{
+    EdgeClasses, EdgeStyle, FinSettings, Highlight, HybridDepth, Light, Parameters, Shading,
+    SurfaceAngleSettings, Technique,
+};
 pub use render::{ChamferEdges, ChamferTimings};
 
 /// Loads `.chamfer` assets, bakes mesh files in the asset processor ([`ChamferBake`]) and draws

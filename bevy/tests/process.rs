@@ -10,12 +10,7 @@ use bevy::prelude::*;
 use bevy::tasks::block_on;
 use chamfer_bevy::{BakeSettings, ChamferAsset, ChamferPlugin, bake_to_asset};
 use chamfer_runtime::asset::Asset;
-
-fn fixture(relative: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../fixtures")
-        .join(relative)
-}
+use chamfer_tests::fixture;
 
 /// A source folder and the processed folder beside it.
 struct Folders {

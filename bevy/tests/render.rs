@@ -18,14 +18,9 @@ use chamfer_runtime::render::{
     Camera as EdgeCamera, EdgeStyle, GpuAsset, Instance, MeshRenderer, MeshStyle, Offscreen, Orbit,
     Pipelines, SceneRenderer,
 };
+use chamfer_tests::fixture;
 
 const SIZE: [u32; 2] = [320, 240];
-
-fn fixture(relative: &str) -> std::path::PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../fixtures")
-        .join(relative)
-}
 
 /// A folder of assets: `name.chamfer` baked from each fixture.
 fn assets(meshes: &[(&str, &str)]) -> tempfile::TempDir {
@@ -601,10 +596,7 @@ fn the_technique_changes_at_run_time() {
     let mut scene = fandisk_scene(folder.path());
     let joined = scene.edge_pixels();
     for technique in [
-        chamfer_bevy::Technique::Fins {
-            world_thickness: None,
-            z_bias: None,
-        },
+        chamfer_bevy::Technique::Fins(chamfer_bevy::FinSettings::default()),
         chamfer_bevy::Technique::from_name("image-sobel").expect("sobel"),
     ] {
         scene

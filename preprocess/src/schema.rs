@@ -87,6 +87,12 @@ chamfer_runtime::schema! {
         position_bits: u64 = u64::from(CompactOptions::DEFAULT.position_bits), {
             group: "encoding", value: "BITS", range: Some((1.0, 32.0)), example: 12,
             conflicts: [], requires: [compact] },
+        /// The compact positions' largest error along an axis, model units, instead of
+        /// `position_bits`: the grid gets the fewest bits that keep every position within it
+        /// (exact where 16 bits cannot).
+        position_error: Option<f32> = None, { group: "encoding", value: "LENGTH",
+            range: Some((1e-30, FINITE)), example: Some(0.002), conflicts: [position_bits],
+            requires: [compact] },
         /// Bits per component of the compact normals' octahedral code (2 to 16), or 32 to keep
         /// them exact.
         normal_bits: u64 = u64::from(CompactOptions::DEFAULT.normal_bits), {
@@ -167,6 +173,7 @@ impl BakeSettings {
         let bits = |n: u64| u32::try_from(n).unwrap_or(u32::MAX);
         let compact = CompactOptions {
             position_bits: bits(self.position_bits),
+            position_error: self.position_error,
             normal_bits: bits(self.normal_bits),
         };
         compact.check().map_err(SettingsError::Compact)?;

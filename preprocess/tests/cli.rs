@@ -1,13 +1,8 @@
 //! The `chamfer` command as a user runs it: exit codes, messages, files written and left alone.
 
+use chamfer_tests::fixture;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-
-fn fixture(relative: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../fixtures")
-        .join(relative)
-}
 
 fn chamfer(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_chamfer"))
@@ -1504,4 +1499,90 @@ fn every_view_and_style_entry_is_a_render_flag_that_changes_the_picture() {
         );
     }
     assert!(!dir.path().join("refused.png").exists());
+}
+
+/// Issue 40: every parameter of every technique that has some (its module's table) is a flag of
+/// `chamfer render`, `--{prefix}-{name}`, in its help, accepted with its example over the first
+/// preset of its table and changing the picture; a parameter given to another technique and a value out
+/// of range are refused naming the flag.
+#[test]
+fn every_technique_parameter_is_a_render_flag() {
+    use chamfer_runtime::render::Technique;
+
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mesh = fixture("meshes/fandisk.obj");
+    let help = text(&succeed(&["render", "--help"]).stdout);
+    let picture = |extra: &[String], name: &str| {
+        let out = dir.path().join(format!("{name}.png"));
+        let mut args: Vec<String> = [
+            "render",
+            path_str(&mesh),
+            "--width",
+            "120",
+            "--height",
+            "90",
+        ]
+        .map(str::to_owned)
+        .into();
+        args.extend(extra.iter().cloned());
+        args.extend(["-o".to_owned(), path_str(&out).to_owned()]);
+        succeed(&args.iter().map(String::as_str).collect::<Vec<_>>());
+        std::fs::read(&out).expect("png")
+    };
+    let mut set = 0;
+    let mut tables = Vec::new();
+    for preset in Technique::presets() {
+        // Each table once, over its first preset.
+        let Some(table) = preset.technique.parameters() else {
+            continue;
+        };
+        if tables.contains(&table.prefix()) {
+            continue;
+        }
+        tables.push(table.prefix());
+        let technique = ["--technique".to_owned(), preset.name.to_owned()];
+        let before = picture(&technique, preset.name);
+        for entry in table.schema_json().as_array().expect("a table") {
+            let name = entry["name"].as_str().expect("a name");
+            let spelled = format!("--{}-{}", table.prefix(), name).replace('_', "-");
+            assert!(help.contains(&spelled), "{spelled} is not in render --help");
+            let mut args = technique.to_vec();
+            args.push(spelled.clone());
+            if entry["kind"] != "flag" {
+                args.push(entry["example"].to_string());
+            }
+            let after = picture(&args, &format!("{}-{name}", preset.name));
+            assert_ne!(after, before, "{args:?} changed nothing");
+            set += 1;
+        }
+    }
+    assert_eq!(tables.len(), Technique::parameter_tables().len());
+    assert!(set >= 9, "{set} parameters");
+    for (args, message) in [
+        (
+            &["--technique", "joined", "--hybrid-step", "3"][..],
+            "--hybrid-step is a parameter of --technique hybrid-edges, hybrid-ambient, hybrid-both, not of joined",
+        ),
+        (
+            &["--technique", "hybrid-both", "--hybrid-step", "900"][..],
+            "--hybrid-step must be 1 to 64, not 900",
+        ),
+        (
+            &["--technique", "fins", "--fin-thickness", "-1"][..],
+            "--fin-thickness must be at least 0, not -1",
+        ),
+    ] {
+        let mut all: Vec<&str> = vec!["render", path_str(&mesh)];
+        all.extend(args);
+        let out = dir.path().join("refused.png");
+        all.extend(["-o", path_str(&out)]);
+        let run = chamfer(&all);
+        assert!(!run.status.success(), "{args:?} accepted");
+        assert!(
+            text(&run.stderr).contains(message),
+            "{args:?}: {}",
+            text(&run.stderr)
+        );
+        assert!(!out.exists());
+    }
 }

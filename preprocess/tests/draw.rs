@@ -2,14 +2,9 @@
 //! lies on the edges `chamfer render --style edges` draws with the same camera flags, and hidden
 //! lines appear only with `--hidden`.
 
+use chamfer_tests::fixture;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-
-fn fixture(relative: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../fixtures")
-        .join(relative)
-}
 
 fn chamfer(args: &[&str]) -> Output {
     let run = Command::new(env!("CARGO_BIN_EXE_chamfer"))

@@ -27,6 +27,7 @@ use chamfer_preprocess::{
     BakeOptions, Companions, Limits, bake, bake_bytes, bake_with_companions, input, load,
 };
 use chamfer_runtime::asset::{Asset, CompactOptions, SectionKind};
+use chamfer_tests::fixture;
 use glam::camera::rh::{proj::directx, view::look_at_mat4};
 use serde_json::Value;
 
@@ -42,12 +43,6 @@ fn limits() -> Limits {
         .with_max_vertices(1 << 18)
         .with_max_triangles(1 << 18)
         .with_max_instances(1 << 12)
-}
-
-fn fixture(relative: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../fixtures")
-        .join(relative)
 }
 
 fn executions() -> u64 {
@@ -351,7 +346,6 @@ fn unzip(bytes: &[u8]) -> Option<Vec<(String, Vec<u8>)>> {
 /// Mutates a 3MF: its model part as text (re-zipped, stored, so the package stays valid), or the
 /// package's bytes.
 fn mutate_threemf(bytes: &mut Vec<u8>, rng: &mut Rng) {
-    use std::io::Write;
     let Some(mut parts) = unzip(bytes).filter(|p| !p.is_empty() && rng.below(5) != 0) else {
         return mutate_bytes(bytes, rng);
     };
@@ -360,16 +354,9 @@ fn mutate_threemf(bytes: &mut Vec<u8>, rng: &mut Rng) {
         .position(|(name, _)| name.ends_with(".model") && rng.below(8) != 0)
         .unwrap_or_else(|| rng.below(parts.len()));
     mutate_text(&mut parts[k].1, rng, THREEMF_LINES);
-    let mut zip = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
-    let options =
-        zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Stored);
-    for (name, data) in &parts {
-        if zip.start_file(name.as_str(), options).is_err() || zip.write_all(data).is_err() {
-            return;
-        }
-    }
-    if let Ok(out) = zip.finish() {
-        *bytes = out.into_inner();
+    let parts: Vec<(&str, &[u8])> = parts.iter().map(|(n, d)| (n.as_str(), &d[..])).collect();
+    if let Some(out) = chamfer_tests::files::try_zip(&parts, zip::CompressionMethod::Stored) {
+        *bytes = out;
     }
 }
 
@@ -1166,36 +1153,16 @@ fn declared_counts_stay_within_a_memory_bound() {
     };
     let good = put("good.ply", &triangle(""));
     let gz_bomb = {
-        use std::io::Write;
         let path = dir.path().join("vertices.ply.gz");
-        let mut gz = flate2::write::GzEncoder::new(
-            std::fs::File::create(&path).expect("create"),
-            flate2::Compression::fast(),
-        );
-        gz.write_all(b"ply\nformat binary_little_endian 1.0\nelement vertex 170000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n")
-            .expect("write");
-        let block = vec![0u8; 1 << 20];
-        for _ in 0..256 {
-            gz.write_all(&block).expect("write");
-        }
-        gz.finish().expect("finish");
+        let head = b"ply\nformat binary_little_endian 1.0\nelement vertex 170000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
+        chamfer_tests::files::gzip_bomb(&path, head, 256, 1);
         path
     };
     let stl_gz_bomb = {
-        use std::io::Write;
         let path = dir.path().join("facets.stl.gz");
-        let mut gz = flate2::write::GzEncoder::new(
-            std::fs::File::create(&path).expect("create"),
-            flate2::Compression::fast(),
-        );
         let mut header = vec![b' '; 80];
         header.extend(170_000_000u32.to_le_bytes());
-        gz.write_all(&header).expect("write");
-        let block = vec![0u8; 1 << 20];
-        for _ in 0..256 {
-            gz.write_all(&block).expect("write");
-        }
-        gz.finish().expect("finish");
+        chamfer_tests::files::gzip_bomb(&path, &header, 256, 1);
         path
     };
     let mut stl_count = vec![b' '; 80];
@@ -1436,10 +1403,7 @@ fn fuzz_dropped_files() {
 }
 
 fn gzip(bytes: &[u8]) -> Vec<u8> {
-    use std::io::Write;
-    let mut encoder = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::fast());
-    encoder.write_all(bytes).expect("gzip into memory");
-    encoder.finish().expect("gzip into memory")
+    chamfer_tests::files::gzip(bytes, 1)
 }
 
 fn inflate(bytes: &[u8]) -> Vec<u8> {

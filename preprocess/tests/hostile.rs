@@ -251,16 +251,10 @@ fn ply_counts_larger_than_the_file_are_refused_before_reading() {
 
 #[test]
 fn ply_gz_that_inflates_past_the_input_limit_is_refused_while_inflating() {
-    use std::io::Write;
     let dir = tempfile::tempdir().expect("tempdir");
     let path = dir.path().join("bomb.ply.gz");
-    let mut gz = flate2::write::GzEncoder::new(
-        std::fs::File::create(&path).expect("create"),
-        flate2::Compression::best(),
-    );
-    gz.write_all(&ply_triangle("")).expect("write");
-    gz.write_all(&vec![0u8; 64 << 20]).expect("write"); // 64 MiB of zeros, ~64 KB on disk
-    gz.finish().expect("finish");
+    // 64 MiB of zeros, ~64 KB on disk.
+    chamfer_tests::files::gzip_bomb(&path, &ply_triangle(""), 64, 9);
     let limits = chamfer_preprocess::Limits::DEFAULT.with_max_input_bytes(16 << 20);
     let options = BakeOptions::DEFAULT.with_limits(limits);
     let text = bake_file(&path, &options).expect_err("bomb").to_string();
@@ -887,22 +881,11 @@ fn scene_meshes_without_triangles_are_left_out_with_a_warning() {
 
 /// A `.ply.gz` whose header declares `vertices` float vertices, followed by `zeros` MiB of zeros.
 fn ply_gz_bomb(dir: &Path, name: &str, vertices: u64, zeros: usize) -> PathBuf {
-    use std::io::Write;
     let path = dir.join(name);
-    let mut gz = flate2::write::GzEncoder::new(
-        std::fs::File::create(&path).expect("create"),
-        flate2::Compression::fast(),
-    );
-    write!(
-        gz,
+    let head = format!(
         "ply\nformat binary_little_endian 1.0\nelement vertex {vertices}\nproperty float x\nproperty float y\nproperty float z\nend_header\n"
-    )
-    .expect("write");
-    let block = vec![0u8; 1 << 20];
-    for _ in 0..zeros {
-        gz.write_all(&block).expect("write");
-    }
-    gz.finish().expect("finish");
+    );
+    chamfer_tests::files::gzip_bomb(&path, head.as_bytes(), zeros, 1);
     path
 }
 
@@ -1013,17 +996,12 @@ fn errors_name_the_problem_and_where_it_is() {
 
 /// A binary STL of `records` triangles whose header declares `count`.
 fn stl(count: u32, records: usize) -> Vec<u8> {
-    let mut bytes = b"solid looks like ASCII but is binary".to_vec();
-    bytes.resize(80, b' ');
-    bytes.extend(count.to_le_bytes());
-    for _ in 0..records {
-        bytes.extend([0u8; 12]);
-        for v in [[0.0f32, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]] {
-            bytes.extend(v.iter().flat_map(|c| c.to_le_bytes()));
-        }
-        bytes.extend([0u8; 2]);
-    }
-    bytes
+    let triangle = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    chamfer_tests::files::binary_stl(
+        b"solid looks like ASCII but is binary",
+        count,
+        std::iter::repeat_n(triangle, records),
+    )
 }
 
 #[test]
@@ -1110,39 +1088,19 @@ fn stl_over_the_triangle_limit_is_refused_before_reading_its_records() {
 
 #[test]
 fn stl_gz_that_inflates_past_its_declared_records_is_refused_while_inflating() {
-    use std::io::Write;
     let dir = tempfile::tempdir().expect("tempdir");
     let path = dir.path().join("bomb.stl.gz");
-    let mut gz = flate2::write::GzEncoder::new(
-        std::fs::File::create(&path).expect("create"),
-        flate2::Compression::best(),
-    );
-    gz.write_all(&stl(1, 1)).expect("write");
-    gz.write_all(&vec![0u8; 64 << 20]).expect("write"); // 64 MiB of zeros after one record
-    gz.finish().expect("finish");
+    // 64 MiB of zeros after one record.
+    chamfer_tests::files::gzip_bomb(&path, &stl(1, 1), 64, 9);
     let text = refused(&path);
     assert!(text.contains("STL"), "{text}");
 }
 
 const RELS: &str = r#"<?xml version="1.0"?><Relationships xmlns="http://schemas.openxmlformats.org/package/2006/relationships"><Relationship Target="/3D/3dmodel.model" Id="r" Type="http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel"/></Relationships>"#;
 
-/// A 3MF package of these parts, deflated.
-fn package(parts: &[(&str, &[u8])]) -> Vec<u8> {
-    use std::io::Write;
-    let mut zip = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
-    let options = zip::write::SimpleFileOptions::default()
-        .compression_method(zip::CompressionMethod::Deflated)
-        .large_file(true);
-    for (name, bytes) in parts {
-        zip.start_file(*name, options).expect("zip");
-        zip.write_all(bytes).expect("zip");
-    }
-    zip.finish().expect("zip").into_inner()
-}
-
 /// A 3MF package whose model part is `model`.
 fn threemf(model: &str) -> Vec<u8> {
-    package(&[
+    chamfer_tests::files::zip_deflated(&[
         ("_rels/.rels", RELS.as_bytes()),
         ("3D/3dmodel.model", model.as_bytes()),
     ])
@@ -1179,7 +1137,10 @@ fn threemf_zip_bomb_is_refused_at_the_input_limit_while_inflating() {
     let dir = tempfile::tempdir().expect("tempdir");
     let mut xml = model("", r#"<item objectid="1"/>"#).into_bytes();
     xml.extend(std::iter::repeat_n(b' ', 64 << 20)); // 64 MiB of spaces, 64 KB deflated
-    let bytes = package(&[("_rels/.rels", RELS.as_bytes()), ("3D/3dmodel.model", &xml)]);
+    let bytes = chamfer_tests::files::zip_deflated(&[
+        ("_rels/.rels", RELS.as_bytes()),
+        ("3D/3dmodel.model", &xml),
+    ]);
     assert!(bytes.len() < 1 << 20, "{} bytes", bytes.len());
     let path = write(dir.path(), "bomb.3mf", bytes);
     let limits = chamfer_preprocess::Limits::DEFAULT.with_max_input_bytes(16 << 20);
@@ -1339,7 +1300,7 @@ fn threemf_packages_without_a_model_say_what_is_missing() {
     let text = refused(&write(
         dir.path(),
         "empty.3mf",
-        package(&[("_rels/.rels", RELS.as_bytes())]),
+        chamfer_tests::files::zip_deflated(&[("_rels/.rels", RELS.as_bytes())]),
     ));
     assert!(
         text.contains("the model part 3D/3dmodel.model is not in the package"),
@@ -1352,7 +1313,7 @@ fn threemf_packages_without_a_model_say_what_is_missing() {
     let text = refused(&write(
         dir.path(),
         "norel.3mf",
-        package(&[("_rels/.rels", wrong.as_bytes())]),
+        chamfer_tests::files::zip_deflated(&[("_rels/.rels", wrong.as_bytes())]),
     ));
     assert!(
         text.contains("no relationship of the 3D model type"),
@@ -1362,7 +1323,7 @@ fn threemf_packages_without_a_model_say_what_is_missing() {
     let path = write(
         dir.path(),
         "norels.3mf",
-        package(&[(
+        chamfer_tests::files::zip_deflated(&[(
             "3D/3dmodel.model",
             model("", r#"<item objectid="1"/>"#).as_bytes(),
         )]),
@@ -1618,10 +1579,7 @@ fn a_dropped_companion_over_the_input_limit_is_refused() {
 }
 
 fn gzip(bytes: &[u8]) -> Vec<u8> {
-    use std::io::Write;
-    let mut encoder = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::best());
-    encoder.write_all(bytes).expect("gzip into memory");
-    encoder.finish().expect("gzip into memory")
+    chamfer_tests::files::gzip(bytes, 9)
 }
 
 #[test]

@@ -43,6 +43,13 @@ class BakeOptions(TypedDict, total=False):
     stitch_epsilon: Optional[float]
     no_stitch: Optional[bool]
 
+class EncodingOptions(TypedDict, total=False):
+    """How Asset.encode and Asset.save store the asset (the schema's "encoding" group)."""
+
+    compact: Optional[bool]
+    position_bits: Optional[int]
+    normal_bits: Optional[int]
+
 class ViewOptions(TypedDict, total=False):
     """The orbit camera (chamfer.VIEW_SCHEMA); None leaves one at its default."""
 
@@ -109,12 +116,8 @@ class Asset:
     def intersection_segments(self) -> npt.NDArray[np.float32]: ...
     @property
     def intersection_starts(self) -> npt.NDArray[np.uint32]: ...
-    def encode(
-        self, *, compact: bool = False, position_bits: int = 16, normal_bits: int = 12
-    ) -> bytes: ...
-    def save(
-        self, path: _Path, *, compact: bool = False, position_bits: int = 16, normal_bits: int = 12
-    ) -> None: ...
+    def encode(self, **options: Unpack[EncodingOptions]) -> bytes: ...
+    def save(self, path: _Path, **options: Unpack[EncodingOptions]) -> None: ...
 
 def bake(
     source: Union[_Path, bytes], *, name: Optional[_Path] = None, **options: Unpack[BakeOptions]

@@ -12,6 +12,7 @@ use pyo3::types::{PyBytes, PyDict};
 
 use crate::arrays::{strided, view};
 use crate::errors::{self, Failure};
+use crate::options;
 
 /// A baked edge asset: what `chamfer bake` writes and the runtime draws.
 ///
@@ -235,18 +236,17 @@ impl PyAsset {
         view(slf.as_any(), starts, &[starts.len()])
     }
 
-    /// The asset as the bytes of a `.chamfer` file (what save() writes): with `compact`, the
-    /// compact format for shipping (positions on a grid of `position_bits` per axis, normals as
-    /// `normal_bits` octahedral codes; 32 keeps either exact), as `chamfer bake --compact`.
-    #[pyo3(signature = (*, compact = false, position_bits = 16, normal_bits = 12))]
+    /// The asset as the bytes of a `.chamfer` file (what save() writes). Its keywords are the bake
+    /// schema's "encoding" group (chamfer.BAKE_SCHEMA), as `chamfer bake`'s flags of the same
+    /// names: `compact` writes the compact format for shipping (positions on a grid, normals as
+    /// octahedral codes, each within the error bound `chamfer inspect` states).
+    #[pyo3(signature = (**options))]
     fn encode<'py>(
         &self,
         py: Python<'py>,
-        compact: bool,
-        position_bits: u32,
-        normal_bits: u32,
+        options: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyBytes>> {
-        let options = compact_options(compact, position_bits, normal_bits)?;
+        let options = options::encoding_from_kwargs(options)?;
         let bytes = py
             .detach(|| self.file_bytes(options))
             .map_err(|e| errors::internal(e.to_string()))?;
@@ -254,18 +254,16 @@ impl PyAsset {
     }
 
     /// Writes the asset to `path` through a temporary file renamed into place: a failure leaves
-    /// an existing file as it was; a FIFO or device is never replaced. `compact`, `position_bits`
-    /// and `normal_bits` as for encode().
-    #[pyo3(signature = (path, *, compact = false, position_bits = 16, normal_bits = 12))]
+    /// an existing file as it was; a FIFO or device is never replaced. The keywords as for
+    /// encode().
+    #[pyo3(signature = (path, **options))]
     fn save(
         &self,
         py: Python<'_>,
         path: PathBuf,
-        compact: bool,
-        position_bits: u32,
-        normal_bits: u32,
+        options: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<()> {
-        let options = compact_options(compact, position_bits, normal_bits)?;
+        let options = options::encoding_from_kwargs(options)?;
         py.detach(|| {
             write_atomically(&path, |out| {
                 chamfer_preprocess::compact::encode(&self.asset, options.as_ref(), out)
@@ -315,29 +313,6 @@ pub fn decode(py: Python<'_>, data: &[u8], name: &str) -> PyResult<PyAsset> {
         .detach(|| Asset::decode(data))
         .map_err(|e| errors::from_decode(name.as_ref(), e))?;
     Ok(PyAsset::from_file(asset, data))
-}
-
-/// The compact options of encode() and save(), checked; `None` when not compact.
-fn compact_options(
-    compact: bool,
-    position_bits: u32,
-    normal_bits: u32,
-) -> PyResult<Option<CompactOptions>> {
-    if !compact {
-        let defaults = CompactOptions::default();
-        if (position_bits, normal_bits) != (defaults.position_bits, defaults.normal_bits) {
-            return Err(errors::options(
-                "position_bits and normal_bits apply to compact files: pass compact=True".into(),
-            ));
-        }
-        return Ok(None);
-    }
-    let options = CompactOptions {
-        position_bits,
-        normal_bits,
-    };
-    options.check().map_err(errors::options)?;
-    Ok(Some(options))
 }
 
 /// The edge flag names and bits, for `chamfer.EdgeFlags`.

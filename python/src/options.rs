@@ -36,6 +36,19 @@ pub fn from_kwargs(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<BakeOptions> 
     })
 }
 
+/// The compact encoding the keywords `kwargs` ask for (the schema's "encoding" group, `chamfer
+/// bake`'s `--compact`, `--position-bits`, ...), checked; `None` for the uncompressed format.
+pub fn encoding_from_kwargs(
+    kwargs: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Option<chamfer_runtime::asset::CompactOptions>> {
+    let mut settings = BakeSettings::default();
+    let given = set_keywords(&mut settings, "encoding", kwargs, None)?;
+    BakeSettings::check_names(&given).map_err(|e| errors::options(e.to_string()))?;
+    settings
+        .compact_options()
+        .map_err(|e| errors::options(e.to_string()))
+}
+
 /// The orbit camera the view keywords of `kwargs` set (the view schema, `chamfer.VIEW_SCHEMA`),
 /// checked, and the other keywords (the bake options) in a new dict.
 pub fn view_from_kwargs<'py>(

@@ -197,11 +197,16 @@ def test_the_stubs_name_what_the_module_has():
         elif isinstance(node, ast.AnnAssign):
             names.add(node.target.id)
     public = {n for n in dir(chamfer._chamfer) if not n.startswith("_") or n == "__version__"}
-    assert public == names - {"BakeOptions", "ViewOptions", "DrawOptions"}
+    assert public == names - {"BakeOptions", "EncodingOptions", "ViewOptions", "DrawOptions"}
     options = next(n for n in stub.body if isinstance(n, ast.ClassDef) and n.name == "BakeOptions")
     # The TypedDict is the schema's bake group: same names, order and types.
     keys = [(s.target.id, ast.unparse(s.annotation)) for s in options.body if isinstance(s, ast.AnnAssign)]
     assert keys == [(name, f"Optional[{kind}]") for name, kind, _ in chamfer.OPTIONS]
+    # Asset.encode's and save's keywords are the schema's encoding group.
+    encoding = next(n for n in stub.body if isinstance(n, ast.ClassDef) and n.name == "EncodingOptions")
+    keys = [(s.target.id, ast.unparse(s.annotation)) for s in encoding.body if isinstance(s, ast.AnnAssign)]
+    kinds = {"number": "float", "count": "int", "flag": "bool"}
+    assert keys == [(e["name"], f"Optional[{kinds[e['kind']]}]") for e in chamfer.BAKE_SCHEMA if e["group"] == "encoding"]
     # And the view's TypedDict is the view schema.
     view = next(n for n in stub.body if isinstance(n, ast.ClassDef) and n.name == "ViewOptions")
     keys = [(s.target.id, ast.unparse(s.annotation)) for s in view.body if isinstance(s, ast.AnnAssign)]
@@ -227,8 +232,10 @@ def test_compact_files_are_the_cli_compact_bakes_and_state_their_precision(cli, 
     assert np.abs(loaded.topology_positions - asset.topology_positions).max() <= error
     lossless = chamfer.decode(asset.encode(compact=True, position_bits=32, normal_bits=32))
     assert np.array_equal(lossless.topology_positions, asset.topology_positions)
-    with pytest.raises(chamfer.OptionsError, match="compact=True"):
+    with pytest.raises(chamfer.OptionsError, match="position_bits needs option compact"):
         asset.encode(position_bits=12)
+    with pytest.raises(chamfer.OptionsError, match='unknown option "weld_rel"'):
+        asset.encode(compact=True, weld_rel=0.1)
     with pytest.raises(chamfer.OptionsError, match="position bits"):
         asset.save(tmp_path / "never.chamfer", compact=True, position_bits=20)
     assert not (tmp_path / "never.chamfer").exists()

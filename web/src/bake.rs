@@ -184,16 +184,22 @@ pub fn edge_classes() -> String {
         .to_string()
 }
 
-/// The techniques the runtime has, as JSON: `[{name, summary, post_process}]`.
+/// The techniques the runtime has, as JSON: `[{name, summary, post_process, prefix, parameters}]`,
+/// `parameters` the technique's own table (its module's schema, each entry's `default` the
+/// preset's value; empty for a technique without any), from which the page builds its technique
+/// panel; the view settings' `parameters` object takes the same names.
 #[wasm_bindgen]
 pub fn techniques() -> String {
     let all: Vec<serde_json::Value> = chamfer_runtime::render::Technique::all()
         .iter()
         .map(|t| {
+            let parameters = t.parameters();
             serde_json::json!({
                 "name": t.name(),
                 "summary": t.summary(),
                 "post_process": t.is_post_process(),
+                "prefix": parameters.map(|p| p.prefix()),
+                "parameters": parameters.map_or(serde_json::json!([]), |p| p.schema_json()),
             })
         })
         .collect();
@@ -203,12 +209,7 @@ pub fn techniques() -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn fixture(relative: &str) -> std::path::PathBuf {
-        Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../fixtures")
-            .join(relative)
-    }
+    use chamfer_tests::fixture;
 
     /// Issue 40: every entry of the bake schema the page builds its panel from, given as JSON
     /// (the page's settings) with its example value, bakes what the same settings bake through

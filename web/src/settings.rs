@@ -8,7 +8,7 @@ use chamfer_runtime::render::{
     Camera, DEFAULT_LIGHT_DIRECTION, EdgeClasses, EdgeStyle, Light, MeshStyle, Orbit, Shading,
     StyleSettings, Technique,
 };
-use chamfer_runtime::schema::Schema;
+use chamfer_runtime::schema::{Kind, Schema, Value};
 use serde::Deserialize;
 
 /// How the chamfer highlight is shaded, if at all (`chamfer render --style chamfer --shading`).
@@ -40,6 +40,9 @@ pub struct ViewSettings {
     pub look: StyleSettings,
     /// `--technique`, by name.
     pub technique: String,
+    /// The technique's own parameters by their names in its table (`{"step": 3}` for a `hybrid-*`
+    /// technique: `chamfer render --hybrid-step 3`), set over the preset's.
+    pub parameters: serde_json::Map<String, serde_json::Value>,
     /// `--classes`, by name.
     pub classes: Vec<String>,
     /// `--style chamfer --shading blinn|pbr`, or plain edges.
@@ -56,6 +59,7 @@ impl Default for ViewSettings {
             orbit: Orbit::default(),
             look: StyleSettings::default(),
             technique: Technique::default().name().to_owned(),
+            parameters: serde_json::Map::new(),
             classes: EdgeClasses::names().map(str::to_owned).collect(),
             highlight: HighlightModel::Off,
             edge_color: None,
@@ -106,15 +110,49 @@ impl ViewSettings {
         Ok(())
     }
 
-    /// The technique named.
+    /// The technique named, with the parameters given set over its preset's and checked.
     pub fn technique(&self) -> Result<Technique, String> {
-        Technique::from_name(&self.technique).ok_or_else(|| {
+        let mut technique = Technique::from_name(&self.technique).ok_or_else(|| {
             format!(
                 "no technique '{}' (one of {})",
                 self.technique,
                 Technique::names().join(", ")
             )
-        })
+        })?;
+        for (name, json) in &self.parameters {
+            let known = technique
+                .parameters()
+                .map(|p| p.names())
+                .unwrap_or_default();
+            let kind = technique
+                .parameters()
+                .and_then(|p| p.kind(name))
+                .ok_or_else(|| {
+                    format!(
+                        "technique {}: no parameter {name} (its parameters: {})",
+                        self.technique,
+                        if known.is_empty() {
+                            "none".into()
+                        } else {
+                            known.join(", ")
+                        }
+                    )
+                })?;
+            let value = value_of(kind, json).ok_or_else(|| {
+                format!(
+                    "technique {}: parameter {name} must be a {}, not {json}",
+                    self.technique,
+                    kind.name()
+                )
+            })?;
+            technique
+                .set_parameter(name, value)
+                .map_err(|e| format!("technique {}: {e}", self.technique))?;
+        }
+        technique
+            .check_parameters()
+            .map_err(|e| format!("technique {}: {e}", self.technique))?;
+        Ok(technique)
     }
 
     fn classes(&self) -> Result<EdgeClasses, String> {
@@ -181,6 +219,15 @@ impl ViewSettings {
 
 /// The chamfer highlight's light: `chamfer render --light-dir`'s default.
 const LIGHT: Light = Light::Directional(DEFAULT_LIGHT_DIRECTION);
+
+/// `json` as a schema value of `kind`, `None` when it is not one.
+fn value_of(kind: Kind, json: &serde_json::Value) -> Option<Value> {
+    match kind {
+        Kind::Number => json.as_f64().map(|x| Value::Number(x as f32)),
+        Kind::Count => json.as_u64().map(Value::Count),
+        Kind::Flag => json.as_bool().map(Value::Flag),
+    }
+}
 
 /// The entries of `keys` named in `names`, taken out of it, as one JSON object.
 fn take_keys<'a>(
@@ -289,6 +336,59 @@ mod tests {
             entry.set_example(&mut orbit);
             assert_eq!(view.orbit, orbit, "{}", entry.name);
             assert_ne!(view.camera(bounds, [64, 48]), default, "{}", entry.name);
+        }
+    }
+
+    /// Every parameter of every technique that has some, given with its example in the view
+    /// settings' `parameters`, reaches the edge style's technique, as `chamfer render`'s flag of
+    /// the same entry sets it (preprocess/tests/cli.rs); a parameter of another technique, one of
+    /// the wrong kind and one out of range are refused.
+    #[test]
+    fn every_technique_parameter_sets_the_technique() {
+        let mut set = 0;
+        for preset in Technique::presets() {
+            let Some(table) = preset.technique.parameters() else {
+                continue;
+            };
+            for entry in table.schema_json().as_array().expect("a table") {
+                let name = entry["name"].as_str().expect("a name");
+                let json = serde_json::json!({
+                    "technique": preset.name,
+                    "parameters": { name: entry["example"] },
+                });
+                let view = ViewSettings::from_json(&json.to_string()).expect(name);
+                let technique = view.edge_style().expect("a style").technique;
+                let value = value_of(table.kind(name).expect("a kind"), &entry["example"]);
+                assert_eq!(
+                    technique.parameters().and_then(|p| p.get(name)),
+                    value,
+                    "{name}"
+                );
+                assert_ne!(technique, preset.technique, "{} {name}", preset.name);
+                set += 1;
+            }
+        }
+        assert!(set >= 9, "{set} parameters");
+        for (json, error) in [
+            (
+                r#"{"technique": "joined", "parameters": {"step": 3}}"#,
+                "no parameter step (its parameters: none)",
+            ),
+            (
+                r#"{"technique": "hybrid-edges", "parameters": {"thickness": 3}}"#,
+                "no parameter thickness",
+            ),
+            (
+                r#"{"technique": "hybrid-edges", "parameters": {"step": true}}"#,
+                "must be a number",
+            ),
+            (
+                r#"{"technique": "hybrid-edges", "parameters": {"step": 900}}"#,
+                "step must be 1 to 64",
+            ),
+        ] {
+            let message = ViewSettings::from_json(json).expect_err(json);
+            assert!(message.contains(error), "{json}: {message}");
         }
     }
 

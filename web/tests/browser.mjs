@@ -249,6 +249,62 @@ await check("every style schema entry is a control the page draws with", async (
   await page.close();
 });
 
+// Issue 40: a technique's own parameters (its module's table, in techniques()) are a panel of
+// controls built when the technique is chosen; each sets the view's parameters, the ones that
+// change the picture change it, and the fins' thickness draws what chamfer render --fin-thickness
+// draws.
+await check("every technique parameter is a control of its technique's panel", async () => {
+  const page = await openPage(session);
+  await settled(page);
+  const list = await page.evaluate(() => window.chamfer.techniques);
+  const withParameters = list.filter((t) => t.parameters.length > 0);
+  expect(withParameters.length >= 5, `${withParameters.length} techniques with parameters`);
+  const visible = { fins: ["thickness"], "hybrid-edges": ["step", "contrast", "range"], "surface-angle": ["threshold"] };
+  let set = 0;
+  for (const t of withParameters.filter((t) => t.name in visible)) {
+    await page.evaluate((name) => {
+      const select = document.getElementById("technique");
+      select.value = name;
+      select.dispatchEvent(new Event("change"));
+    }, t.name);
+    const controls = await page.evaluate(() => [...document.querySelectorAll("#technique-options input")].map((i) => i.id));
+    expect(controls.length === t.parameters.length && t.parameters.every((e) => controls.includes(`technique-${e.name}`)),
+      `${t.name}: controls ${controls} for ${t.parameters.map((e) => e.name)}`);
+    const before = await capture(page);
+    for (const entry of t.parameters) {
+      const sent = await page.evaluate((entry) => {
+        const input = document.getElementById(`technique-${entry.name}`);
+        if (entry.kind === "flag") input.checked = entry.example;
+        else input.value = String(entry.example);
+        input.dispatchEvent(new Event("change"));
+        return window.chamfer.view.parameters[entry.name];
+      }, entry);
+      expect(sent === entry.example, `${t.name} ${entry.name}: the view holds ${sent}, not ${entry.example}`);
+      const after = await capture(page);
+      expect(await page.evaluate(() => document.body.dataset.state !== "error"), `${t.name} ${entry.name}: the page shows an error`);
+      const changed = count(differing(before, after));
+      if (visible[t.name].includes(entry.name)) expect(changed > 100, `${t.name} ${entry.name}: only ${changed} pixels changed`);
+      if (t.name === "fins" && entry.name === "thickness") {
+        const flags = ["--technique", "fins", "--fin-thickness", String(entry.example)];
+        const mesh = await capture(page, { classes: [] });
+        const cliEdges = edgesOf(render([fandisk, ...flags], "fins-thickness.png"),
+                                 render([fandisk, ...flags, "--style", "mesh"], "fins-thickness-mesh.png"));
+        const [pageInCli, cliInPage] = overlap(edgesOf(after, mesh), cliEdges);
+        console.log(`     fins thickness = ${entry.example}: within 1 px of chamfer render ${pageInCli.toFixed(4)} / ${cliInPage.toFixed(4)}`);
+        expect(pageInCli >= 0.95 && cliInPage >= 0.95, "fins thickness: the page's edges and chamfer render's differ");
+      }
+      await page.evaluate((entry) => {
+        const input = document.getElementById(`technique-${entry.name}`);
+        if (entry.kind === "flag") input.checked = entry.default; else input.value = "";
+        input.dispatchEvent(new Event("change"));
+      }, entry);
+      set++;
+    }
+  }
+  console.log(`     ${set} parameters of ${Object.keys(visible).length} techniques set through their controls`);
+  await page.close();
+});
+
 await check("the downloads are the asset on screen and its SVG drawing", async () => {
   const folder = join(outDir, "downloads");
   rmSync(folder, { recursive: true, force: true });

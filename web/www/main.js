@@ -1,7 +1,7 @@
 // The page: files in (picker, drop, ?url=, or the bundled fandisk), bakes in worker.js, the asset
 // drawn by the wasm Viewer on WebGPU, the controls, the downloads. Query parameters: url (a file to
 // load), any entry of the view and style schemas (azimuth, elevation, edge_width, ...), size (WxH
-// canvas pixels), technique.
+// canvas pixels), technique and its parameters (hybrid_step, fin_thickness, ...).
 import init, { bakeSchema, createViewer, edgeClasses, styleSchema, techniques, viewSchema } from "./pkg/chamfer_web.js";
 
 const $ = (id) => document.getElementById(id);
@@ -17,6 +17,7 @@ const state = {
   // The camera's and the look's keys (the view and style schemas') are added by setUpPanel.
   view: {
     technique: query.get("technique") ?? "joined",
+    parameters: {},  // the technique's own (setUpControls)
     classes: [],  // all of CLASSES, set at the start
     highlight: "off",
     edge_color: null,
@@ -327,16 +328,36 @@ function hexToLinear(hex) {
 }
 
 function setUpControls(list) {
+  state.techniques = list;
   const select = $("technique");
   for (const t of list) {
     select.add(new Option(t.name, t.name, false, t.name === state.view.technique));
   }
-  const describe = () => {
+  // The technique's own parameters (its module's table, each entry's default the preset's): a
+  // control each, setting the view's parameters object by the entry's name; query parameters
+  // spell them as chamfer render's flags are spelled, prefix first (hybrid_step=3).
+  const describe = (fromQuery) => {
     const t = list.find((t) => t.name === select.value);
     $("technique-summary").textContent = t ? t.summary : "";
+    state.view.parameters = {};
+    $("technique-options").replaceChildren();
+    for (const entry of t?.parameters ?? []) {
+      const given = fromQuery ? query.get(`${t.prefix}_${entry.name}`) : null;
+      if (given !== null) state.view.parameters[entry.name] = entry.kind === "flag" ? given === "true" : Number(given);
+      const { label, input } = control(entry, `technique-${entry.name}`, "preset");
+      if (entry.kind === "flag") input.checked = state.view.parameters[entry.name] ?? entry.default;
+      else if (given !== null) input.value = given;
+      input.addEventListener("change", () => {
+        if (entry.kind === "flag") state.view.parameters[entry.name] = input.checked;
+        else if (input.value === "") delete state.view.parameters[entry.name];
+        else state.view.parameters[entry.name] = Number(input.value);
+        redraw();
+      });
+      $("technique-options").append(label);
+    }
   };
-  describe();
-  select.addEventListener("change", () => { state.view.technique = select.value; describe(); redraw(); });
+  describe(true);
+  select.addEventListener("change", () => { state.view.technique = select.value; describe(false); redraw(); });
   for (const name of CLASSES) {
     const label = document.createElement("label");
     const box = Object.assign(document.createElement("input"), { type: "checkbox", checked: true });

@@ -76,4 +76,7 @@ pub use renderer::{
 pub use style::{CapMethod, EdgeClasses, EdgeColors, EdgeStyle};
 pub use style_settings::StyleSettings;
 pub use target::Target;
-pub use technique::{HardwareContour, HybridDepth, ImageSpace, Operator, Preset, Technique};
+pub use technique::{
+    FinSettings, HardwareContour, HybridDepth, ImageSpace, Operator, Parameters, Preset,
+    SurfaceAngleSettings, Technique,
+};

@@ -7,6 +7,9 @@
 //! [`EdgeStyle::technique`]: super::EdgeStyle::technique
 
 use super::{AssetExtras, techniques};
+use crate::schema::{Kind, Schema, SchemaError, Value};
+
+pub use super::techniques::{FinSettings, HybridDepth, SurfaceAngleSettings};
 
 /// Which technique draws the edges. [`Technique::Joined`] is the default and the one the asset is
 /// made for; the others are the seeds' alternatives, kept so they can be chosen and compared.
@@ -61,13 +64,7 @@ pub enum Technique {
     /// without the bias. Width is the fin's length along the normal (pixels at the vertex's depth,
     /// or world units); ignores `caps`, `half_quad_contours`, `depth_scaled`, `depth_bias_px` and
     /// `highlight`. Needs [`AssetExtras::FIN_CORNERS`].
-    Fins {
-        /// The fin's length in model units; `None`: `width_px` pixels at each vertex's depth.
-        world_thickness: Option<f32>,
-        /// How far crease fins move towards the camera, model units; `None`: 0.2 % of the model's
-        /// bounding-box diagonal; `Some(0.0)`: no bias (the article's z-fighting).
-        z_bias: Option<f32>,
-    },
+    Fins(FinSettings),
     /// The barycentric thick wireframe (seed 001, final version): every triangle edge of the mesh at
     /// `width_px` whatever the triangle's shape, from per-corner edge coordinates computed in the
     /// vertex shader (no geometry shader). Drawn in the contour colour; ignores `classes` (all edges
@@ -92,10 +89,7 @@ pub enum Technique {
     /// Surface-angle contours (§7.1): pixels whose normal is within `threshold` of perpendicular to
     /// the view, |N·V| < threshold. Width follows curvature; flat faces fail (whole face or none).
     /// Ignores everything but the contour colour. Draws instance by instance in a scene.
-    SurfaceAngle {
-        /// |N·V| below which a pixel is inked.
-        threshold: f32,
-    },
+    SurfaceAngle(SurfaceAngleSettings),
     /// The expanded inverted hull (§7.2): the mesh pushed out along its normals by `width_px`,
     /// front faces culled, in the contour colour. With the crease-split normals the hull tears at
     /// hard edges; `smooth_normals` pushes along smooth normals. Needs
@@ -120,61 +114,6 @@ pub enum Technique {
     /// `classes` (one colour), `caps`, `half_quad_contours`, `highlight`.
     /// Draws instance by instance in a scene.
     ImageSpace(ImageSpace),
-}
-
-/// Parameters of the hybrid depth shader (seed 004, §3.3–3.4, §4).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct HybridDepth {
-    /// `r`: the neighbours' distance in pixels (1 to 10 in the paper): thin lines at 1, broad
-    /// shading at 5 or more.
-    pub step_px: f32,
-    /// `L`, the bleach factor of eq. 5 (0 to 1): low values lighten the dark halos of large depth
-    /// differences, 1 keeps them.
-    pub bleach: f32,
-    /// The exponent the averaged shade is raised to.
-    pub contrast: f32,
-    /// Inverted brightness (0 to 2): 0 leaves flat regions white, higher values darken everything.
-    pub brightness: f32,
-    /// What a depth difference is divided by, as a share of the far plane's distance (the paper
-    /// advises 0.8; an infinite far plane counts as twice the model's far side): smaller values
-    /// bring out smaller depth differences.
-    pub range: f32,
-    /// Apply to this asset's pixels and outline only (the Laplacian mask steps of §3.1), not to the
-    /// whole scene.
-    pub object_only: bool,
-}
-
-impl HybridDepth {
-    /// Edge detection (§4, Fig. 3 right: a small step, bleach 1, brightness 0), with the range the
-    /// paper advises.
-    pub const EDGES: Self = Self {
-        step_px: 2.0,
-        bleach: 1.0,
-        contrast: 100.0,
-        brightness: 0.0,
-        range: 0.8,
-        object_only: false,
-    };
-    /// Ambient shading (§4, Fig. 5: a wide step, low bleach), with a shorter range so that the
-    /// gentle depth changes of corners count.
-    pub const AMBIENT: Self = Self {
-        step_px: 10.0,
-        bleach: 0.3,
-        contrast: 30.0,
-        brightness: 0.0,
-        range: 0.2,
-        object_only: false,
-    };
-    /// Both at once (§4, Fig. 6): a step between the two, bleach 1 so silhouettes stay dark, and a
-    /// range between the two.
-    pub const BOTH: Self = Self {
-        step_px: 5.0,
-        bleach: 1.0,
-        contrast: 30.0,
-        brightness: 0.0,
-        range: 0.3,
-        object_only: false,
-    };
 }
 
 /// An image-space gradient operator (thesis §5.1–5.2).
@@ -364,6 +303,121 @@ impl Technique {
     /// True if the technique needs a stencil aspect in the target's depth format.
     pub fn needs_stencil(&self) -> bool {
         techniques::module(self).needs_stencil(self)
+    }
+
+    /// The technique's own numbers, `None` for one that has none: the schema its module declares
+    /// ([`FinSettings`], [`HybridDepth`], [`SurfaceAngleSettings`]), whatever its struct.
+    pub fn parameters(&self) -> Option<&dyn Parameters> {
+        match self {
+            Self::Fins(p) => Some(p),
+            Self::Hybrid(p) => Some(p),
+            Self::SurfaceAngle(p) => Some(p),
+            _ => None,
+        }
+    }
+
+    /// The technique's own numbers, to set (see [`Technique::parameters`]).
+    pub fn parameters_mut(&mut self) -> Option<&mut dyn Parameters> {
+        match self {
+            Self::Fins(p) => Some(p),
+            Self::Hybrid(p) => Some(p),
+            Self::SurfaceAngle(p) => Some(p),
+            _ => None,
+        }
+    }
+
+    /// Sets the technique's parameter `name` to `value`, refusing a technique without such a
+    /// parameter (the error names the ones it has).
+    pub fn set_parameter(&mut self, name: &str, value: Value) -> Result<(), SchemaError> {
+        let technique = self.name();
+        match self.parameters_mut() {
+            Some(parameters) => parameters.set(name, value),
+            None => Err(SchemaError::Unknown {
+                name: name.to_owned(),
+                known: format!("none: technique {technique} has no parameters"),
+            }),
+        }
+    }
+
+    /// Refuses parameters out of their ranges (a technique without parameters has none to refuse).
+    pub fn check_parameters(&self) -> Result<(), SchemaError> {
+        self.parameters().map_or(Ok(()), Parameters::check)
+    }
+
+    /// The parameter tables of every technique that has some, once per table (by
+    /// [`Parameters::prefix`]), in the order of [`Technique::presets`]: what a front end builds
+    /// its technique controls from.
+    pub fn parameter_tables() -> Vec<&'static dyn Parameters> {
+        let mut tables: Vec<&'static dyn Parameters> = Vec::new();
+        for preset in Self::presets() {
+            if let Some(table) = preset.technique.parameters() {
+                if !tables.iter().any(|t| t.prefix() == table.prefix()) {
+                    tables.push(table);
+                }
+            }
+        }
+        tables
+    }
+}
+
+/// A technique's own numbers (issue 40): the [`Schema`] its module declares, behind one interface
+/// so that a front end lists and sets them whatever the technique. Every schema whose entries
+/// share one group is one; the group is the prefix its entries are spelled with where names are
+/// flat (`hybrid`: `chamfer render --hybrid-step`).
+pub trait Parameters: Sync {
+    /// The entries' group: the prefix of their flat names.
+    fn prefix(&self) -> &'static str;
+    /// The entries' names, in the table's order.
+    fn names(&self) -> Vec<&'static str>;
+    /// The entry `name`'s kind (`None`: no such entry).
+    fn kind(&self, name: &str) -> Option<Kind>;
+    /// The entry `name`'s value (`None`: unset or no such entry).
+    fn get(&self, name: &str) -> Option<Value>;
+    /// Sets the entry `name` to `value`.
+    fn set(&mut self, name: &str, value: Value) -> Result<(), SchemaError>;
+    /// Refuses values out of their entries' ranges.
+    fn check(&self) -> Result<(), SchemaError>;
+    /// The table as JSON ([`Schema::schema_json`]), with each entry's `default` the value held
+    /// here (a preset's parameters are the defaults of that technique).
+    fn schema_json(&self) -> serde_json::Value;
+}
+
+impl<S: Schema + Sync> Parameters for S {
+    fn prefix(&self) -> &'static str {
+        S::ENTRIES.first().map_or("", |e| e.group)
+    }
+
+    fn names(&self) -> Vec<&'static str> {
+        S::ENTRIES.iter().map(|e| e.name).collect()
+    }
+
+    fn kind(&self, name: &str) -> Option<Kind> {
+        S::entry(name).ok().map(|e| e.kind)
+    }
+
+    fn get(&self, name: &str) -> Option<Value> {
+        S::entry(name).ok()?.get(self)
+    }
+
+    fn set(&mut self, name: &str, value: Value) -> Result<(), SchemaError> {
+        Schema::set(self, name, value)
+    }
+
+    fn check(&self) -> Result<(), SchemaError> {
+        self.check_ranges()
+    }
+
+    fn schema_json(&self) -> serde_json::Value {
+        S::ENTRIES
+            .iter()
+            .map(|entry| {
+                let mut json = entry.to_json();
+                json["default"] = entry
+                    .get(self)
+                    .map_or(serde_json::Value::Null, Value::to_json);
+                json
+            })
+            .collect()
     }
 }
 

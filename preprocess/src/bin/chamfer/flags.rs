@@ -4,7 +4,7 @@
 
 use chamfer_preprocess::BakeSettings;
 use chamfer_runtime::camera::Orbit;
-use chamfer_runtime::render::StyleSettings;
+use chamfer_runtime::render::{StyleSettings, Technique};
 use chamfer_runtime::schema::{Entry, Kind, Schema, Value, flag};
 use clap::error::ErrorKind;
 use clap::{Arg, ArgAction, ArgMatches, Args, Command, FromArgMatches, value_parser};
@@ -128,5 +128,115 @@ impl EncodingFlags {
     /// The compact options, checked; `None` for the uncompressed format.
     pub fn to_options(&self) -> anyhow::Result<Option<chamfer_runtime::asset::CompactOptions>> {
         Ok(self.0.compact_options()?)
+    }
+}
+
+/// The techniques' own parameters as flags, `--{prefix}-{name}` (`--hybrid-step`), one per entry of
+/// each table of [`Technique::parameter_tables`]: what the command line gives, set over the chosen
+/// technique's preset by [`TechniqueFlags::apply`].
+#[derive(Clone, Default)]
+pub struct TechniqueFlags(Vec<(&'static str, &'static str, Value)>);
+
+/// A parameter's flag id and its long name: `hybrid_step`, `hybrid-step`.
+fn parameter_id(prefix: &str, name: &str) -> String {
+    format!("{prefix}_{name}")
+}
+
+impl TechniqueFlags {
+    /// `technique` with the given parameters set and checked; a parameter the technique does not
+    /// have is refused, naming the techniques that have it.
+    pub fn apply(&self, mut technique: Technique) -> anyhow::Result<Technique> {
+        let name = technique.name();
+        for &(prefix, entry, value) in &self.0 {
+            let spelled = flag(&parameter_id(prefix, entry));
+            match technique.parameters_mut() {
+                Some(parameters) if parameters.prefix() == prefix => {
+                    parameters
+                        .set(entry, value)
+                        .map_err(|e| anyhow::anyhow!("{spelled}: {e}"))?
+                }
+                _ => anyhow::bail!(
+                    "{spelled} is a parameter of --technique {}, not of {name}",
+                    users(prefix).join(", ")
+                ),
+            }
+        }
+        if let Some(parameters) = technique.parameters() {
+            let prefix = parameters.prefix();
+            parameters
+                .check()
+                .map_err(|e| anyhow::anyhow!(e.spelled(|n| flag(&parameter_id(prefix, n)))))?;
+        }
+        Ok(technique)
+    }
+}
+
+/// The techniques whose parameter table is `prefix`'s.
+fn users(prefix: &str) -> Vec<&'static str> {
+    Technique::presets()
+        .filter(|p| {
+            p.technique
+                .parameters()
+                .is_some_and(|t| t.prefix() == prefix)
+        })
+        .map(|p| p.name)
+        .collect()
+}
+
+impl FromArgMatches for TechniqueFlags {
+    fn from_arg_matches(matches: &ArgMatches) -> Result<Self, clap::Error> {
+        let mut flags = Self::default();
+        flags.update_from_arg_matches(matches)?;
+        Ok(flags)
+    }
+
+    fn update_from_arg_matches(&mut self, matches: &ArgMatches) -> Result<(), clap::Error> {
+        for table in Technique::parameter_tables() {
+            for name in table.names() {
+                let id = parameter_id(table.prefix(), name);
+                let value = match table.kind(name) {
+                    Some(Kind::Flag) => matches.get_flag(&id).then_some(Value::Flag(true)),
+                    Some(Kind::Count) => matches.get_one::<u64>(&id).copied().map(Value::Count),
+                    _ => matches.get_one::<f32>(&id).copied().map(Value::Number),
+                };
+                if let Some(value) = value {
+                    self.0.push((table.prefix(), name, value));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Args for TechniqueFlags {
+    fn augment_args(command: Command) -> Command {
+        let mut command = command;
+        for table in Technique::parameter_tables() {
+            let schema = table.schema_json();
+            let techniques = users(table.prefix()).join(", ");
+            for entry in schema.as_array().into_iter().flatten() {
+                let text = |key: &str| entry[key].as_str().unwrap_or_default().to_owned();
+                let id = parameter_id(table.prefix(), &text("name"));
+                let help = format!("--technique {techniques}: {}", text("help"));
+                let arg = Arg::new(id.clone()).long(id.replace('_', "-"));
+                command = command.arg(match text("kind").as_str() {
+                    "flag" => arg.action(ArgAction::SetTrue).help(help),
+                    "count" => arg
+                        .value_parser(value_parser!(u64))
+                        .value_name(text("value_name"))
+                        .help(help),
+                    _ => arg
+                        .value_parser(value_parser!(f32))
+                        .allow_negative_numbers(true)
+                        .value_name(text("value_name"))
+                        .help(format!("{help} [default: the technique's own]")),
+                });
+            }
+        }
+        command
+    }
+
+    fn augment_args_for_update(command: Command) -> Command {
+        Self::augment_args(command)
     }
 }

@@ -9,16 +9,16 @@ use chamfer_preprocess::environment::read_environment;
 use chamfer_preprocess::write::{ensure_not_an_input, ensure_replaceable, write_atomically};
 use chamfer_runtime::asset::Asset;
 use chamfer_runtime::render::{
-    Camera, CapMethod, DEFAULT_LIGHT_DIRECTION, EdgeClasses, EdgeStyle, GpuAsset, Highlight,
-    HybridDepth, Image, Instance, Light, MeshRenderer, MeshStyle, Offscreen, Pipelines,
-    SceneRenderer, Shading as ShadingModel, StyleSettings, Technique,
+    Camera, CapMethod, DEFAULT_LIGHT_DIRECTION, EdgeClasses, EdgeStyle, GpuAsset, Highlight, Image,
+    Instance, Light, MeshRenderer, MeshStyle, Offscreen, Pipelines, SceneRenderer,
+    Shading as ShadingModel, StyleSettings, Technique,
 };
 use clap::{Args, ValueEnum};
 use glam::Mat4;
 
 use chamfer_runtime::schema::flag;
 
-use crate::flags::{BakeFlags, StyleFlags, ViewFlags};
+use crate::flags::{BakeFlags, StyleFlags, TechniqueFlags, ViewFlags};
 
 /// Render an asset (`.chamfer`) or a mesh (baked on the fly with the bake flags) to a PNG.
 #[derive(Args)]
@@ -91,31 +91,8 @@ pub struct ViewArgs {
     #[arg(long, default_value = "joined", value_parser = technique_names(),
           long_help = technique_help())]
     technique: String,
-    /// `--technique fins`: fin length in model units (default: --edge-width pixels).
-    #[arg(long)]
-    fin_thickness: Option<f32>,
-    /// `--technique fins`: how far crease fins move towards the camera, model units (default: 0.2 %
-    /// of the model's diagonal; 0: none).
-    #[arg(long)]
-    fin_z_bias: Option<f32>,
-    /// `--technique hybrid-*`: the neighbours' distance r, pixels (seed 004 §3.3).
-    #[arg(long)]
-    hybrid_step: Option<f32>,
-    /// `--technique hybrid-*`: the bleach factor L, 0 to 1 (eq. 5).
-    #[arg(long)]
-    hybrid_bleach: Option<f32>,
-    /// `--technique hybrid-*`: the contrast exponent.
-    #[arg(long)]
-    hybrid_contrast: Option<f32>,
-    /// `--technique hybrid-*`: the (inverted) brightness, 0 to 2.
-    #[arg(long)]
-    hybrid_brightness: Option<f32>,
-    /// `--technique hybrid-*`: the depth range, as a share of the far plane's distance.
-    #[arg(long)]
-    hybrid_range: Option<f32>,
-    /// `--technique hybrid-*`: over the model only, with its Laplacian outline (§3.1).
-    #[arg(long)]
-    hybrid_object: bool,
+    #[command(flatten)]
+    parameters: TechniqueFlags,
     /// Edge classes to draw (intersection edges need `bake --intersections`).
     #[arg(
         long,
@@ -214,21 +191,7 @@ impl ViewArgs {
     pub fn technique(&self) -> anyhow::Result<Technique> {
         let technique = Technique::from_name(&self.technique)
             .with_context(|| format!("--technique {}: no such technique", self.technique))?;
-        Ok(match technique {
-            Technique::Fins { .. } => Technique::Fins {
-                world_thickness: self.fin_thickness,
-                z_bias: self.fin_z_bias,
-            },
-            Technique::Hybrid(preset) => Technique::Hybrid(HybridDepth {
-                step_px: self.hybrid_step.unwrap_or(preset.step_px),
-                bleach: self.hybrid_bleach.unwrap_or(preset.bleach),
-                contrast: self.hybrid_contrast.unwrap_or(preset.contrast),
-                brightness: self.hybrid_brightness.unwrap_or(preset.brightness),
-                range: self.hybrid_range.unwrap_or(preset.range),
-                object_only: self.hybrid_object,
-            }),
-            other => other,
-        })
+        self.parameters.apply(technique)
     }
 
     fn check(&self) -> anyhow::Result<()> {
@@ -265,19 +228,7 @@ impl ViewArgs {
         {
             bail!("--light-dir / --light-pos need three finite numbers (a direction not 0,0,0)");
         }
-        for (name, value) in [
-            ("--fin-thickness", self.fin_thickness),
-            ("--fin-z-bias", self.fin_z_bias),
-            ("--hybrid-step", self.hybrid_step),
-            ("--hybrid-bleach", self.hybrid_bleach),
-            ("--hybrid-contrast", self.hybrid_contrast),
-            ("--hybrid-brightness", self.hybrid_brightness),
-            ("--hybrid-range", self.hybrid_range),
-        ] {
-            if value.is_some_and(|v| !(v.is_finite() && v >= 0.0)) {
-                bail!("{name} must be a number of at least 0");
-            }
-        }
+        self.technique()?;
         Ok(())
     }
 

@@ -27,7 +27,8 @@ pub(crate) fn encode(
         parallel,
         || encode_mesh(asset, render_counts, codecs),
         || {
-            let (positions, seen) = encode_positions(asset, options.position_bits, codecs);
+            let bits = position_bits(options, &asset.topology_positions);
+            let (positions, seen) = encode_positions(asset, bits, codecs);
             let mut coded = vec![
                 (SectionKind::TopologyPositionsCoded, positions),
                 (
@@ -115,6 +116,19 @@ fn count_prefix(count: usize) -> Vec<u8> {
 
 /// The coded positions, and the positions the loader will decode from them. Positions whose box
 /// is too wide for a grid of finite steps (beyond `f32`'s range) are kept exact.
+/// The grid's bits per axis for `positions`: `options.position_bits`, or with a position error the
+/// fewest whose grid keeps within it (its [`Grid::error_bound`], which the loader states), else
+/// [`LOSSLESS_BITS`].
+fn position_bits(options: &CompactOptions, positions: &[[f32; 3]]) -> u32 {
+    let Some(error) = options.position_error else {
+        return options.position_bits;
+    };
+    let (min, max) = extent(positions);
+    (1..=16)
+        .find(|&bits| Grid::spanning(bits, min, max).error_bound() <= error)
+        .unwrap_or(LOSSLESS_BITS)
+}
+
 fn encode_positions(asset: &Asset, bits: u32, codecs: &dyn Codecs) -> (Vec<u8>, Vec<[f32; 3]>) {
     let positions = &asset.topology_positions;
     let (min, max) = extent(positions);

@@ -36,10 +36,14 @@ pub use quantize::Grid;
 pub const LOSSLESS_BITS: u32 = 32;
 
 /// How [`Asset::encode_compact`](super::Asset::encode_compact) stores the lossy sections.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CompactOptions {
     /// Bits per axis of the topology positions' grid (1 to 16), or [`LOSSLESS_BITS`].
     pub position_bits: u32,
+    /// The positions' largest error instead, in model units (issue 44): the grid gets the fewest
+    /// bits per axis (1 to 16) whose error bound ([`Precision::position_error`]) is within it, and
+    /// the positions stay exact where 16 bits are not enough. `position_bits` is then unused.
+    pub position_error: Option<f32>,
     /// Bits per component of the normals' octahedral codes (2 to 16), or [`LOSSLESS_BITS`].
     pub normal_bits: u32,
 }
@@ -54,12 +58,14 @@ impl CompactOptions {
     /// 16 bits per axis for positions, 12 per component for normals.
     pub const DEFAULT: Self = Self {
         position_bits: 16,
+        position_error: None,
         normal_bits: 12,
     };
 
     /// Every number lossless: the decoded asset equals the encoded one.
     pub const LOSSLESS: Self = Self {
         position_bits: LOSSLESS_BITS,
+        position_error: None,
         normal_bits: LOSSLESS_BITS,
     };
 
@@ -69,6 +75,11 @@ impl CompactOptions {
             return Err(format!(
                 "position bits must be 1 to 16, or {LOSSLESS_BITS} for lossless; got {}",
                 self.position_bits
+            ));
+        }
+        if let Some(error) = self.position_error.filter(|e| !(e.is_finite() && *e > 0.0)) {
+            return Err(format!(
+                "the position error must be a finite distance above 0; got {error}"
             ));
         }
         if !(2..=16).contains(&self.normal_bits) && self.normal_bits != LOSSLESS_BITS {

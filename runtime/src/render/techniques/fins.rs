@@ -15,6 +15,24 @@ use crate::render::modules::Program;
 
 pub(crate) static MODULE: PullModule<Fins> = PullModule::new();
 
+crate::schema! {
+    /// Parameters of the fins (seed 003): `chamfer render --fin-thickness`, `--fin-z-bias`, the
+    /// page's technique panel.
+    #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+    #[serde(default, deny_unknown_fields)]
+    pub struct FinSettings {
+        /// The fin's length in model units; unset: the edge width in pixels at each vertex's depth.
+        thickness: Option<f32> = None, { group: "fin", value: "LENGTH",
+            range: Some((0.0, crate::schema::FINITE)), example: Some(0.05), conflicts: [],
+            requires: [] },
+        /// How far crease fins move towards the camera, model units; unset: 0.2 % of the model's
+        /// bounding-box diagonal; 0: no bias (the article's z-fighting).
+        z_bias: Option<f32> = None, { group: "fin", value: "LENGTH",
+            range: Some((0.0, crate::schema::FINITE)), example: Some(0.0), conflicts: [],
+            requires: [] },
+    }
+}
+
 #[derive(Debug)]
 pub(crate) struct Fins;
 
@@ -31,10 +49,10 @@ impl Pull for Fins {
     const PRESETS: &'static [crate::render::Preset] = &[crate::render::Preset {
         name: "fins",
         summary: "fins extruded along the normals, with a z-bias (seed 003)",
-        technique: crate::render::Technique::Fins {
-            world_thickness: None,
+        technique: crate::render::Technique::Fins(FinSettings {
+            thickness: None,
             z_bias: None,
-        },
+        }),
     }];
 
     type Params = FinParams;
@@ -67,10 +85,10 @@ impl Pull for Fins {
     )];
 
     fn params(cx: &FrameContext<'_>, drawn: &Drawn<'_>) -> Option<FinParams> {
-        let Technique::Fins {
-            world_thickness,
+        let Technique::Fins(FinSettings {
+            thickness: world_thickness,
             z_bias,
-        } = cx.style.technique
+        }) = cx.style.technique
         else {
             return None;
         };

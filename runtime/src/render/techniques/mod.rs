@@ -26,6 +26,10 @@ mod surface_angle;
 mod tests;
 mod wireframe;
 
+pub use fins::FinSettings;
+pub use hybrid::HybridDepth;
+pub use surface_angle::SurfaceAngleSettings;
+
 use std::sync::Arc;
 
 use super::layout::{Frame, InstanceFrame, Layout};
@@ -44,10 +48,10 @@ pub(crate) fn module(technique: &Technique) -> &'static dyn Module {
         Technique::HalfHex | Technique::Plug | Technique::HalfHexPlug | Technique::House => {
             &alternate::MODULE
         }
-        Technique::Fins { .. } => &fins::MODULE,
+        Technique::Fins(_) => &fins::MODULE,
         Technique::Wireframe { .. } => &wireframe::MODULE,
         Technique::Hardware(_) => &hardware::MODULE,
-        Technique::SurfaceAngle { .. } => &surface_angle::MODULE,
+        Technique::SurfaceAngle(_) => &surface_angle::MODULE,
         Technique::InvertedHull { .. } => &inverted_hull::MODULE,
         Technique::Hybrid(_) => &hybrid::MODULE,
         Technique::ImageSpace(_) => &image_space::MODULE,

@@ -15,6 +15,18 @@ use crate::render::{Target, Technique};
 
 pub(crate) static MODULE: PullModule<SurfaceAngle> = PullModule::new();
 
+crate::schema! {
+    /// Parameters of the surface-angle contours (§7.1): `chamfer render
+    /// --surface-angle-threshold`, the page's technique panel.
+    #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+    #[serde(default, deny_unknown_fields)]
+    pub struct SurfaceAngleSettings {
+        /// |N·V| below which a pixel is inked: wider contours where the surface curves slowly.
+        threshold: f32 = 0.2, { group: "surface_angle", value: "DOT", range: Some((0.0, 1.0)),
+            example: 0.45, conflicts: [], requires: [] },
+    }
+}
+
 #[derive(Debug)]
 pub(crate) struct SurfaceAngle;
 
@@ -29,7 +41,7 @@ impl Pull for SurfaceAngle {
     const PRESETS: &'static [crate::render::Preset] = &[crate::render::Preset {
         name: "surface-angle",
         summary: "pixels whose normal is nearly perpendicular to the view (thesis §7.1)",
-        technique: crate::render::Technique::SurfaceAngle { threshold: 0.2 },
+        technique: crate::render::Technique::SurfaceAngle(SurfaceAngleSettings { threshold: 0.2 }),
     }];
 
     type Params = AngleParams;
@@ -55,7 +67,7 @@ impl Pull for SurfaceAngle {
     }
 
     fn params(cx: &FrameContext<'_>, _: &Drawn<'_>) -> Option<AngleParams> {
-        let Technique::SurfaceAngle { threshold } = cx.style.technique else {
+        let Technique::SurfaceAngle(SurfaceAngleSettings { threshold }) = cx.style.technique else {
             return None;
         };
         let threshold = if threshold.is_finite() {
