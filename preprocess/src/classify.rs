@@ -31,6 +31,15 @@ fn dihedral_sin_cos(positions: &[Vec3], v: [u32; 4], flipped: bool) -> (f32, f32
     (na.cross(nb).length(), na.dot(nb))
 }
 
+/// [`dihedral_sin_cos`] in f64.
+fn dihedral_sin_cos_f64(positions: &[Vec3], v: [u32; 4], flipped: bool) -> (f64, f64) {
+    let p = v.map(|i| positions[i as usize].as_dvec3());
+    let na = (p[1] - p[0]).cross(p[2] - p[0]);
+    let nb = (p[3] - p[0]).cross(p[1] - p[0]);
+    let nb = if flipped { -nb } else { nb };
+    (na.cross(nb).length(), na.dot(nb))
+}
+
 /// "Angle >= threshold" for angles in [0, π] given as (sine, cosine) of any common scale:
 /// the point (cos, sin) lies on or beyond the threshold's ray, so no atan2 is needed per edge.
 #[derive(Clone, Copy)]
@@ -47,6 +56,10 @@ impl AngleThreshold {
 
     fn reached_by(self, sin: f32, cos: f32) -> bool {
         self.cos * sin - self.sin * cos >= 0.0
+    }
+
+    fn reached_by_f64(self, sin: f64, cos: f64) -> bool {
+        f64::from(self.cos) * sin - f64::from(self.sin) * cos >= 0.0
     }
 }
 
@@ -113,7 +126,10 @@ pub fn classify(
                     EdgeFlags::VALLEY
                 };
             }
-            coplanar.reached_by(sin, cos)
+            // In f64: at a threshold of a thousandth of a degree, f32's rounding of the cross
+            // products decides, and it depends on which face is face a (the triangle order).
+            let (sin, cos) = dihedral_sin_cos_f64(positions, v, flags.contains(EdgeFlags::FLIPPED));
+            coplanar.reached_by_f64(sin, cos)
                 || flags.intersects(EdgeFlags::MARKED | EdgeFlags::MATERIAL)
         })
         .collect();

@@ -1,7 +1,9 @@
 //! The order triangles, vertices and edges are written in.
 //!
 //! Triangles are sorted by a cell of a cube map of their normal (six faces of 6 × 6 cells, each at
-//! most about 19° across) and then along a Morton curve through their centroids; vertices are
+//! most about 19° across) and then along a Morton curve through their centroids, and each run of
+//! up to 64 of them is then walked across shared edges (issue 44: the compact format's index codec
+//! codes a triangle that shares an edge with a recent one in a few bits); vertices are
 //! numbered in the order the sorted triangles first use them; edges follow the corner of their
 //! first face (face a, `adjacency`). So a run of 64 consecutive edges covers a small patch of
 //! surface that faces one way, within a few tens of degrees, and the runtime's cluster test
@@ -30,8 +32,9 @@ const DIRECTION_BITS: u32 = (6 * DIRECTION_CELLS * DIRECTION_CELLS)
     .ilog2();
 const _: () = assert!(DIRECTION_BITS + 3 * MORTON_BITS + 31 <= 64);
 
-/// The coherent triangle order: `order[new] = old` triangle index. Deterministic for any thread
-/// count (ties keep the input order).
+/// The coherent triangle order: `order[new] = old` triangle index, sorted by direction cell and
+/// Morton code, then walked across shared edges in small blocks ([`walk_blocks`]). Deterministic
+/// for any thread count (ties keep the input order).
 pub(crate) fn triangle_order(positions: &[Vec3], triangles: &[[u32; 3]]) -> Vec<u32> {
     let (lo, hi) = crate::mesh::bounds(positions);
     let cells = ((1u32 << MORTON_BITS) - 1) as f32;
@@ -50,9 +53,88 @@ pub(crate) fn triangle_order(positions: &[Vec3], triangles: &[[u32; 3]]) -> Vec<
         })
         .collect();
     keys.par_sort_unstable();
-    keys.into_iter()
-        .map(|k| (k & ((1 << 31) - 1)) as u32)
-        .collect()
+    let cells: Vec<u64> = keys.iter().map(|k| k >> (31 + 3 * MORTON_BITS)).collect();
+    let order: Vec<u32> = keys.iter().map(|k| (k & ((1 << 31) - 1)) as u32).collect();
+    walk_blocks(triangles, &order, &cells)
+}
+
+/// Triangles per block that [`walk_blocks`] reorders within: about one edge cluster's worth (64
+/// edges), so the culling keeps as many clusters (measured, BENCHMARKS.md "Compact assets, second
+/// step": larger blocks code the indices a little smaller and keep more clusters).
+const WALK_BLOCK: usize = 64;
+/// How many of the last triangles a walk looks back at for an unvisited neighbour before it starts
+/// again from the next unvisited triangle of its block.
+const WALK_LOOKBACK: usize = 8;
+
+/// `order`, the coherent order, with each block of up to [`WALK_BLOCK`] consecutive triangles of
+/// one direction cell (`cells`, per position of `order`) walked across shared edges (issue 44): each
+/// triangle is followed by an unvisited neighbour of itself or of one of the last
+/// [`WALK_LOOKBACK`] triangles, where there is one. The index codec codes a triangle that shares
+/// an edge with a recent one in a few bits (its edge FIFO), and it meets its vertices while they
+/// are recent; a block stays a small patch facing one way, so the edge runs the culling tests
+/// (issue 14) stay as small and flat. Deterministic.
+fn walk_blocks(triangles: &[[u32; 3]], order: &[u32], cells: &[u64]) -> Vec<u32> {
+    let mut blocks = Vec::new();
+    let mut start = 0;
+    while start < order.len() {
+        let mut end = start + 1;
+        while end < order.len() && end - start < WALK_BLOCK && cells[end] == cells[start] {
+            end += 1;
+        }
+        blocks.push(start..end);
+        start = end;
+    }
+    let walked: Vec<Vec<u32>> = blocks
+        .par_iter()
+        .map(|block| walk(triangles, &order[block.clone()]))
+        .collect();
+    walked.concat()
+}
+
+/// The triangles of `block` (indices into `triangles`) in the order of one walk across their
+/// shared edges (see [`walk_blocks`]).
+fn walk(triangles: &[[u32; 3]], block: &[u32]) -> Vec<u32> {
+    const NONE: u32 = u32::MAX;
+    // Each edge's first two triangles of the block (a third, non-manifold, is left out).
+    let mut faces: std::collections::HashMap<(u32, u32), [u32; 2]> =
+        std::collections::HashMap::with_capacity(block.len() * 2);
+    for (k, &t) in block.iter().enumerate() {
+        let [a, b, c] = triangles[t as usize];
+        for (u, v) in [(a, b), (b, c), (c, a)] {
+            let slot = faces.entry((u.min(v), u.max(v))).or_insert([NONE; 2]);
+            if let Some(free) = slot.iter_mut().find(|s| **s == NONE) {
+                *free = k as u32;
+            }
+        }
+    }
+    let neighbours = |k: usize| {
+        let [a, b, c] = triangles[block[k] as usize];
+        [(a, b), (b, c), (c, a)].map(|(u, v)| {
+            faces
+                .get(&(u.min(v), u.max(v)))
+                .and_then(|pair| pair.iter().copied().find(|&f| f != NONE && f as usize != k))
+        })
+    };
+    let mut visited = vec![false; block.len()];
+    let mut walked: Vec<usize> = Vec::with_capacity(block.len());
+    for seed in 0..block.len() {
+        if visited[seed] {
+            continue;
+        }
+        let mut current = Some(seed);
+        while let Some(k) = current {
+            visited[k] = true;
+            walked.push(k);
+            current = walked.iter().rev().take(WALK_LOOKBACK).find_map(|&recent| {
+                neighbours(recent)
+                    .into_iter()
+                    .flatten()
+                    .map(|f| f as usize)
+                    .find(|&f| !visited[f])
+            });
+        }
+    }
+    walked.into_iter().map(|k| block[k]).collect()
 }
 
 /// Puts `triangles` (and their `materials`, when there are any) in `order` and renumbers the
