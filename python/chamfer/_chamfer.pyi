@@ -48,6 +48,7 @@ class EncodingOptions(TypedDict, total=False):
 
     compact: Optional[bool]
     position_bits: Optional[int]
+    position_error: Optional[float]
     normal_bits: Optional[int]
 
 class ViewOptions(TypedDict, total=False):
