@@ -38,7 +38,8 @@ cargo package --locked --allow-dirty --no-verify -p chamfer-bevy -p chamfer-runt
     -p chamfer-shaders
 step "cargo package"
 # The Python package (python/, issue 27), as users get it: its sdist, a wheel built from that sdist (into the
-# same target folder, so only our crates compile again) and installed into .venv, then its tests (pytest:
+# same target folder, so the dependencies the workspace build compiled are reused; set-up built none here)
+# and installed into .venv, then its tests (pytest:
 # the bindings against the chamfer binary cargo test built, and the Dask batch bakes on a LocalCluster).
 rm -rf "$target/wheels/sdist"
 .venv/bin/maturin sdist -m python/Cargo.toml -o "$target/wheels/sdist"
