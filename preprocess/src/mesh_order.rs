@@ -2,7 +2,7 @@
 //!
 //! Triangles are sorted by a cell of a cube map of their normal (six faces of 6 × 6 cells, each at
 //! most about 19° across) and then along a Morton curve through their centroids, and each run of
-//! up to 64 of them is then walked across shared edges (issue 44: the compact format's index codec
+//! up to 48 of them is then walked across shared edges (issue 44: the compact format's index codec
 //! codes a triangle that shares an edge with a recent one in a few bits); vertices are
 //! numbered in the order the sorted triangles first use them; edges follow the corner of their
 //! first face (face a, `adjacency`). So a run of 64 consecutive edges covers a small patch of
@@ -59,9 +59,9 @@ pub(crate) fn triangle_order(positions: &[Vec3], triangles: &[[u32; 3]]) -> Vec<
 }
 
 /// Triangles per block that [`walk_blocks`] reorders within: about one edge cluster's worth (64
-/// edges), so the culling keeps as many clusters (measured, BENCHMARKS.md "Compact assets, second
+/// edges, some 43 triangles), so the culling keeps as many clusters (measured, BENCHMARKS.md "Compact assets, second
 /// step": larger blocks code the indices a little smaller and keep more clusters).
-const WALK_BLOCK: usize = 64;
+const WALK_BLOCK: usize = 48;
 /// How many of the last triangles a walk looks back at for an unvisited neighbour before it starts
 /// again from the next unvisited triangle of its block.
 const WALK_LOOKBACK: usize = 8;
