@@ -57,6 +57,18 @@ impl Value {
     }
 }
 
+impl Value {
+    /// `json` read as a value of `kind` (what the page's settings and JSON tables give), `None`
+    /// when it is not one.
+    pub fn from_json(kind: Kind, json: &serde_json::Value) -> Option<Self> {
+        match kind {
+            Kind::Number => json.as_f64().map(|x| Self::Number(x as f32)),
+            Kind::Count => json.as_u64().map(Self::Count),
+            Kind::Flag => json.as_bool().map(Self::Flag),
+        }
+    }
+}
+
 impl fmt::Display for Value {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {

@@ -138,7 +138,7 @@ impl ViewSettings {
                         }
                     )
                 })?;
-            let value = value_of(kind, json).ok_or_else(|| {
+            let value = Value::from_json(kind, json).ok_or_else(|| {
                 format!(
                     "technique {}: parameter {name} must be a {}, not {json}",
                     self.technique,
@@ -219,15 +219,6 @@ impl ViewSettings {
 
 /// The chamfer highlight's light: `chamfer render --light-dir`'s default.
 const LIGHT: Light = Light::Directional(DEFAULT_LIGHT_DIRECTION);
-
-/// `json` as a schema value of `kind`, `None` when it is not one.
-fn value_of(kind: Kind, json: &serde_json::Value) -> Option<Value> {
-    match kind {
-        Kind::Number => json.as_f64().map(|x| Value::Number(x as f32)),
-        Kind::Count => json.as_u64().map(Value::Count),
-        Kind::Flag => json.as_bool().map(Value::Flag),
-    }
-}
 
 /// The entries of `keys` named in `names`, taken out of it, as one JSON object.
 fn take_keys<'a>(
@@ -358,7 +349,7 @@ mod tests {
                 });
                 let view = ViewSettings::from_json(&json.to_string()).expect(name);
                 let technique = view.edge_style().expect("a style").technique;
-                let value = value_of(table.kind(name).expect("a kind"), &entry["example"]);
+                let value = Value::from_json(table.kind(name).expect("a kind"), &entry["example"]);
                 assert_eq!(
                     technique.parameters().and_then(|p| p.get(name)),
                     value,

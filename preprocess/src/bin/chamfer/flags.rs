@@ -18,27 +18,42 @@ fn augment<S: Schema>(command: Command, group: &str) -> Command {
 }
 
 fn arg<S: Schema>(entry: &Entry<S>) -> Arg {
-    let mut help = entry.help(flag);
-    let arg = Arg::new(entry.name)
-        .long(flag(entry.name).trim_start_matches('-').to_owned())
-        .conflicts_with_all(entry.conflicts.iter().copied());
-    let arg = entry
+    let arg = typed_arg(
+        entry.name.to_owned(),
+        entry.kind,
+        entry.value_name,
+        entry.help(flag),
+        entry.default().map(|d| d.to_string()),
+    )
+    .conflicts_with_all(entry.conflicts.iter().copied());
+    entry
         .requires
         .iter()
-        .fold(arg, |arg, &needed| arg.requires(needed));
-    let arg = match entry.kind {
+        .fold(arg, |arg, &needed| arg.requires(needed))
+}
+
+/// The flag `--{id in kebab-case}` taking a value of `kind` (a number may be negative: a range
+/// refuses it where it must not be), with its help and, for a value, the default it states.
+fn typed_arg(
+    id: String,
+    kind: Kind,
+    value_name: &str,
+    mut help: String,
+    default: Option<String>,
+) -> Arg {
+    let arg = Arg::new(id.clone()).long(flag(&id).trim_start_matches('-').to_owned());
+    let arg = match kind {
         Kind::Flag => return arg.action(ArgAction::SetTrue).help(help),
-        // `--azimuth -50`: a number may be negative (a range refuses it where it must not be).
         Kind::Number => arg
             .value_parser(value_parser!(f32))
             .allow_negative_numbers(true),
         Kind::Count => arg.value_parser(value_parser!(u64)),
     };
-    if let Some(default) = entry.default() {
+    if let Some(default) = default {
         help.push_str(&format!(" [default: {default}]"));
     }
     arg.action(ArgAction::Set)
-        .value_name(entry.value_name)
+        .value_name(value_name.to_owned())
         .help(help)
 }
 
@@ -214,23 +229,21 @@ impl Args for TechniqueFlags {
         for table in Technique::parameter_tables() {
             let schema = table.schema_json();
             let techniques = users(table.prefix()).join(", ");
-            for entry in schema.as_array().into_iter().flatten() {
+            for (name, entry) in table
+                .names()
+                .into_iter()
+                .zip(schema.as_array().into_iter().flatten())
+            {
                 let text = |key: &str| entry[key].as_str().unwrap_or_default().to_owned();
-                let id = parameter_id(table.prefix(), &text("name"));
-                let help = format!("--technique {techniques}: {}", text("help"));
-                let arg = Arg::new(id.clone()).long(id.replace('_', "-"));
-                command = command.arg(match text("kind").as_str() {
-                    "flag" => arg.action(ArgAction::SetTrue).help(help),
-                    "count" => arg
-                        .value_parser(value_parser!(u64))
-                        .value_name(text("value_name"))
-                        .help(help),
-                    _ => arg
-                        .value_parser(value_parser!(f32))
-                        .allow_negative_numbers(true)
-                        .value_name(text("value_name"))
-                        .help(format!("{help} [default: the technique's own]")),
-                });
+                let kind = table.kind(name).unwrap_or(Kind::Number);
+                let default = (kind != Kind::Flag).then(|| "the technique's own".to_owned());
+                command = command.arg(typed_arg(
+                    parameter_id(table.prefix(), name),
+                    kind,
+                    &text("value_name"),
+                    format!("--technique {techniques}: {}", text("help")),
+                    default,
+                ));
             }
         }
         command
