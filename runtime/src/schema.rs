@@ -16,6 +16,9 @@ pub enum Kind {
     Count,
     /// On or off; given means on.
     Flag,
+    /// A list of up to [`Numbers::CAPACITY`] real numbers (a plane, a colour, a dash pattern),
+    /// written `a,b,c` on the command line and as an array in JSON and Python.
+    Numbers,
 }
 
 impl Kind {
@@ -25,6 +28,7 @@ impl Kind {
             Self::Number => "number",
             Self::Count => "count",
             Self::Flag => "flag",
+            Self::Numbers => "numbers",
         }
     }
 }
@@ -38,6 +42,127 @@ pub enum Value {
     Count(u64),
     /// A [`Kind::Flag`].
     Flag(bool),
+    /// A [`Kind::Numbers`].
+    Numbers(Numbers),
+}
+
+/// Up to [`Numbers::CAPACITY`] real numbers, held inline so a [`Value`] stays `Copy`. Which lengths
+/// an entry takes is its struct's check (a plane is 4, a colour 3).
+#[derive(Clone, Copy, PartialEq)]
+pub struct Numbers {
+    values: [f32; Numbers::CAPACITY],
+    len: u8,
+}
+
+impl Numbers {
+    /// The most numbers one value holds: six planes of four.
+    pub const CAPACITY: usize = 24;
+    /// No numbers.
+    pub const EMPTY: Self = Self {
+        values: [0.0; Self::CAPACITY],
+        len: 0,
+    };
+
+    /// The numbers of `array`, for defaults and examples; `N` must be at most [`Self::CAPACITY`]
+    /// (a compile error in a constant).
+    pub const fn from_array<const N: usize>(array: [f32; N]) -> Self {
+        assert!(N <= Self::CAPACITY, "more numbers than a value holds");
+        let mut values = [0.0; Self::CAPACITY];
+        let mut i = 0;
+        while i < N {
+            values[i] = array[i];
+            i += 1;
+        }
+        Self {
+            values,
+            len: N as u8,
+        }
+    }
+
+    /// These numbers, `None` when there are more than [`Self::CAPACITY`].
+    pub fn new(numbers: &[f32]) -> Option<Self> {
+        let mut values = [0.0; Self::CAPACITY];
+        values.get_mut(..numbers.len())?.copy_from_slice(numbers);
+        Some(Self {
+            values,
+            len: numbers.len() as u8,
+        })
+    }
+
+    /// The numbers.
+    pub fn as_slice(&self) -> &[f32] {
+        &self.values[..usize::from(self.len)]
+    }
+
+    /// True when there are none.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+}
+
+impl Default for Numbers {
+    fn default() -> Self {
+        Self::EMPTY
+    }
+}
+
+impl fmt::Debug for Numbers {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_list().entries(self.as_slice()).finish()
+    }
+}
+
+/// Comma-separated, as the command line takes them.
+impl fmt::Display for Numbers {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (i, x) in self.as_slice().iter().enumerate() {
+            if i > 0 {
+                f.write_str(",")?;
+            }
+            write!(f, "{x}")?;
+        }
+        Ok(())
+    }
+}
+
+/// Comma-separated numbers (spaces allowed); an empty text is no numbers.
+impl std::str::FromStr for Numbers {
+    type Err = String;
+    fn from_str(text: &str) -> Result<Self, String> {
+        let numbers = if text.trim().is_empty() {
+            Vec::new()
+        } else {
+            text.split(',')
+                .map(|part| {
+                    part.trim()
+                        .parse::<f32>()
+                        .map_err(|_| format!("{:?} is not a number", part.trim()))
+                })
+                .collect::<Result<Vec<f32>, String>>()?
+        };
+        Self::new(&numbers).ok_or_else(|| {
+            format!(
+                "{} numbers given, at most {} are taken",
+                numbers.len(),
+                Self::CAPACITY
+            )
+        })
+    }
+}
+
+impl serde::Serialize for Numbers {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        self.as_slice().serialize(serializer)
+    }
+}
+
+impl<'de> serde::Deserialize<'de> for Numbers {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let numbers = Vec::<f32>::deserialize(deserializer)?;
+        Self::new(&numbers).ok_or_else(|| {
+            serde::de::Error::custom(format!("at most {} numbers are taken", Self::CAPACITY))
+        })
+    }
 }
 
 impl Value {
@@ -53,6 +178,11 @@ impl Value {
                 .map_or(serde_json::Value::Null, serde_json::Value::Number),
             Self::Count(n) => n.into(),
             Self::Flag(b) => b.into(),
+            Self::Numbers(numbers) => numbers
+                .as_slice()
+                .iter()
+                .map(|&x| Self::Number(x).to_json())
+                .collect(),
         }
     }
 }
@@ -65,6 +195,14 @@ impl Value {
             Kind::Number => json.as_f64().map(|x| Self::Number(x as f32)),
             Kind::Count => json.as_u64().map(Self::Count),
             Kind::Flag => json.as_bool().map(Self::Flag),
+            Kind::Numbers => {
+                let numbers = json
+                    .as_array()?
+                    .iter()
+                    .map(|x| x.as_f64().map(|x| x as f32))
+                    .collect::<Option<Vec<f32>>>()?;
+                Numbers::new(&numbers).map(Self::Numbers)
+            }
         }
     }
 }
@@ -75,6 +213,7 @@ impl fmt::Display for Value {
             Self::Number(x) => write!(f, "{x}"),
             Self::Count(n) => write!(f, "{n}"),
             Self::Flag(b) => write!(f, "{b}"),
+            Self::Numbers(numbers) => write!(f, "{numbers}"),
         }
     }
 }
@@ -125,6 +264,7 @@ macro_rules! field {
 field!(f32, Number);
 field!(u64, Count);
 field!(bool, Flag);
+field!(Numbers, Numbers);
 
 /// One entry of a schema: a field of the struct `S`, described. Made by [`schema!`](crate::schema!); the function
 /// fields are its accessors (use the methods).
@@ -370,15 +510,21 @@ pub trait Schema: Default + Sized + 'static {
     /// Schemas whose library checks its values itself (the bake's) need not call it.
     fn check_ranges(&self) -> Result<(), SchemaError> {
         for entry in Self::ENTRIES {
-            let x = match entry.get(self) {
-                Some(Value::Number(x)) => f64::from(x),
-                Some(Value::Count(n)) => n as f64,
+            let numbers: Vec<f64> = match entry.get(self) {
+                Some(Value::Number(x)) => vec![f64::from(x)],
+                Some(Value::Count(n)) => vec![n as f64],
+                Some(Value::Numbers(numbers)) => {
+                    numbers.as_slice().iter().map(|&x| f64::from(x)).collect()
+                }
                 Some(Value::Flag(_)) | None => continue,
             };
-            let inside = entry
-                .range
-                .is_none_or(|(low, high)| (low..=high).contains(&x));
-            if !x.is_finite() || !inside {
+            let inside = |x: f64| {
+                x.is_finite()
+                    && entry
+                        .range
+                        .is_none_or(|(low, high)| (low..=high).contains(&x))
+            };
+            if !numbers.into_iter().all(inside) {
                 return Err(SchemaError::OutOfRange {
                     name: entry.name,
                     range: entry.range,

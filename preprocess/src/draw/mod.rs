@@ -14,6 +14,11 @@
 //! share one of its vertices) through rounding; intervals closer than 1e-3 px are merged, and pieces
 //! shorter than 1e-2 px dropped.
 
+pub mod dxf;
+pub mod paper;
+pub mod pdf;
+pub mod section;
+pub mod style;
 pub mod svg;
 
 use glam::{DMat4, DVec3, DVec4, Vec3};
@@ -21,6 +26,7 @@ use obvhs::aabb::Aabb;
 use rayon::prelude::*;
 
 use chamfer_runtime::asset::{Asset, EdgeFlags};
+use chamfer_runtime::section::Plane;
 
 use crate::polylines;
 
@@ -41,16 +47,22 @@ pub enum LineClass {
     Crease,
     /// Where surfaces cut through each other (baked with `--intersections`).
     Intersection,
+    /// The outline of a section plane's cut (only with a section).
+    Cut,
+    /// The hatch of the cut faces (only with a section; never hidden).
+    Hatch,
 }
 
 impl LineClass {
     /// Every class, in drawing order.
-    pub const ALL: [Self; 5] = [
+    pub const ALL: [Self; 7] = [
         Self::Contour,
         Self::Boundary,
         Self::Marked,
         Self::Crease,
         Self::Intersection,
+        Self::Cut,
+        Self::Hatch,
     ];
 
     /// The name used as the SVG `class` attribute and on the command line.
@@ -61,6 +73,8 @@ impl LineClass {
             Self::Marked => "marked",
             Self::Crease => "crease",
             Self::Intersection => "intersection",
+            Self::Cut => "cut",
+            Self::Hatch => "hatch",
         }
     }
 
@@ -70,13 +84,28 @@ impl LineClass {
 }
 
 /// What to draw. Start from [`DrawOptions::DEFAULT`] and change it with the `with_*` setters.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct DrawOptions {
     /// The classes drawn, one bit per [`LineClass`]. Default: all.
     pub classes: u8,
     /// Also give the hidden parts of the lines, as their own line sets. Default false.
     pub hidden: bool,
+    /// A section plane: the half it keeps is drawn, with the cut's outline and hatch. Default
+    /// none.
+    pub section: Option<Plane>,
+    /// The hatch of the cut faces.
+    pub hatch: Hatch,
+}
+
+/// Parallel hatch lines over cut faces, laid out in the frame (as drafting standards lay
+/// hatches out on paper), so they keep their spacing whatever the plane's slant.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hatch {
+    /// Distance between lines, frame pixels; 0: no hatch.
+    pub spacing_px: f64,
+    /// Direction, degrees counter-clockwise from the frame's x axis.
+    pub angle_deg: f64,
 }
 
 impl DrawOptions {
@@ -84,6 +113,11 @@ impl DrawOptions {
     pub const DEFAULT: Self = Self {
         classes: (1 << LineClass::ALL.len()) - 1,
         hidden: false,
+        section: None,
+        hatch: Hatch {
+            spacing_px: 8.0,
+            angle_deg: 45.0,
+        },
     };
 
     /// Sets [`classes`](Self::classes) to exactly these.
@@ -97,6 +131,16 @@ impl DrawOptions {
     /// Sets [`hidden`](Self::hidden).
     pub fn with_hidden(self, hidden: bool) -> Self {
         Self { hidden, ..self }
+    }
+
+    /// Sets [`section`](Self::section).
+    pub fn with_section(self, section: Option<Plane>) -> Self {
+        Self { section, ..self }
+    }
+
+    /// Sets [`hatch`](Self::hatch).
+    pub fn with_hatch(self, hatch: Hatch) -> Self {
+        Self { hatch, ..self }
     }
 
     fn draws(&self, class: LineClass) -> bool {
@@ -152,8 +196,21 @@ pub struct DrawStats {
 /// Draws `asset` from `view`; see the module documentation. Deterministic for any thread count.
 pub fn hidden_lines(asset: &Asset, view: &Camera, options: &DrawOptions) -> Drawing {
     let scene = Scene::new(asset, view);
-    let candidates = candidate_lines(asset, &scene, options);
-    let occluders = Occluders::new(asset, &scene);
+    let mut candidates = candidate_lines(asset, &scene, options);
+    let occluders = match &options.section {
+        None => Occluders::new(render_triangles(asset), &scene),
+        Some(plane) => {
+            let cut = section::cut(asset, plane);
+            candidates = candidates
+                .into_iter()
+                .filter_map(|line| line.kept_part(plane))
+                .collect();
+            candidates.extend(section_lines(&cut, &scene, options));
+            let mut occluding = cut.kept;
+            occluding.extend(cut.caps);
+            Occluders::new(occluding, &scene)
+        }
+    };
     let pieces: Vec<(Vec<Piece>, u64)> = candidates
         .par_iter()
         .map(|line| {
@@ -175,6 +232,9 @@ pub fn hidden_lines(asset: &Asset, view: &Camera, options: &DrawOptions) -> Draw
             } else {
                 stats.visible_pieces += 1;
             }
+            if piece.hidden && line.class == LineClass::Hatch {
+                continue; // a hatch behind something is not drawn
+            }
             let set = line.class as usize + usize::from(piece.hidden) * LineClass::ALL.len();
             by_set[set].push(piece.ends);
         }
@@ -185,7 +245,11 @@ pub fn hidden_lines(asset: &Asset, view: &Camera, options: &DrawOptions) -> Draw
             break;
         }
         for class in LineClass::ALL {
-            if options.draws(class) {
+            let sectioned = matches!(class, LineClass::Cut | LineClass::Hatch);
+            if hidden && class == LineClass::Hatch {
+                continue;
+            }
+            if options.draws(class) && (!sectioned || options.section.is_some()) {
                 let set = class as usize + usize::from(hidden) * LineClass::ALL.len();
                 lines.push(LineSet {
                     class,
@@ -203,10 +267,18 @@ pub fn hidden_lines(asset: &Asset, view: &Camera, options: &DrawOptions) -> Draw
     }
 }
 
+/// Model units per pixel of `view`'s frame in the plane through the model's centre facing the
+/// camera: [`Drawing::units_per_px`], known before drawing (to lay a hatch out in millimetres).
+pub fn units_per_px(asset: &Asset, view: &Camera) -> f64 {
+    Scene::new(asset, view).units_per_px
+}
+
 /// The camera in the forms the tests need, and the model's scale.
 struct Scene {
     /// Model space to clip space, in f64.
     clip: DMat4,
+    /// Its inverse.
+    unclip: DMat4,
     /// The eye in model space, homogeneous: a point (w = 1) or, orthographic, the direction towards
     /// the viewer (w = 0).
     eye: DVec4,
@@ -242,6 +314,7 @@ impl Scene {
         };
         Self {
             clip,
+            unclip: clip.inverse(),
             eye,
             depth,
             viewport: [width, height],
@@ -263,6 +336,33 @@ impl Scene {
             ((x + 1.0) * 0.5 * self.viewport[0]) as f32,
             ((1.0 - y) * 0.5 * self.viewport[1]) as f32,
         ]
+    }
+
+    /// Frame pixels of a model point, `None` when it is not in front of the eye.
+    fn pixel_of(&self, p: DVec3) -> Option<glam::DVec2> {
+        let c = self.to_clip(p);
+        (c.w > 1e-12 * c.z.abs().max(1.0)).then(|| {
+            glam::DVec2::new(
+                (c.x / c.w + 1.0) * 0.5 * self.viewport[0],
+                (1.0 - c.y / c.w) * 0.5 * self.viewport[1],
+            )
+        })
+    }
+
+    /// The model point on `plane` that the frame pixel `px` shows (the sight line through it meets
+    /// the plane there), `None` when the sight line runs along the plane.
+    fn on_plane(&self, px: glam::DVec2, plane: &Plane) -> Option<DVec3> {
+        let ndc_x = 2.0 * px.x / self.viewport[0] - 1.0;
+        let ndc_y = 1.0 - 2.0 * px.y / self.viewport[1];
+        let near = self.unclip * DVec4::new(ndc_x, ndc_y, 0.0, 1.0);
+        let far = self.unclip * DVec4::new(ndc_x, ndc_y, 1.0, 1.0);
+        let h = DVec3::from(plane.normal).extend(-plane.offset);
+        let (h0, h1) = (h.dot(near), h.dot(far));
+        if h0 == h1 {
+            return None;
+        }
+        let point = near + (far - near) * (h0 / (h0 - h1));
+        (point.w.abs() > 1e-300).then(|| point.truncate() / point.w)
     }
 
     /// Which side of the plane `(normal, d)` the eye is on (> 0: in front).
@@ -323,6 +423,47 @@ fn candidate_lines(asset: &Asset, scene: &Scene, options: &DrawOptions) -> Vec<L
     lines
 }
 
+/// The asset's triangles in model space.
+fn render_triangles(asset: &Asset) -> Vec<[DVec3; 3]> {
+    (0..asset.triangle_count())
+        .into_par_iter()
+        .map(|t| {
+            std::array::from_fn(|k| {
+                let v = asset.mesh_indices.get(3 * t + k) as usize;
+                Vec3::from(asset.render_positions[v]).as_dvec3()
+            })
+        })
+        .collect()
+}
+
+/// The cut's outline segments and its hatch, lifted from the frame onto the plane, as lines.
+fn section_lines(cut: &section::Cut, scene: &Scene, options: &DrawOptions) -> Vec<Line> {
+    let mut lines = Vec::new();
+    if options.draws(LineClass::Cut) {
+        for outline in &cut.outlines {
+            lines.extend(outline.points.windows(2).map(|pair| Line {
+                class: LineClass::Cut,
+                ends: [pair[0], pair[1]],
+            }));
+        }
+    }
+    if let (true, Some(plane)) = (options.draws(LineClass::Hatch), &options.section) {
+        let hatch = section::hatch(
+            &cut.outlines,
+            options.hatch.spacing_px,
+            options.hatch.angle_deg,
+            |p| scene.pixel_of(p),
+        );
+        lines.extend(hatch.into_iter().filter_map(|[a, b]| {
+            Some(Line {
+                class: LineClass::Hatch,
+                ends: [scene.on_plane(a, plane)?, scene.on_plane(b, plane)?],
+            })
+        }));
+    }
+    lines
+}
+
 fn plane(normal: DVec3, p: DVec3) -> DVec4 {
     normal.extend(-normal.dot(p))
 }
@@ -336,7 +477,7 @@ struct Piece {
 /// The triangles that can hide lines, and a BVH over their screen boxes.
 struct Occluders {
     /// Per triangle: its corners in model space.
-    triangles: Vec<[Vec3; 3]>,
+    triangles: Vec<[DVec3; 3]>,
     /// The triangles with a bounded screen box (NDC x, y and view depth), and the tree over those
     /// boxes (`None` when there are none).
     bounded: Vec<(u32, Aabb)>,
@@ -346,19 +487,10 @@ struct Occluders {
 }
 
 impl Occluders {
-    fn new(asset: &Asset, scene: &Scene) -> Self {
-        let triangles: Vec<[Vec3; 3]> = (0..asset.triangle_count())
-            .into_par_iter()
-            .map(|t| {
-                std::array::from_fn(|k| {
-                    let v = asset.mesh_indices.get(3 * t + k) as usize;
-                    Vec3::from(asset.render_positions[v])
-                })
-            })
-            .collect();
+    fn new(triangles: Vec<[DVec3; 3]>, scene: &Scene) -> Self {
         let screen: Vec<Option<Aabb>> = triangles
             .par_iter()
-            .map(|t| screen_box(scene, &t.map(Vec3::as_dvec3)))
+            .map(|t| screen_box(scene, t))
             .collect();
         let everywhere = (0..triangles.len() as u32)
             .filter(|&t| screen[t as usize].is_none())
@@ -415,8 +547,8 @@ impl Occluders {
         let mut tests = 0u64;
         let mut test = |t: u32| {
             tests += 1;
-            let triangle = self.triangles[t as usize].map(Vec3::as_dvec3);
-            if let Some(interval) = hidden_interval(scene, &triangle, p0, p1) {
+            let triangle = &self.triangles[t as usize];
+            if let Some(interval) = hidden_interval(scene, triangle, p0, p1) {
                 let clipped = (interval.0.max(t0), interval.1.min(t1));
                 if clipped.1 > clipped.0 {
                     covered.push(clipped);
@@ -486,6 +618,25 @@ impl Spans {
 }
 
 impl Line {
+    /// The part of the line on the kept side of `plane`, `None` when none is.
+    fn kept_part(self, plane: &Plane) -> Option<Self> {
+        let [p0, p1] = self.ends;
+        let (d0, d1) = (plane.distance(p0.to_array()), plane.distance(p1.to_array()));
+        let (t0, t1) = clip_interval((0.0, 1.0), -d0, -d1);
+        if t1 <= t0 || (d0 >= 0.0 && d1 >= 0.0) {
+            return None;
+        }
+        let at = |t: f64| match t {
+            0.0 => p0,
+            1.0 => p1,
+            _ => p0 + (p1 - p0) * t,
+        };
+        Some(Self {
+            class: self.class,
+            ends: [at(t0), at(t1)],
+        })
+    }
+
     /// Clip coordinates of the point at `t`; the ends themselves exactly.
     fn clip_at(&self, scene: &Scene, t: f64) -> DVec4 {
         let [p0, p1] = self.ends;

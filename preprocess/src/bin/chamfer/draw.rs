@@ -1,30 +1,40 @@
-//! `chamfer draw`: a hidden-line drawing of an asset, or of a mesh baked on the fly, as SVG.
+//! `chamfer draw`: a hidden-line drawing of an asset, or of a mesh baked on the fly, as SVG, PDF
+//! or DXF, optionally a section drawing (issue 43).
 
 use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::bail;
-use chamfer_preprocess::draw::svg::{SvgOptions, mm_per_px, write_svg};
-use chamfer_preprocess::draw::{DrawOptions, LineClass, hidden_lines};
+use chamfer_preprocess::draw::dxf::write_dxf;
+use chamfer_preprocess::draw::paper::{PaperOptions, mm_per_px};
+use chamfer_preprocess::draw::pdf::write_pdf;
+use chamfer_preprocess::draw::style::DrawingStyle;
+use chamfer_preprocess::draw::svg::write_svg;
+use chamfer_preprocess::draw::{DrawOptions, Hatch, LineClass, hidden_lines, units_per_px};
 use chamfer_preprocess::write::{ensure_not_an_input, write_atomically};
 use clap::{Args, ValueEnum};
 
-use crate::flags::BakeFlags;
+use crate::flags::{BakeFlags, DrawingStyleFlags, SectionFlags};
 use crate::render::CameraArgs;
 
 /// Draw the visible contours, boundaries, marked edges, creases and intersection edges of an asset
-/// (`.chamfer`) or a mesh (baked on the fly with the bake flags, intersections included) as an SVG
-/// line drawing, hidden lines removed exactly. The camera flags are `chamfer render`'s: the same
-/// flags give a drawing that lies on the render pixel for pixel.
+/// (`.chamfer`) or a mesh (baked on the fly with the bake flags, intersections included) as an SVG,
+/// PDF or DXF line drawing (by the output's extension), hidden lines removed exactly. The camera
+/// flags are `chamfer render`'s: the same flags give a drawing that lies on the render pixel for
+/// pixel. With --section the half the plane keeps is drawn, with the cut outline and hatched cut
+/// faces; every line has a role (cut, hatch, silhouette, boundary, visible, intersection, hidden),
+/// a layer of its own with the weight, colour and dashes the style flags or --style give.
 #[derive(Args)]
 #[command(after_help = "Examples:
   chamfer draw part.obj -o part.svg
   chamfer draw assembly.chamfer -o front.svg --azimuth 0 --elevation 0 --ortho --scale 20
-  chamfer draw part.glb -o part.svg --hidden --classes contour,crease")]
+  chamfer draw part.glb -o part.svg --hidden --classes contour,crease
+  chamfer draw part.obj -o section.pdf --section 1,0,0,0 --hidden --scale 20
+  chamfer draw plan.glb -o plan.dxf --section 0,1,0,1.5 --elevation 90 --ortho --style roles.json")]
 pub struct DrawArgs {
     /// A `.chamfer` asset, or an OBJ, glTF/GLB or PLY mesh.
     input: PathBuf,
-    /// The SVG to write.
+    /// The drawing to write: `.svg`, `.pdf` or `.dxf`.
     #[arg(short, long)]
     output: PathBuf,
     #[command(flatten)]
@@ -37,9 +47,17 @@ pub struct DrawArgs {
         long,
         value_enum,
         value_delimiter = ',',
-        default_value = "contour,boundary,marked,crease,intersection"
+        default_value = "contour,boundary,marked,crease,intersection,cut,hatch"
     )]
     classes: Vec<Class>,
+    #[command(flatten)]
+    section: SectionFlags,
+    #[command(flatten)]
+    style: DrawingStyleFlags,
+    /// A JSON file of line styles: an object with the style flags' names in snake_case
+    /// (`{"cut_weight": 0.7, "hidden_dash": [2, 1]}`); the style flags given override it.
+    #[arg(long = "style", value_name = "FILE")]
+    style_file: Option<PathBuf>,
     /// Paper millimetres per model unit (in the plane through the model's centre facing the camera;
     /// everywhere with --ortho). Default: 1 px of the frame is 1/96 inch.
     #[arg(long, value_name = "MM")]
@@ -58,6 +76,59 @@ enum Class {
     Marked,
     Crease,
     Intersection,
+    Cut,
+    Hatch,
+}
+
+/// The vector formats, by extension.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Format {
+    Svg,
+    Pdf,
+    Dxf,
+}
+
+/// The largest style file read.
+const MAX_STYLE_FILE: u64 = 1 << 20;
+
+/// The style file's styles, with the flags that differ from the defaults over them.
+fn line_style(args: &DrawArgs) -> anyhow::Result<DrawingStyle> {
+    use chamfer_runtime::schema::Schema;
+    let mut style = match &args.style_file {
+        None => DrawingStyle::default(),
+        Some(path) => {
+            let name = path.display();
+            let file = std::fs::File::open(path)
+                .map_err(|e| anyhow::anyhow!("{name}: cannot read the style file: {e}"))?;
+            let mut text = String::new();
+            std::io::Read::read_to_string(
+                &mut std::io::Read::take(file, MAX_STYLE_FILE + 1),
+                &mut text,
+            )
+            .map_err(|e| anyhow::anyhow!("{name}: cannot read the style file: {e}"))?;
+            if text.len() as u64 > MAX_STYLE_FILE {
+                bail!("{name}: a style file is at most {MAX_STYLE_FILE} bytes");
+            }
+            serde_json::from_str(&text)
+                .map_err(|e| anyhow::anyhow!("{name}: not a style file: {e}"))?
+        }
+    };
+    let flags = &args.style.0;
+    for entry in DrawingStyle::ENTRIES {
+        if entry.is_given(flags) {
+            if let Some(value) = entry.get(flags) {
+                entry.set(&mut style, value)?;
+            }
+        }
+    }
+    style.check().map_err(|e| {
+        let spelled = e.spelled(chamfer_runtime::schema::flag);
+        match &args.style_file {
+            Some(path) => anyhow::anyhow!("{}: {spelled}", path.display()),
+            None => anyhow::anyhow!(spelled),
+        }
+    })?;
+    Ok(style)
 }
 
 pub fn run(args: &DrawArgs) -> anyhow::Result<()> {
@@ -65,7 +136,36 @@ pub fn run(args: &DrawArgs) -> anyhow::Result<()> {
     if args.scale.is_some_and(|s| !(s.is_finite() && s > 0.0)) {
         bail!("--scale must be a positive number of millimetres per model unit");
     }
-    ensure_not_an_input(&args.output, &[&args.input])?;
+    let format = match args
+        .output
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        .as_deref()
+    {
+        Some("svg") => Format::Svg,
+        Some("pdf") => Format::Pdf,
+        Some("dxf") => Format::Dxf,
+        _ => bail!(
+            "{}: the output must end in .svg, .pdf or .dxf",
+            args.output.display()
+        ),
+    };
+    let style = line_style(args)?;
+    args.section
+        .0
+        .check()
+        .map_err(|e| anyhow::anyhow!(e.spelled(chamfer_runtime::schema::flag)))?;
+    if args.section.0.section_box.is_some() {
+        bail!("a drawing takes one section plane (--section), not a box");
+    }
+    let planes = args.section.0.planes()?;
+    if planes.len() > 1 {
+        bail!("a drawing takes one section plane, not {}", planes.len());
+    }
+    let mut inputs = vec![args.input.as_path()];
+    inputs.extend(args.style_file.as_deref());
+    ensure_not_an_input(&args.output, &inputs)?;
     let start = Instant::now();
     let options = args.options.to_options()?.with_intersections(true);
     let read = chamfer_preprocess::input::read_asset(&args.input, &options)?;
@@ -87,11 +187,20 @@ pub fn run(args: &DrawArgs) -> anyhow::Result<()> {
             Class::Marked => LineClass::Marked,
             Class::Crease => LineClass::Crease,
             Class::Intersection => LineClass::Intersection,
+            Class::Cut => LineClass::Cut,
+            Class::Hatch => LineClass::Hatch,
         })
         .collect();
+    let paper = PaperOptions::DEFAULT.with_mm_per_unit(args.scale);
+    let mm_per_frame_px = paper.mm_per_px_at(units_per_px(&asset, &camera));
     let options = DrawOptions::DEFAULT
         .with_classes(&classes)
-        .with_hidden(args.hidden);
+        .with_hidden(args.hidden)
+        .with_section(planes.first().copied())
+        .with_hatch(Hatch {
+            spacing_px: f64::from(style.hatch_spacing) / mm_per_frame_px,
+            angle_deg: f64::from(style.hatch_angle),
+        });
     let start = Instant::now();
     let drawing = hidden_lines(&asset, &camera, &options);
     let drawn = start.elapsed();
@@ -100,15 +209,18 @@ pub fn run(args: &DrawArgs) -> anyhow::Result<()> {
         || args.input.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
     );
-    let svg = SvgOptions::DEFAULT
-        .with_mm_per_unit(args.scale)
+    let paper = paper
         .with_title(name)
         .with_description(format!(
             "Camera: chamfer render {}.",
             args.camera.describe()
         ));
     let start = Instant::now();
-    write_atomically(&args.output, |out| write_svg(&drawing, &svg, out))?;
+    write_atomically(&args.output, |out| match format {
+        Format::Svg => write_svg(&drawing, &style, &paper, out),
+        Format::Pdf => write_pdf(&drawing, &style, &paper, out),
+        Format::Dxf => write_dxf(&drawing, &style, &paper, out),
+    })?;
     let written = start.elapsed();
     let count = |hidden: bool| -> usize {
         drawing
@@ -131,7 +243,7 @@ pub fn run(args: &DrawArgs) -> anyhow::Result<()> {
         } else {
             String::new()
         },
-        mm_per_px(&drawing, &svg) as f32,
+        mm_per_px(&drawing, &paper) as f32,
     );
     if args.timings {
         let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;

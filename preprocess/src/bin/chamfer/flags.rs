@@ -3,9 +3,11 @@
 //! command line gives is set into the schema's struct; the rest keeps the struct's defaults.
 
 use chamfer_preprocess::BakeSettings;
+use chamfer_preprocess::draw::style::DrawingStyle;
 use chamfer_runtime::camera::Orbit;
+use chamfer_runtime::section::Section;
 use chamfer_runtime::render::{StyleSettings, Technique};
-use chamfer_runtime::schema::{Entry, Kind, Schema, Value, flag};
+use chamfer_runtime::schema::{Entry, Kind, Numbers, Schema, Value, flag};
 use clap::error::ErrorKind;
 use clap::{Arg, ArgAction, ArgMatches, Args, Command, FromArgMatches, value_parser};
 
@@ -48,6 +50,9 @@ fn typed_arg(
             .value_parser(value_parser!(f32))
             .allow_negative_numbers(true),
         Kind::Count => arg.value_parser(value_parser!(u64)),
+        Kind::Numbers => arg
+            .value_parser(|text: &str| text.parse::<Numbers>())
+            .allow_hyphen_values(true),
     };
     if let Some(default) = default {
         help.push_str(&format!(" [default: {default}]"));
@@ -70,6 +75,10 @@ fn read<S: Schema>(matches: &ArgMatches, group: &str, settings: &mut S) -> Resul
                 .copied()
                 .map(Value::Count),
             Kind::Flag => matches.get_flag(entry.name).then_some(Value::Flag(true)),
+            Kind::Numbers => matches
+                .get_one::<Numbers>(entry.name)
+                .copied()
+                .map(Value::Numbers),
         };
         if let Some(value) = value {
             entry
@@ -130,6 +139,16 @@ group_flags!(
     /// The look's numbers as flags (`chamfer render`, `demo`).
     StyleFlags(StyleSettings),
     "style"
+);
+group_flags!(
+    /// Section planes as flags (`chamfer draw`).
+    SectionFlags(Section),
+    "section"
+);
+group_flags!(
+    /// The line roles' styles and the hatch as flags (`chamfer draw`).
+    DrawingStyleFlags(DrawingStyle),
+    "drawing_style"
 );
 
 impl BakeFlags {
@@ -212,6 +231,9 @@ impl FromArgMatches for TechniqueFlags {
                 let value = match table.kind(name) {
                     Some(Kind::Flag) => matches.get_flag(&id).then_some(Value::Flag(true)),
                     Some(Kind::Count) => matches.get_one::<u64>(&id).copied().map(Value::Count),
+                    Some(Kind::Numbers) => {
+                        matches.get_one::<Numbers>(&id).copied().map(Value::Numbers)
+                    }
                     _ => matches.get_one::<f32>(&id).copied().map(Value::Number),
                 };
                 if let Some(value) = value {

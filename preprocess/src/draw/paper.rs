@@ -1,0 +1,142 @@
+//! A drawing on paper, for every vector format ([`svg`](super::svg), [`pdf`](super::pdf),
+//! [`dxf`](super::dxf)): the scale (paper millimetres per model unit, or 96 dpi), the sheet that
+//! fits the lines with a margin, and the layers (one per line role) in drawing order.
+
+use super::style::{DrawingStyle, Role};
+use super::{Drawing, LineSet};
+
+/// Millimetres per pixel of the frame when no scale is given: 96 pixels per inch, the CSS pixel,
+/// so a browser shows the drawing at the size of the equivalent `chamfer render`.
+pub const MM_PER_PX_96_DPI: f64 = 25.4 / 96.0;
+
+/// How to lay a drawing out on paper, for every format. Start from [`PaperOptions::DEFAULT`] and change it with the `with_*` setters.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct PaperOptions {
+    /// Paper millimetres per model unit, in the plane through the model's centre facing the camera
+    /// (everywhere for an orthographic camera); `None`: 1 px of the frame is 1/96 inch.
+    pub mm_per_unit: Option<f64>,
+    /// The drawing's title (e.g. the source file's name).
+    pub title: String,
+    /// Free text for the `<desc>` element (e.g. the camera), after the units and scale.
+    pub description: String,
+}
+
+/// The widest line of `style`, for the margin around the lines.
+pub(crate) fn widest_mm(style: &DrawingStyle) -> f64 {
+    Role::ALL
+        .iter()
+        .map(|&role| style.role(role).weight_mm)
+        .fold(0.0, f64::max)
+}
+
+/// The roles with lines in `drawing`, in drawing order, with their sets.
+pub(crate) fn layers(drawing: &Drawing) -> Vec<(Role, Vec<&LineSet>)> {
+    Role::ALL
+        .iter()
+        .map(|&role| {
+            let sets: Vec<&LineSet> = drawing
+                .lines
+                .iter()
+                .filter(|set| Role::of(set.class, set.hidden) == role && !set.polylines.is_empty())
+                .collect();
+            (role, sets)
+        })
+        .filter(|(_, sets)| !sets.is_empty())
+        .collect()
+}
+
+impl PaperOptions {
+    /// 96 dpi, no title.
+    pub const DEFAULT: Self = Self {
+        mm_per_unit: None,
+        title: String::new(),
+        description: String::new(),
+    };
+
+    /// Sets [`mm_per_unit`](Self::mm_per_unit).
+    pub fn with_mm_per_unit(self, mm_per_unit: Option<f64>) -> Self {
+        Self {
+            mm_per_unit,
+            ..self
+        }
+    }
+
+    /// Sets [`title`](Self::title).
+    pub fn with_title(self, title: impl Into<String>) -> Self {
+        Self {
+            title: title.into(),
+            ..self
+        }
+    }
+
+    /// Sets [`description`](Self::description).
+    pub fn with_description(self, description: impl Into<String>) -> Self {
+        Self {
+            description: description.into(),
+            ..self
+        }
+    }
+}
+
+impl Default for PaperOptions {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// Millimetres per frame pixel for these options.
+pub fn mm_per_px(drawing: &Drawing, options: &PaperOptions) -> f64 {
+    options.mm_per_px_at(drawing.units_per_px)
+}
+
+impl PaperOptions {
+    /// Millimetres per frame pixel for a drawing of `units_per_px` model units per pixel
+    /// ([`units_per_px`](super::units_per_px)), known before drawing.
+    pub fn mm_per_px_at(&self, units_per_px: f64) -> f64 {
+        match self.mm_per_unit {
+            Some(mm) if mm.is_finite() && mm > 0.0 && units_per_px > 0.0 => mm * units_per_px,
+            _ => MM_PER_PX_96_DPI,
+        }
+    }
+}
+
+/// The sheet: millimetres per frame pixel and the corners of the area the lines fill (with a
+/// margin of the widest line plus 1 mm; the whole frame when nothing is drawn), in millimetres
+/// from the frame's top-left corner, y down.
+pub(crate) struct Sheet {
+    pub k: f64,
+    pub lo: [f64; 2],
+    pub hi: [f64; 2],
+}
+
+impl Sheet {
+    pub(crate) fn new(drawing: &Drawing, style: &DrawingStyle, options: &PaperOptions) -> Self {
+        let k = mm_per_px(drawing, options);
+        let (lo, hi) = drawing
+            .lines
+            .iter()
+            .flat_map(|set| set.polylines.iter().flatten())
+            .fold(
+                ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
+                |(lo, hi), p| {
+                    let p = p.map(|c| f64::from(c) * k);
+                    (
+                        [lo[0].min(p[0]), lo[1].min(p[1])],
+                        [hi[0].max(p[0]), hi[1].max(p[1])],
+                    )
+                },
+            );
+        let (lo, hi) = if lo[0] <= hi[0] {
+            let margin = widest_mm(style) + 1.0;
+            (
+                [lo[0] - margin, lo[1] - margin],
+                [hi[0] + margin, hi[1] + margin],
+            )
+        } else {
+            let [w, h] = drawing.viewport.map(|v| f64::from(v) * k);
+            ([0.0, 0.0], [w, h])
+        };
+        Self { k, lo, hi }
+    }
+}

@@ -1,0 +1,184 @@
+//! Section planes (issue 43): the half-spaces that cut a model open, declared once as a schema
+//! (`Section`) that `chamfer render` and `chamfer draw` flags, Python's keywords, the page's
+//! section panel and Bevy's section component are made from. A plane `n·p = d` keeps the points
+//! with `n·p <= d`: its normal points at the part that is cut away, towards a viewer looking at
+//! the cut face. A box keeps what lies inside it (six planes).
+
+use crate::schema::{Numbers, Schema, SchemaError};
+
+/// The most planes a section has (a box is six).
+pub const MAX_PLANES: usize = 6;
+
+crate::schema! {
+    /// Where the model is cut. No plane and no box: the model is whole.
+    #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+    #[serde(default, deny_unknown_fields)]
+    pub struct Section {
+        /// Section planes, four numbers each: `nx,ny,nz,d` keeps the points p with n·p <= d (n
+        /// points at the part cut away; it need not be unit length). Up to six planes, one after
+        /// the other; all of them cut.
+        section: Option<Numbers> = None, { group: "section", value: "NX,NY,NZ,D",
+            range: Some((-crate::schema::FINITE, crate::schema::FINITE)),
+            example: Some(Numbers::from_array([1.0, 0.0, 0.0, 0.0])),
+            conflicts: [section_box], requires: [] },
+        /// A section box, `xmin,ymin,zmin,xmax,ymax,zmax` in model units: keeps what lies inside.
+        section_box: Option<Numbers> = None, { group: "section", value: "X0,Y0,Z0,X1,Y1,Z1",
+            range: Some((-crate::schema::FINITE, crate::schema::FINITE)),
+            example: Some(Numbers::from_array([-0.25, -0.25, -0.25, 0.25, 0.25, 0.25])),
+            conflicts: [section], requires: [] },
+    }
+}
+
+/// A plane `normal·p = offset` that keeps `normal·p <= offset`; the normal is unit length.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Plane {
+    /// Unit normal, pointing at the part cut away.
+    pub normal: [f64; 3],
+    /// Signed distance of the plane from the origin along the normal.
+    pub offset: f64,
+}
+
+impl Plane {
+    /// Signed distance of `p` from the plane: positive on the side cut away.
+    pub fn distance(&self, p: [f64; 3]) -> f64 {
+        let [x, y, z] = self.normal;
+        x * p[0] + y * p[1] + z * p[2] - self.offset
+    }
+
+    /// The plane as `[nx, ny, nz, -d]` in f32, for shaders: `dot(plane, vec4(p, 1)) > 0` is cut.
+    pub fn to_vec4(&self) -> [f32; 4] {
+        let [x, y, z] = self.normal;
+        [x as f32, y as f32, z as f32, -self.offset as f32]
+    }
+}
+
+impl Section {
+    /// True when nothing is cut.
+    pub fn is_empty(&self) -> bool {
+        self.section.is_none() && self.section_box.is_none()
+    }
+
+    /// Refuses what cannot be a section: a plane list that is not 1 to 6 planes of four finite
+    /// numbers with a non-zero normal, a box that is not six finite numbers with min <= max.
+    pub fn check(&self) -> Result<(), SchemaError> {
+        self.check_combinations()?;
+        self.check_ranges()?;
+        self.planes().map(|_| ())
+    }
+
+    /// The planes, normals made unit length (a box gives six); empty when nothing is cut.
+    pub fn planes(&self) -> Result<Vec<Plane>, SchemaError> {
+        let invalid = |name, reason: String| SchemaError::Invalid { name, reason };
+        if let Some(numbers) = &self.section {
+            let numbers = numbers.as_slice();
+            if numbers.is_empty() || numbers.len() % 4 != 0 || numbers.len() > 4 * MAX_PLANES {
+                return Err(invalid(
+                    "section",
+                    format!(
+                        "must be 1 to {MAX_PLANES} planes of four numbers (nx,ny,nz,d), not {} numbers",
+                        numbers.len()
+                    ),
+                ));
+            }
+            return numbers
+                .chunks_exact(4)
+                .map(|p| {
+                    let n = [p[0], p[1], p[2]].map(f64::from);
+                    let length = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+                    let finite = p.iter().all(|x| x.is_finite());
+                    if !(finite && length > 0.0 && length.is_finite()) {
+                        return Err(invalid(
+                            "section",
+                            format!("needs a finite plane with a non-zero normal, not {p:?}"),
+                        ));
+                    }
+                    Ok(Plane {
+                        normal: n.map(|c| c / length),
+                        offset: f64::from(p[3]) / length,
+                    })
+                })
+                .collect();
+        }
+        if let Some(numbers) = &self.section_box {
+            let b = numbers.as_slice();
+            let ordered = b.len() == 6 && (0..3).all(|k| b[k] <= b[k + 3]);
+            if !ordered || !b.iter().all(|x| x.is_finite()) {
+                return Err(invalid(
+                    "section_box",
+                    format!(
+                        "must be six finite numbers xmin,ymin,zmin,xmax,ymax,zmax with each min <= max, not {b:?}"
+                    ),
+                ));
+            }
+            return Ok((0..3)
+                .flat_map(|k| {
+                    let mut normal = [0.0; 3];
+                    normal[k] = 1.0;
+                    let max = Plane {
+                        normal,
+                        offset: f64::from(b[k + 3]),
+                    };
+                    normal[k] = -1.0;
+                    let min = Plane {
+                        normal,
+                        offset: -f64::from(b[k]),
+                    };
+                    [min, max]
+                })
+                .collect());
+        }
+        Ok(Vec::new())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn planes_are_unit_and_a_box_is_six_planes_keeping_its_inside() {
+        let section = Section {
+            section: Some(Numbers::from_array([0.0, 2.0, 0.0, 1.0])),
+            ..Section::default()
+        };
+        let planes = section.planes().expect("a plane");
+        assert_eq!(planes.len(), 1);
+        assert_eq!(planes[0].normal, [0.0, 1.0, 0.0]);
+        assert_eq!(planes[0].offset, 0.5);
+        assert!(planes[0].distance([0.0, 0.4, 0.0]) < 0.0);
+
+        let boxed = Section {
+            section_box: Some(Numbers::from_array([-1.0, -2.0, -3.0, 1.0, 2.0, 3.0])),
+            ..Section::default()
+        };
+        let planes = boxed.planes().expect("a box");
+        assert_eq!(planes.len(), 6);
+        assert!(planes.iter().all(|p| p.distance([0.9, 1.9, -2.9]) < 0.0));
+        assert!(planes.iter().any(|p| p.distance([0.0, 0.0, 3.1]) > 0.0));
+        assert!(Section::default().planes().expect("none").is_empty());
+    }
+
+    #[test]
+    fn malformed_sections_are_refused_by_name() {
+        let bad = |section: Section| section.check().expect_err("refused").to_string();
+        let planes = |v: &[f32]| Section {
+            section: Numbers::new(v),
+            ..Section::default()
+        };
+        assert!(bad(planes(&[1.0, 0.0, 0.0])).contains("section must be 1 to 6 planes"));
+        assert!(bad(planes(&[0.0, 0.0, 0.0, 1.0])).contains("non-zero normal"));
+        assert!(bad(planes(&[f32::NAN, 0.0, 0.0, 1.0])).contains("section"));
+        assert!(Numbers::new(&[1.0; 25]).is_none());
+        assert_eq!(planes(&[1.0, 0.0, 0.0, 0.0].repeat(6)).check(), Ok(()));
+        let boxed = Section {
+            section_box: Some(Numbers::from_array([1.0, 0.0, 0.0, 0.0, 1.0, 1.0])),
+            ..Section::default()
+        };
+        assert!(bad(boxed).contains("section_box must be six finite numbers"));
+        let both = Section {
+            section: Some(Numbers::from_array([1.0, 0.0, 0.0, 0.0])),
+            section_box: Some(Numbers::from_array([0.0; 6])),
+        };
+        assert!(bad(both).contains("cannot both be given"));
+    }
+}
