@@ -13,7 +13,9 @@
 use std::path::Path;
 use std::time::{Duration, Instant};
 
-use chamfer_preprocess::draw::svg::{SvgOptions, write_svg};
+use chamfer_preprocess::draw::paper::PaperOptions;
+use chamfer_preprocess::draw::style::DrawingStyle;
+use chamfer_preprocess::draw::svg::write_svg;
 use chamfer_preprocess::draw::{DrawOptions, hidden_lines};
 use chamfer_preprocess::intersections::{find_intersections, intersect_triangles};
 use chamfer_preprocess::mesh::Mesh;
@@ -119,7 +121,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let drawing = drawing.ok_or("no run")?;
         let mut svg = Vec::new();
         let start = Instant::now();
-        write_svg(&drawing, &SvgOptions::DEFAULT, &mut svg)?;
+        write_svg(&drawing, &DrawingStyle::default(), &PaperOptions::DEFAULT, &mut svg)?;
         let written = start.elapsed();
         let polylines: usize = drawing.lines.iter().map(|s| s.polylines.len()).sum();
         println!(

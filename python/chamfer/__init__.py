@@ -15,7 +15,9 @@ Every function releases the interpreter while it works, and every error is a ``C
 ArrayError, AssetError) whose message names the file and the problem; ``error.path`` is the file.
 The bake options are listed in ``help(chamfer.bake)`` and in ``chamfer.OPTIONS``; ``chamfer.BAKE_SCHEMA``
 is their schema (the table ``chamfer bake``'s flags, the page and Bevy's ``.meta`` are made from), and
-``chamfer.VIEW_SCHEMA`` the camera's (``draw_svg``'s keywords, ``chamfer draw``'s camera flags).
+``chamfer.VIEW_SCHEMA`` the camera's (``draw_svg``'s keywords, ``chamfer draw``'s camera flags),
+``chamfer.SECTION_SCHEMA`` and ``chamfer.DRAWING_STYLE_SCHEMA`` the section drawings' (``draw_svg``,
+``draw_pdf`` and ``draw_dxf``; ``chamfer draw --section`` and its style flags).
 """
 
 import enum as _enum
@@ -27,6 +29,8 @@ from ._chamfer import (
     BAKE_SCHEMA,
     FORMAT_VERSION,
     VIEW_SCHEMA,
+    SECTION_SCHEMA,
+    DRAWING_STYLE_SCHEMA,
     OPTIONS,
     ArrayError,
     Asset,
@@ -49,7 +53,7 @@ from ._chamfer import (
     settings,
 )
 
-_TYPES = {"number": "float", "count": "int", "flag": "bool"}
+_TYPES = {"number": "float", "count": "int", "flag": "bool", "numbers": "sequence of floats"}
 
 
 def _keywords(schema, group):
@@ -81,7 +85,15 @@ def _with_keywords(function, *tables):
 
 _BAKE_KEYWORDS = ("bake_keywords", _keywords(BAKE_SCHEMA, "bake"))
 bake = _with_keywords(_chamfer.bake, _BAKE_KEYWORDS)
-draw_svg = _with_keywords(_chamfer.draw_svg, ("view_keywords", _keywords(VIEW_SCHEMA, "view")), _BAKE_KEYWORDS)
+_DRAW_KEYWORDS = (
+    ("view_keywords", _keywords(VIEW_SCHEMA, "view")),
+    ("section_keywords", _keywords(SECTION_SCHEMA, "section")),
+    ("style_keywords", _keywords(DRAWING_STYLE_SCHEMA, "drawing_style")),
+    _BAKE_KEYWORDS,
+)
+draw_svg = _with_keywords(_chamfer.draw_svg, *_DRAW_KEYWORDS)
+draw_pdf = _chamfer.draw_pdf
+draw_dxf = _chamfer.draw_dxf
 
 EdgeFlags = _enum.IntFlag("EdgeFlags", dict(_chamfer.EDGE_FLAGS))
 EdgeFlags.__doc__ = """The classes of an edge, bits of ``Asset.edge_flags`` (several can be set).
@@ -119,6 +131,8 @@ __all__ = [
     "OPTIONS",
     "BAKE_SCHEMA",
     "VIEW_SCHEMA",
+    "SECTION_SCHEMA",
+    "DRAWING_STYLE_SCHEMA",
     "ArrayError",
     "Asset",
     "AssetError",
@@ -137,6 +151,8 @@ __all__ = [
     "bake_arrays",
     "bake_if_changed",
     "decode",
+    "draw_dxf",
+    "draw_pdf",
     "draw_svg",
     "from_trimesh",
     "load",

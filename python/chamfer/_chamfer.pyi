@@ -23,6 +23,10 @@ OPTIONS: List[Tuple[str, str, str]]
 BAKE_SCHEMA: List[Dict[str, Any]]
 #: The view schema: draw_svg's camera keywords, chamfer draw's camera flags.
 VIEW_SCHEMA: List[Dict[str, Any]]
+#: The section schema: the drawings' section keywords, chamfer draw's --section.
+SECTION_SCHEMA: List[Dict[str, Any]]
+#: The line roles' styles: the drawings' style keywords, chamfer draw's style flags.
+DRAWING_STYLE_SCHEMA: List[Dict[str, Any]]
 
 class BakeOptions(TypedDict, total=False):
     """The bake options (the schema's "bake" group, chamfer.OPTIONS); None leaves one at its default."""
@@ -60,8 +64,41 @@ class ViewOptions(TypedDict, total=False):
     fov_y: Optional[float]
     ortho: Optional[bool]
 
-class DrawOptions(ViewOptions, BakeOptions, total=False):
-    """draw_svg's keywords: the view's and, for a mesh, the bake's."""
+class SectionOptions(TypedDict, total=False):
+    """A section plane (chamfer.SECTION_SCHEMA); a drawing takes one plane."""
+
+    section: Optional[Sequence[float]]
+    section_box: Optional[Sequence[float]]
+
+class DrawingStyleOptions(TypedDict, total=False):
+    """The line roles' styles and the hatch (chamfer.DRAWING_STYLE_SCHEMA)."""
+
+    cut_weight: Optional[float]
+    cut_color: Optional[Sequence[float]]
+    cut_dash: Optional[Sequence[float]]
+    hatch_weight: Optional[float]
+    hatch_color: Optional[Sequence[float]]
+    hatch_dash: Optional[Sequence[float]]
+    silhouette_weight: Optional[float]
+    silhouette_color: Optional[Sequence[float]]
+    silhouette_dash: Optional[Sequence[float]]
+    boundary_weight: Optional[float]
+    boundary_color: Optional[Sequence[float]]
+    boundary_dash: Optional[Sequence[float]]
+    visible_weight: Optional[float]
+    visible_color: Optional[Sequence[float]]
+    visible_dash: Optional[Sequence[float]]
+    intersection_weight: Optional[float]
+    intersection_color: Optional[Sequence[float]]
+    intersection_dash: Optional[Sequence[float]]
+    hidden_weight: Optional[float]
+    hidden_color: Optional[Sequence[float]]
+    hidden_dash: Optional[Sequence[float]]
+    hatch_spacing: Optional[float]
+    hatch_angle: Optional[float]
+
+class DrawOptions(ViewOptions, SectionOptions, DrawingStyleOptions, BakeOptions, total=False):
+    """The drawings' keywords: the view's, the section's, the styles' and, for a mesh, the bake's."""
 
 class ChamferError(Exception):
     path: Optional[str]
@@ -143,6 +180,30 @@ def plan_folder(src: _Path, dst: _Path) -> List[Tuple[pathlib.Path, pathlib.Path
 def load(path: _Path) -> Asset: ...
 def decode(data: bytes, name: str = "<bytes>") -> Asset: ...
 def draw_svg(
+    source: Union[Asset, _Path],
+    output: Optional[_Path] = None,
+    *,
+    width: int = 1024,
+    height: int = 768,
+    hidden: bool = False,
+    classes: Optional[Sequence[str]] = None,
+    scale: Optional[float] = None,
+    title: Optional[str] = None,
+    **options: Unpack[DrawOptions],
+) -> str: ...
+def draw_pdf(
+    source: Union[Asset, _Path],
+    output: Optional[_Path] = None,
+    *,
+    width: int = 1024,
+    height: int = 768,
+    hidden: bool = False,
+    classes: Optional[Sequence[str]] = None,
+    scale: Optional[float] = None,
+    title: Optional[str] = None,
+    **options: Unpack[DrawOptions],
+) -> bytes: ...
+def draw_dxf(
     source: Union[Asset, _Path],
     output: Optional[_Path] = None,
     *,

@@ -1,14 +1,21 @@
-//! `chamfer.draw_svg`: hidden-line drawings as `chamfer draw` makes them, from the same camera
-//! keywords: `width` and `height`, and the view schema's (`chamfer.VIEW_SCHEMA`, its camera flags).
+//! `chamfer.draw_svg`, `draw_pdf` and `draw_dxf`: hidden-line and section drawings as `chamfer
+//! draw` makes them, from the same keywords: `width` and `height`, the view schema's
+//! (`chamfer.VIEW_SCHEMA`, its camera flags), the section's (`chamfer.SECTION_SCHEMA`) and the line
+//! roles' styles (`chamfer.DRAWING_STYLE_SCHEMA`).
 
 use std::path::PathBuf;
 
-use chamfer_preprocess::draw::svg::{SvgOptions, write_svg};
-use chamfer_preprocess::draw::{Camera, DrawOptions, LineClass, hidden_lines};
+use chamfer_preprocess::draw::dxf::write_dxf;
+use chamfer_preprocess::draw::paper::{PaperOptions, section_note};
+use chamfer_preprocess::draw::pdf::write_pdf;
+use chamfer_preprocess::draw::style::DrawingStyle;
+use chamfer_preprocess::draw::svg::write_svg;
+use chamfer_preprocess::draw::{Camera, DrawOptions, Hatch, LineClass, hidden_lines, units_per_px};
+use chamfer_runtime::section::Section;
 use chamfer_preprocess::write::{ensure_not_an_input, write_atomically};
 use chamfer_runtime::asset::Asset;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyBytes, PyDict};
 
 use crate::asset::PyAsset;
 use crate::errors::Failure;
@@ -18,15 +25,23 @@ use crate::{errors, options};
 ///
 /// `source` is an Asset, a `.chamfer` file, or a mesh file (baked first, with intersection
 /// edges, and the bake options as for bake()). `classes` picks the line classes (contour,
-/// boundary, marked, crease, intersection; default all), `hidden` also draws the hidden parts
-/// (dashed), `scale` is paper millimetres per model unit (default 96 dpi), `title` defaults to
-/// the file's name (or the asset's source). When `output` is given the SVG is also written there
-/// atomically. The interpreter is released while drawing.
+/// boundary, marked, crease, intersection, cut, hatch; default all), `hidden` also draws the
+/// hidden parts (dashed), `scale` is paper millimetres per model unit (default 96 dpi), `title`
+/// defaults to the file's name (or the asset's source). When `output` is given the drawing is
+/// also written there atomically. The interpreter is released while drawing.
 ///
 /// The camera orbits the model's bounding box, in a frame of `width` x `height` pixels, where
 /// the view keywords put it (chamfer.VIEW_SCHEMA, `chamfer draw`'s camera flags of the same
 /// names):
 /// {view_keywords}
+///
+/// A section drawing (chamfer.SECTION_SCHEMA, `chamfer draw --section`) keeps the half the plane
+/// keeps and draws the cut outline and the hatched cut faces:
+/// {section_keywords}
+///
+/// Each line role is a layer with its own style (chamfer.DRAWING_STYLE_SCHEMA, the style flags of
+/// `chamfer draw`):
+/// {style_keywords}
 ///
 /// The bake options, for a mesh file:
 /// {bake_keywords}
@@ -48,88 +63,230 @@ pub fn draw_svg(
     title: Option<String>,
     options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<String> {
-    let frame = 1..=chamfer_runtime::camera::MAX_VIEWPORT;
-    if !frame.contains(&width) || !frame.contains(&height) {
-        return Err(errors::options(format!(
-            "width and height must be 1 to {} pixels, not {width}x{height}",
-            frame.end()
-        )));
-    }
-    let (orbit, options) = options::view_from_kwargs(py, options)?;
-    // Checked whatever the source: a misspelt keyword is an error even where nothing is baked.
-    let bake_options = options::from_kwargs(Some(&options))?.with_intersections(true);
-    if scale.is_some_and(|s| !(s.is_finite() && s > 0.0)) {
-        return Err(errors::options(
-            "scale must be a positive number of millimetres per model unit".into(),
-        ));
-    }
-    let classes = match classes {
-        None => LineClass::ALL.to_vec(),
-        Some(names) => names
-            .iter()
-            .map(|name| {
-                LineClass::ALL
-                    .into_iter()
-                    .find(|c| c.name() == name)
-                    .ok_or_else(|| {
-                        errors::options(format!(
-                            "unknown line class {name:?} (contour, boundary, marked, crease, intersection)"
-                        ))
-                    })
-            })
-            .collect::<PyResult<_>>()?,
-    };
-    let draw_options = DrawOptions::DEFAULT
-        .with_classes(&classes)
-        .with_hidden(hidden);
-
-    let baked;
-    let (asset, input): (&Asset, Option<PathBuf>) = match source.cast::<PyAsset>() {
-        Ok(held) => (held.get().asset(), None),
-        Err(_) => {
-            let path: PathBuf = source.extract().map_err(|_| {
-                pyo3::exceptions::PyTypeError::new_err(
-                    "draw_svg() takes an Asset or the path of an asset or a mesh",
-                )
-            })?;
-            baked = py.detach(|| read_or_bake(&path, &bake_options))?;
-            (&baked, Some(path))
-        }
-    };
-    let title = title.unwrap_or_else(|| match &input {
-        Some(path) => path.file_name().map_or_else(
-            || path.display().to_string(),
-            |n| n.to_string_lossy().into_owned(),
-        ),
-        None => asset.header.source.clone(),
-    });
-    let svg_options = SvgOptions::DEFAULT
-        .with_mm_per_unit(scale)
-        .with_title(title)
-        .with_description(format!(
-            "Camera: chamfer render {}.",
-            orbit.flags([width, height])
-        ));
-    if let Some(output) = &output {
-        let inputs: Vec<&std::path::Path> = input.iter().map(PathBuf::as_path).collect();
-        ensure_not_an_input(output, &inputs)
-            .map_err(|e| errors::from_library_writing(e, output))?;
-    }
-    let bounds = [asset.header.bounds_min, asset.header.bounds_max];
-    let view = Camera::orbit(bounds, &orbit, [width, height]);
-    let svg = py.detach(|| {
-        let drawing = hidden_lines(asset, &view, &draw_options);
-        let mut svg = Vec::new();
-        // Writing into memory cannot fail.
-        let _ = write_svg(&drawing, &svg_options, &mut svg);
-        svg
-    });
-    if let Some(output) = &output {
-        py.detach(|| write_atomically(output, |out| std::io::Write::write_all(out, &svg)))
-            .map_err(|e| errors::from_library_writing(e, output))?;
-    }
+    let request = Request::new(py, [width, height], hidden, classes, scale, title, options)?;
+    let svg = request.draw(py, source, output, Format::Svg)?;
     // write_svg writes Rust strings: UTF-8.
     Ok(String::from_utf8_lossy(&svg).into_owned())
+}
+
+/// A hidden-line drawing as PDF bytes, the same as `chamfer draw -o FILE.pdf` writes: one page at
+/// the scale asked for, each line role an optional content group (a layer). The arguments are
+/// draw_svg's.
+#[pyfunction]
+#[pyo3(signature = (
+    source, output = None, *, width = 1024, height = 768, hidden = false, classes = None,
+    scale = None, title = None, **options
+))]
+#[allow(clippy::too_many_arguments)]
+pub fn draw_pdf<'py>(
+    py: Python<'py>,
+    source: &Bound<'py, PyAny>,
+    output: Option<PathBuf>,
+    width: u32,
+    height: u32,
+    hidden: bool,
+    classes: Option<Vec<String>>,
+    scale: Option<f64>,
+    title: Option<String>,
+    options: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyBytes>> {
+    let request = Request::new(py, [width, height], hidden, classes, scale, title, options)?;
+    let pdf = request.draw(py, source, output, Format::Pdf)?;
+    Ok(PyBytes::new(py, &pdf))
+}
+
+/// A hidden-line drawing as DXF text, the same as `chamfer draw -o FILE.dxf` writes: a layer per
+/// line role, LWPOLYLINE entities, millimetres. The arguments are draw_svg's.
+#[pyfunction]
+#[pyo3(signature = (
+    source, output = None, *, width = 1024, height = 768, hidden = false, classes = None,
+    scale = None, title = None, **options
+))]
+#[allow(clippy::too_many_arguments)]
+pub fn draw_dxf(
+    py: Python<'_>,
+    source: &Bound<'_, PyAny>,
+    output: Option<PathBuf>,
+    width: u32,
+    height: u32,
+    hidden: bool,
+    classes: Option<Vec<String>>,
+    scale: Option<f64>,
+    title: Option<String>,
+    options: Option<&Bound<'_, PyDict>>,
+) -> PyResult<String> {
+    let request = Request::new(py, [width, height], hidden, classes, scale, title, options)?;
+    let dxf = request.draw(py, source, output, Format::Dxf)?;
+    Ok(String::from_utf8_lossy(&dxf).into_owned())
+}
+
+#[derive(Clone, Copy)]
+enum Format {
+    Svg,
+    Pdf,
+    Dxf,
+}
+
+/// A drawing's arguments, checked before anything is read.
+struct Request {
+    viewport: [u32; 2],
+    orbit: chamfer_runtime::camera::Orbit,
+    bake_options: chamfer_preprocess::BakeOptions,
+    draw_options: DrawOptions,
+    section: Option<chamfer_runtime::section::Plane>,
+    style: DrawingStyle,
+    scale: Option<f64>,
+    title: Option<String>,
+}
+
+impl Request {
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        py: Python<'_>,
+        viewport: [u32; 2],
+        hidden: bool,
+        classes: Option<Vec<String>>,
+        scale: Option<f64>,
+        title: Option<String>,
+        options: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<Self> {
+        let [width, height] = viewport;
+        let frame = 1..=chamfer_runtime::camera::MAX_VIEWPORT;
+        if !frame.contains(&width) || !frame.contains(&height) {
+            return Err(errors::options(format!(
+                "width and height must be 1 to {} pixels, not {width}x{height}",
+                frame.end()
+            )));
+        }
+        let (orbit, options) = options::view_from_kwargs(py, options)?;
+        let (section, options) =
+            options::group_from_kwargs::<Section>(py, "section", Some(&options))?;
+        let (style, options) =
+            options::group_from_kwargs::<DrawingStyle>(py, "drawing_style", Some(&options))?;
+        section.check().map_err(|e| errors::options(e.to_string()))?;
+        style.check().map_err(|e| errors::options(e.to_string()))?;
+        if section.section_box.is_some() {
+            return Err(errors::options(
+                "a drawing takes one section plane (section), not a box".into(),
+            ));
+        }
+        let planes = section
+            .planes()
+            .map_err(|e| errors::options(e.to_string()))?;
+        if planes.len() > 1 {
+            return Err(errors::options(format!(
+                "a drawing takes one section plane, not {}",
+                planes.len()
+            )));
+        }
+        // Checked whatever the source: a misspelt keyword is an error even where nothing is baked.
+        let bake_options = options::from_kwargs(Some(&options))?.with_intersections(true);
+        if scale.is_some_and(|s| !(s.is_finite() && s > 0.0)) {
+            return Err(errors::options(
+                "scale must be a positive number of millimetres per model unit".into(),
+            ));
+        }
+        let classes = match classes {
+            None => LineClass::ALL.to_vec(),
+            Some(names) => names
+                .iter()
+                .map(|name| {
+                    LineClass::ALL
+                        .into_iter()
+                        .find(|c| c.name() == name)
+                        .ok_or_else(|| {
+                            errors::options(format!(
+                                "unknown line class {name:?} (contour, boundary, marked, crease, intersection, cut, hatch)"
+                            ))
+                        })
+                })
+                .collect::<PyResult<_>>()?,
+        };
+        Ok(Self {
+            viewport,
+            orbit,
+            bake_options,
+            draw_options: DrawOptions::DEFAULT
+                .with_classes(&classes)
+                .with_hidden(hidden)
+                .with_section(planes.first().copied()),
+            section: planes.first().copied(),
+            style,
+            scale,
+            title,
+        })
+    }
+
+    /// Reads or bakes `source`, draws it, writes it to `output` if given, and returns the bytes.
+    fn draw(
+        self,
+        py: Python<'_>,
+        source: &Bound<'_, PyAny>,
+        output: Option<PathBuf>,
+        format: Format,
+    ) -> PyResult<Vec<u8>> {
+        let baked;
+        let (asset, input): (&Asset, Option<PathBuf>) = match source.cast::<PyAsset>() {
+            Ok(held) => (held.get().asset(), None),
+            Err(_) => {
+                let path: PathBuf = source.extract().map_err(|_| {
+                    pyo3::exceptions::PyTypeError::new_err(
+                        "a drawing takes an Asset or the path of an asset or a mesh",
+                    )
+                })?;
+                let options = &self.bake_options;
+                baked = py.detach(|| read_or_bake(&path, options))?;
+                (&baked, Some(path))
+            }
+        };
+        let title = self.title.clone().unwrap_or_else(|| match &input {
+            Some(path) => path.file_name().map_or_else(
+                || path.display().to_string(),
+                |n| n.to_string_lossy().into_owned(),
+            ),
+            None => asset.header.source.clone(),
+        });
+        let mut description = format!(
+            "Camera: chamfer render {}.",
+            self.orbit.flags(self.viewport)
+        );
+        if let Some(plane) = &self.section {
+            description += &section_note(plane);
+        }
+        let paper = PaperOptions::DEFAULT
+            .with_mm_per_unit(self.scale)
+            .with_title(title)
+            .with_description(description);
+        if let Some(output) = &output {
+            let inputs: Vec<&std::path::Path> = input.iter().map(PathBuf::as_path).collect();
+            ensure_not_an_input(output, &inputs)
+                .map_err(|e| errors::from_library_writing(e, output))?;
+        }
+        let bounds = [asset.header.bounds_min, asset.header.bounds_max];
+        let view = Camera::orbit(bounds, &self.orbit, self.viewport);
+        let mm_per_px = paper.mm_per_px_at(units_per_px(asset, &view));
+        let options = self.draw_options.with_hatch(Hatch {
+            spacing_px: f64::from(self.style.hatch_spacing) / mm_per_px,
+            angle_deg: f64::from(self.style.hatch_angle),
+        });
+        let style = self.style;
+        let bytes = py.detach(|| {
+            let drawing = hidden_lines(asset, &view, &options);
+            let mut bytes = Vec::new();
+            // Writing into memory cannot fail.
+            let _ = match format {
+                Format::Svg => write_svg(&drawing, &style, &paper, &mut bytes),
+                Format::Pdf => write_pdf(&drawing, &style, &paper, &mut bytes),
+                Format::Dxf => write_dxf(&drawing, &style, &paper, &mut bytes),
+            };
+            bytes
+        });
+        if let Some(output) = &output {
+            py.detach(|| write_atomically(output, |out| std::io::Write::write_all(out, &bytes)))
+                .map_err(|e| errors::from_library_writing(e, output))?;
+        }
+        Ok(bytes)
+    }
 }
 
 /// A `.chamfer` file decoded, or a mesh file baked.

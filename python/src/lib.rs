@@ -24,6 +24,14 @@ fn _chamfer(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add("OPTIONS", options::table())?;
     module.add("BAKE_SCHEMA", options::schema(module.py())?)?;
     module.add("VIEW_SCHEMA", options::view_schema(module.py())?)?;
+    module.add(
+        "SECTION_SCHEMA",
+        options::schema_of::<chamfer_runtime::section::Section>(module.py())?,
+    )?;
+    module.add(
+        "DRAWING_STYLE_SCHEMA",
+        options::schema_of::<chamfer_preprocess::draw::style::DrawingStyle>(module.py())?,
+    )?;
     module.add_class::<asset::PyAsset>()?;
     module.add_function(wrap_pyfunction!(bake::bake, module)?)?;
     module.add_function(wrap_pyfunction!(bake::bake_arrays, module)?)?;
@@ -34,5 +42,7 @@ fn _chamfer(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(asset::load, module)?)?;
     module.add_function(wrap_pyfunction!(asset::decode, module)?)?;
     module.add_function(wrap_pyfunction!(draw::draw_svg, module)?)?;
+    module.add_function(wrap_pyfunction!(draw::draw_pdf, module)?)?;
+    module.add_function(wrap_pyfunction!(draw::draw_dxf, module)?)?;
     errors::register(module)
 }

@@ -21,6 +21,7 @@ const fn python_type(kind: Kind) -> &'static str {
         Kind::Number => "float",
         Kind::Count => "int",
         Kind::Flag => "bool",
+        Kind::Numbers => "list",
     }
 }
 
@@ -55,12 +56,23 @@ pub fn view_from_kwargs<'py>(
     py: Python<'py>,
     kwargs: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<(Orbit, Bound<'py, PyDict>)> {
-    let mut orbit = Orbit::default();
-    let others = PyDict::new(py);
-    let given = set_keywords(&mut orbit, "view", kwargs, Some(&others))?;
-    Orbit::check_names(&given).map_err(|e| errors::options(e.to_string()))?;
+    let (orbit, others) = group_from_kwargs::<Orbit>(py, "view", kwargs)?;
     orbit.check().map_err(|e| errors::options(e.to_string()))?;
     Ok((orbit, others))
+}
+
+/// The settings the keywords of `kwargs` in `group` of `S`'s schema set, their combinations
+/// checked (the struct's own check is the caller's), and the other keywords in a new dict.
+pub fn group_from_kwargs<'py, S: Schema>(
+    py: Python<'py>,
+    group: &str,
+    kwargs: Option<&Bound<'py, PyDict>>,
+) -> PyResult<(S, Bound<'py, PyDict>)> {
+    let mut settings = S::default();
+    let others = PyDict::new(py);
+    let given = set_keywords(&mut settings, group, kwargs, Some(&others))?;
+    S::check_names(&given).map_err(|e| errors::options(e.to_string()))?;
+    Ok((settings, others))
 }
 
 /// Sets into `settings` the keywords of `kwargs` that are entries of `group`, each read as its
@@ -120,6 +132,7 @@ fn read<S: Schema>(entry: &Entry<S>, value: &Bound<'_, PyAny>) -> PyResult<Value
                 Kind::Number => "a number",
                 Kind::Count => "a non-negative integer",
                 Kind::Flag => "True or False",
+                Kind::Numbers => "a sequence of numbers",
             }
         ))
     };
@@ -137,6 +150,21 @@ fn read<S: Schema>(entry: &Entry<S>, value: &Bound<'_, PyAny>) -> PyResult<Value
             Ok(Value::Count(value.extract().map_err(|_| wrong())?))
         }
         Kind::Flag if is_bool => Ok(Value::Flag(value.extract()?)),
+        // Any sequence of numbers (a list, a tuple, a numpy array), not a string.
+        Kind::Numbers if !value.is_instance_of::<pyo3::types::PyString>() => {
+            let numbers: Vec<f64> = value.extract().map_err(|_| wrong())?;
+            let numbers: Vec<f32> = numbers.into_iter().map(|x| x as f32).collect();
+            chamfer_runtime::schema::Numbers::new(&numbers)
+                .map(Value::Numbers)
+                .ok_or_else(|| {
+                    errors::options(format!(
+                        "option {} takes at most {} numbers, not {}",
+                        entry.name,
+                        chamfer_runtime::schema::Numbers::CAPACITY,
+                        numbers.len()
+                    ))
+                })
+        }
         _ => Err(wrong()),
     }
 }
@@ -169,6 +197,12 @@ pub fn schema(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
 /// `draw_svg`, `chamfer draw`'s and `chamfer render`'s camera flags.
 pub fn view_schema(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
     json(py, Orbit::schema_json())
+}
+
+/// A schema's table for Python (`chamfer.SECTION_SCHEMA`, `chamfer.DRAWING_STYLE_SCHEMA`), as
+/// [`schema`].
+pub fn schema_of<S: Schema>(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
+    json(py, S::schema_json())
 }
 
 fn json(py: Python<'_>, value: serde_json::Value) -> PyResult<Bound<'_, PyAny>> {

@@ -197,7 +197,8 @@ def test_the_stubs_name_what_the_module_has():
         elif isinstance(node, ast.AnnAssign):
             names.add(node.target.id)
     public = {n for n in dir(chamfer._chamfer) if not n.startswith("_") or n == "__version__"}
-    assert public == names - {"BakeOptions", "EncodingOptions", "ViewOptions", "DrawOptions"}
+    assert public == names - {"BakeOptions", "EncodingOptions", "ViewOptions", "SectionOptions",
+                              "DrawingStyleOptions", "DrawOptions"}
     options = next(n for n in stub.body if isinstance(n, ast.ClassDef) and n.name == "BakeOptions")
     # The TypedDict is the schema's bake group: same names, order and types.
     keys = [(s.target.id, ast.unparse(s.annotation)) for s in options.body if isinstance(s, ast.AnnAssign)]
@@ -212,6 +213,13 @@ def test_the_stubs_name_what_the_module_has():
     keys = [(s.target.id, ast.unparse(s.annotation)) for s in view.body if isinstance(s, ast.AnnAssign)]
     kinds = {"number": "float", "count": "int", "flag": "bool"}
     assert keys == [(e["name"], f"Optional[{kinds[e['kind']]}]") for e in chamfer.VIEW_SCHEMA]
+    # And the section's and the line styles' are their schemas.
+    kinds["numbers"] = "Sequence[float]"
+    for stub_name, schema in [("SectionOptions", chamfer.SECTION_SCHEMA),
+                              ("DrawingStyleOptions", chamfer.DRAWING_STYLE_SCHEMA)]:
+        typed = next(n for n in stub.body if isinstance(n, ast.ClassDef) and n.name == stub_name)
+        keys = [(s.target.id, ast.unparse(s.annotation)) for s in typed.body if isinstance(s, ast.AnnAssign)]
+        assert keys == [(e["name"], f"Optional[{kinds[e['kind']]}]") for e in schema], stub_name
     assert (Path(chamfer.__file__).parent / "py.typed").is_file()
 
 

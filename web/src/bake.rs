@@ -3,7 +3,9 @@
 
 use std::path::Path;
 
-use chamfer_preprocess::draw::svg::{SvgOptions, write_svg};
+use chamfer_preprocess::draw::paper::PaperOptions;
+use chamfer_preprocess::draw::style::DrawingStyle;
+use chamfer_preprocess::draw::svg::write_svg;
 use chamfer_preprocess::draw::{DrawOptions, hidden_lines};
 use chamfer_preprocess::inspect::summary;
 use chamfer_preprocess::{Companions, bake_with_companions, compact};
@@ -97,7 +99,12 @@ pub fn svg_of(
         &DrawOptions::DEFAULT.with_classes(&view.line_classes()?),
     );
     let mut svg = Vec::new();
-    write_svg(&drawing, &SvgOptions::default().with_title(name), &mut svg)
+    write_svg(
+        &drawing,
+        &DrawingStyle::default(),
+        &PaperOptions::default().with_title(name),
+        &mut svg,
+    )
         .map_err(|e| format!("{name}: cannot write the drawing: {e}"))?;
     String::from_utf8(svg).map_err(|e| format!("{name}: the drawing is not text: {e}"))
 }

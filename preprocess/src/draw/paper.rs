@@ -140,3 +140,10 @@ impl Sheet {
         Self { k, lo, hi }
     }
 }
+
+/// The words a drawing's description gives its section plane, so the same section can be asked
+/// for again (the flag's `nx,ny,nz,d`, normal made unit).
+pub fn section_note(plane: &chamfer_runtime::section::Plane) -> String {
+    let [x, y, z] = plane.normal.map(|c| c as f32);
+    format!(" Section: --section {x},{y},{z},{}.", plane.offset as f32)
+}

@@ -347,3 +347,242 @@ pub fn hatch(
     }
     segments
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::Mesh;
+    use crate::{BakeOptions, bake};
+
+    fn asset_of(positions: Vec<[f32; 3]>, triangles: Vec<[u32; 3]>) -> Asset {
+        let mesh = Mesh {
+            positions: positions.into_iter().map(glam::Vec3::from).collect(),
+            triangles,
+            ..Mesh::default()
+        };
+        bake(mesh, "test", &BakeOptions::DEFAULT).expect("bakes").asset
+    }
+
+    fn plane(normal: [f64; 3], offset: f64) -> Plane {
+        let length = DVec3::from(normal).length();
+        Plane {
+            normal: normal.map(|c| c / length),
+            offset: offset / length,
+        }
+    }
+
+    fn unit_cube() -> Asset {
+        let positions = (0..8)
+            .map(|i| [i & 1, (i >> 1) & 1, (i >> 2) & 1].map(|c| c as f32))
+            .collect();
+        let quads = [
+            [0, 2, 3, 1],
+            [4, 5, 7, 6],
+            [0, 1, 5, 4],
+            [2, 6, 7, 3],
+            [0, 4, 6, 2],
+            [1, 3, 7, 5],
+        ];
+        let triangles = quads
+            .iter()
+            .flat_map(|&[a, b, c, d]| [[a, b, c], [a, c, d]])
+            .collect();
+        asset_of(positions, triangles)
+    }
+
+    /// A torus around +Z: `major` the radius of its centre circle, `minor` of its tube.
+    fn torus(major: f32, minor: f32, around: u32, tube: u32) -> Asset {
+        let mut positions = Vec::new();
+        for i in 0..around {
+            let u = i as f32 / around as f32 * std::f32::consts::TAU;
+            for j in 0..tube {
+                let v = j as f32 / tube as f32 * std::f32::consts::TAU;
+                let r = major + minor * v.cos();
+                positions.push([r * u.cos(), r * u.sin(), minor * v.sin()]);
+            }
+        }
+        let id = |i: u32, j: u32| (i % around) * tube + j % tube;
+        let mut triangles = Vec::new();
+        for i in 0..around {
+            for j in 0..tube {
+                let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+                triangles.push([a, b, c]);
+                triangles.push([a, c, d]);
+            }
+        }
+        asset_of(positions, triangles)
+    }
+
+    fn area(triangles: &[[DVec3; 3]]) -> f64 {
+        triangles
+            .iter()
+            .map(|[a, b, c]| 0.5 * (*b - *a).cross(*c - *a).length())
+            .sum()
+    }
+
+    #[test]
+    fn a_cube_cut_through_its_middle_has_one_square_outline_capped() {
+        let cut = cut(&unit_cube(), &plane([1.0, 0.0, 0.0], 0.5));
+        assert_eq!(cut.outlines.len(), 1);
+        let outline = &cut.outlines[0];
+        assert!(outline.capped);
+        assert_eq!(outline.points.first(), outline.points.last());
+        assert!(outline.points.iter().all(|p| p.x == 0.5));
+        // The square's four corners are on it, and nothing but its sides.
+        for corner in [[0.0, 0.0], [0.0, 1.0], [1.0, 0.0], [1.0, 1.0]] {
+            let corner = DVec3::new(0.5, corner[0], corner[1]);
+            assert!(outline.points.contains(&corner), "{corner}");
+        }
+        assert!(outline.points.iter().all(|p| p.y == 0.0 || p.y == 1.0 || p.z == 0.0 || p.z == 1.0));
+        assert!((area(&cut.caps) - 1.0).abs() < 1e-12);
+        // The kept half: the x = 0 face and half of each of four sides.
+        assert!((area(&cut.kept) - 3.0).abs() < 1e-12);
+        assert!(cut.kept.iter().flatten().all(|p| p.x <= 0.5));
+    }
+
+    #[test]
+    fn a_torus_cut_through_its_hole_gives_two_discs_and_across_its_axis_a_ring() {
+        let (major, minor) = (1.0, 0.3);
+        let shape = torus(major, minor, 64, 32);
+        // Through the axis: two tube sections, each a disc of the tube's radius.
+        let through = cut(&shape, &plane([0.0, 1.0, 0.0], 0.0));
+        assert_eq!(through.outlines.len(), 2);
+        assert!(through.outlines.iter().all(|o| o.capped));
+        let disc = std::f64::consts::PI * f64::from(minor).powi(2);
+        let capped = area(&through.caps);
+        // The 32-gon's area is 0.6 % under the circle's.
+        assert!((capped / (2.0 * disc) - 1.0).abs() < 0.01, "{capped}");
+        // Across the axis: an annulus, its inner outline a hole.
+        let across = cut(&shape, &plane([0.0, 0.0, 1.0], 0.0));
+        assert_eq!(across.outlines.len(), 2);
+        let ring = std::f64::consts::PI * (f64::from(major + minor).powi(2) - f64::from(major - minor).powi(2));
+        let capped = area(&across.caps);
+        assert!((capped / ring - 1.0).abs() < 0.01, "{capped} vs {ring}");
+    }
+
+    #[test]
+    fn an_open_sheet_is_cut_without_a_cap() {
+        let n = 4u32;
+        let positions = (0..=n)
+            .flat_map(|j| (0..=n).map(move |i| [i as f32, j as f32, 0.0]))
+            .collect();
+        let id = |i: u32, j: u32| j * (n + 1) + i;
+        let triangles = (0..n)
+            .flat_map(|j| (0..n).flat_map(move |i| {
+                [[id(i, j), id(i + 1, j), id(i + 1, j + 1)], [id(i, j), id(i + 1, j + 1), id(i, j + 1)]]
+            }))
+            .collect();
+        let sheet = asset_of(positions, triangles);
+        let cut = cut(&sheet, &plane([1.0, 0.0, 0.0], 1.3));
+        assert_eq!(cut.outlines.len(), 1);
+        assert!(!cut.outlines[0].capped);
+        assert_ne!(cut.outlines[0].points.first(), cut.outlines[0].points.last());
+        assert!(cut.caps.is_empty());
+        // A closed tube (a cylinder without ends) is open too: its circle is not capped.
+        let tube = asset_of(
+            (0..16)
+                .flat_map(|i| {
+                    let a = i as f32 / 16.0 * std::f32::consts::TAU;
+                    [[a.cos(), a.sin(), 0.0], [a.cos(), a.sin(), 2.0]]
+                })
+                .collect(),
+            (0..16u32)
+                .flat_map(|i| {
+                    let (a, b, c, d) = (2 * i, 2 * ((i + 1) % 16), 2 * ((i + 1) % 16) + 1, 2 * i + 1);
+                    [[a, b, c], [a, c, d]]
+                })
+                .collect(),
+        );
+        let cut = super::cut(&tube, &plane([0.0, 0.0, 1.0], 1.0));
+        assert_eq!(cut.outlines.len(), 1);
+        assert!(!cut.outlines[0].capped, "a tube has no material inside");
+        assert_eq!(cut.outlines[0].points.first(), cut.outlines[0].points.last());
+        assert!(cut.caps.is_empty());
+    }
+
+    #[test]
+    fn the_outlines_are_the_plane_triangle_intersections_of_an_f64_reference() {
+        let fandisk = crate::bake_file(
+            std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/assets/fandisk.obj")),
+            &BakeOptions::DEFAULT,
+        )
+        .expect("fandisk")
+        .asset;
+        let lo = glam::Vec3::from(fandisk.header.bounds_min).as_dvec3();
+        let hi = glam::Vec3::from(fandisk.header.bounds_max).as_dvec3();
+        let size = (hi - lo).length();
+        for (normal, at) in [([1.0, 0.0, 0.0], 0.37), ([0.3, 1.0, -0.2], 0.52), ([0.0, 0.0, 1.0], 0.61)] {
+            let n = DVec3::from(normal).normalize();
+            let centre = lo + (hi - lo) * at;
+            let plane = Plane {
+                normal: n.to_array(),
+                offset: n.dot(centre),
+            };
+            // The reference: each triangle's segment, by the textbook formula.
+            let mut reference: Vec<[DVec3; 2]> = Vec::new();
+            for t in 0..fandisk.triangle_count() {
+                let p: [DVec3; 3] = std::array::from_fn(|k| {
+                    glam::Vec3::from(fandisk.render_positions[fandisk.mesh_indices.get(3 * t + k) as usize])
+                        .as_dvec3()
+                });
+                let d = p.map(|q| n.dot(q) - plane.offset);
+                let mut ends = Vec::new();
+                for k in 0..3 {
+                    let (a, b) = (k, (k + 1) % 3);
+                    if (d[a] < 0.0) != (d[b] < 0.0) {
+                        ends.push(p[a] + (p[b] - p[a]) * (d[a] / (d[a] - d[b])));
+                    }
+                }
+                if let [a, b] = ends[..] {
+                    reference.push([a, b]);
+                }
+            }
+            let cut = cut(&fandisk, &plane);
+            let segments: Vec<[DVec3; 2]> = cut
+                .outlines
+                .iter()
+                .flat_map(|o| o.points.windows(2).map(|w| [w[0], w[1]]))
+                .collect();
+            assert_eq!(segments.len(), reference.len(), "{normal:?}");
+            let tolerance = 1e-6 * size;
+            let near = |x: &[DVec3; 2], y: &[DVec3; 2]| {
+                (x[0].distance(y[0]) < tolerance && x[1].distance(y[1]) < tolerance)
+                    || (x[0].distance(y[1]) < tolerance && x[1].distance(y[0]) < tolerance)
+            };
+            for s in &segments {
+                assert!(reference.iter().any(|r| near(s, r)), "{normal:?}: {s:?}");
+            }
+            for r in &reference {
+                assert!(segments.iter().any(|s| near(s, r)), "{normal:?}: {r:?}");
+            }
+            // The fandisk is closed: every outline is a capped loop.
+            assert!(cut.outlines.iter().all(|o| o.capped), "{normal:?}");
+        }
+    }
+
+    #[test]
+    fn hatch_lines_are_spaced_and_inside_the_cut_face() {
+        let cut = cut(&unit_cube(), &plane([1.0, 0.0, 0.0], 0.5));
+        // Looking along -x at the cut face: frame x = model -z... any map that is a similarity.
+        let project = |p: DVec3| Some(DVec2::new(100.0 * p.y + 10.0, 100.0 * p.z + 20.0));
+        let lines = hatch(&cut.outlines, 7.0, 45.0, project);
+        assert!(!lines.is_empty());
+        let direction = DVec2::new(1.0, -1.0).normalize();
+        let across = DVec2::new(direction.y, -direction.x);
+        let mut offsets: Vec<f64> = Vec::new();
+        for [a, b] in &lines {
+            for p in [a, b] {
+                assert!((9.999..=110.001).contains(&p.x) && (19.999..=120.001).contains(&p.y), "{p}");
+            }
+            assert!(((*b - *a).normalize().dot(direction)).abs() > 1.0 - 1e-9);
+            offsets.push(a.dot(across));
+        }
+        offsets.sort_by(f64::total_cmp);
+        for pair in offsets.windows(2) {
+            assert!((pair[1] - pair[0] - 7.0).abs() < 1e-9, "{pair:?}");
+        }
+        // The square's diagonal across the lines, 100 sqrt 2, holds 20 of them.
+        assert_eq!(lines.len(), 20);
+        assert!(hatch(&cut.outlines, 0.0, 45.0, project).is_empty());
+    }
+}

@@ -184,12 +184,8 @@ fn every_piece_agrees_with_a_brute_force_ray_cast_at_its_midpoint() {
     let bounds = [asset.header.bounds_min, asset.header.bounds_max];
     let view = orbit(bounds, 35.0, 25.0, [640, 480]);
     let scene = Scene::new(&asset, &view);
-    let occluders = Occluders::new(&asset, &scene);
-    let triangles: Vec<[DVec3; 3]> = occluders
-        .triangles
-        .iter()
-        .map(|t| t.map(Vec3::as_dvec3))
-        .collect();
+    let occluders = Occluders::new(render_triangles(&asset), &scene);
+    let triangles: Vec<[DVec3; 3]> = occluders.triangles.clone();
     let eye = scene.eye.truncate();
     let lines = candidate_lines(&asset, &scene, &DrawOptions::DEFAULT);
     let (mut checked, mut disagree) = (0, Vec::new());
@@ -217,4 +213,57 @@ fn every_piece_agrees_with_a_brute_force_ray_cast_at_its_midpoint() {
         disagree.len(),
         &disagree[..disagree.len().min(5)]
     );
+}
+
+#[test]
+fn a_section_drawing_of_the_fandisk_outlines_its_cut_in_closed_loops_over_a_hatch() {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../fixtures/meshes/fandisk.obj");
+    let asset = crate::bake_file(&path, &BakeOptions::DEFAULT)
+        .expect("fandisk")
+        .asset;
+    let bounds = [asset.header.bounds_min, asset.header.bounds_max];
+    let centre = (Vec3::from(bounds[0]) + Vec3::from(bounds[1])).as_dvec3() * 0.5;
+    // From +z, looking at the cut face of a plane facing the eye: the cut is in front of all
+    // that is kept, so none of it is hidden.
+    let view = orbit(bounds, 0.0, 0.0, [640, 480]);
+    let plane = Plane {
+        normal: [0.0, 0.0, 1.0],
+        offset: centre.z,
+    };
+    let options = DrawOptions::DEFAULT
+        .with_hidden(true)
+        .with_section(Some(plane));
+    let drawing = hidden_lines(&asset, &view, &options);
+    let cut = lines_of(&drawing, LineClass::Cut, false);
+    assert!(!cut.is_empty());
+    for outline in cut {
+        assert!(outline.len() > 3 && outline.first() == outline.last(), "{outline:?}");
+    }
+    assert!(lines_of(&drawing, LineClass::Cut, true).is_empty());
+    assert!(!lines_of(&drawing, LineClass::Hatch, false).is_empty());
+    // Hatches are never drawn hidden, and nothing is drawn from the half cut away.
+    assert!(drawing.lines.iter().all(|s| !(s.class == LineClass::Hatch && s.hidden)));
+    let whole = hidden_lines(&asset, &view, &DrawOptions::DEFAULT.with_hidden(true));
+    let count = |d: &Drawing| d.lines.iter().map(|s| s.polylines.len()).sum::<usize>();
+    assert_ne!(count(&whole), 0);
+    assert!(lines_of(&whole, LineClass::Cut, false).is_empty());
+    // Seen from behind (the kept side), the same cut is hidden by what is kept where it is not
+    // on the kept half's silhouette (about half of it, drawn and checked by eye), and its
+    // hatch, facing away, is not drawn.
+    let behind = orbit(bounds, 180.0, 0.0, [640, 480]);
+    let drawing = hidden_lines(&asset, &behind, &options);
+    let length = |lines: &[Vec<[f32; 2]>]| -> f64 {
+        lines
+            .iter()
+            .flat_map(|l| l.windows(2))
+            .map(|w| f64::from((w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1])))
+            .sum()
+    };
+    let (seen, hidden) = (
+        length(lines_of(&drawing, LineClass::Cut, false)),
+        length(lines_of(&drawing, LineClass::Cut, true)),
+    );
+    assert!(hidden > 0.3 * (seen + hidden) && seen > 0.3 * (seen + hidden), "{seen} seen, {hidden} hidden");
+    assert!(lines_of(&drawing, LineClass::Hatch, false).is_empty());
 }

@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use anyhow::bail;
 use chamfer_preprocess::draw::dxf::write_dxf;
-use chamfer_preprocess::draw::paper::{PaperOptions, mm_per_px};
+use chamfer_preprocess::draw::paper::{PaperOptions, mm_per_px, section_note};
 use chamfer_preprocess::draw::pdf::write_pdf;
 use chamfer_preprocess::draw::style::DrawingStyle;
 use chamfer_preprocess::draw::svg::write_svg;
@@ -212,8 +212,9 @@ pub fn run(args: &DrawArgs) -> anyhow::Result<()> {
     let paper = paper
         .with_title(name)
         .with_description(format!(
-            "Camera: chamfer render {}.",
-            args.camera.describe()
+            "Camera: chamfer render {}.{}",
+            args.camera.describe(),
+            planes.first().map(section_note).unwrap_or_default()
         ));
     let start = Instant::now();
     write_atomically(&args.output, |out| match format {
