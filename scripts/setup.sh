@@ -7,8 +7,9 @@ set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup-cli.sh"
 
 # clang and llvm (llvm-ar) compile meshoptimizer's encoders for the web page's wasm32 build; chromium
-# runs the page's tests (headless, WebGPU on its own SwiftShader).
-apt_install_missing clang llvm chromium
+# runs the page's tests (headless, WebGPU on its own SwiftShader); qpdf checks the section drawings'
+# PDFs (preprocess/tests/draw.rs).
+apt_install_missing clang llvm chromium qpdf
 
 # Node.js and npm, for the Khronos glTF-Validator (scripts/validate-gltf.sh), only when npm is missing
 # (a nodesource nodejs already brings npm and must not be mixed with Debian's npm package).

@@ -3,7 +3,7 @@
 //! lines appear only with `--hidden`.
 
 use chamfer_tests::fixture;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output};
 
 fn chamfer(args: &[&str]) -> Output {
@@ -136,10 +136,10 @@ fn compare(input: &str, camera: &[&str]) -> Compared {
     let svg = std::fs::read_to_string(out("lines.svg")).expect("svg");
     let hidden_svg = std::fs::read_to_string(out("hidden.svg")).expect("svg");
     assert!(
-        !svg.contains("class=\"hidden\""),
-        "no hidden group without --hidden"
+        !svg.contains("<g id=\"hidden\""),
+        "no hidden layer without --hidden"
     );
-    assert!(hidden_svg.contains("<g class=\"hidden\">"));
+    assert!(hidden_svg.contains("<g id=\"hidden\""));
     let lines: Vec<bool> = rasterize(&svg, w, h).iter().map(|&a| a > 96).collect();
     let with_hidden: Vec<bool> = rasterize(&hidden_svg, w, h)
         .iter()
@@ -308,16 +308,18 @@ fn intersections_are_drawn_in_their_own_group() {
         .concat(),
     );
     let svg = std::fs::read_to_string(&out).expect("svg");
+    // Visible intersections are the `intersection` layer; hidden ones, the `hidden` layer's
+    // intersection group.
     let group = |hidden: bool| -> usize {
         let part = svg
             .split(if hidden {
-                "<g class=\"hidden\">"
+                "<g id=\"hidden\""
             } else {
-                "<g class=\"visible\">"
+                "<g id=\"intersection\""
             })
             .nth(1)
-            .expect("group");
-        let part = part.split("</g>\n  </g>").next().unwrap_or(part);
+            .expect("layer");
+        let part = part.split("\n  </g>").next().unwrap_or(part);
         part.split("<g class=\"intersection\">")
             .nth(1)
             .and_then(|g| g.split("</g>").next())
@@ -357,4 +359,151 @@ fn bad_input_is_one_line_naming_the_file_and_writes_nothing() {
         .output()
         .expect("run");
     assert!(!run.status.success() && !out.exists());
+}
+
+/// Runs chamfer expecting failure; its stderr.
+fn refused(args: &[&str]) -> String {
+    let run = Command::new(env!("CARGO_BIN_EXE_chamfer"))
+        .args(args)
+        .output()
+        .expect("run chamfer");
+    assert!(!run.status.success(), "chamfer {args:?} succeeded");
+    String::from_utf8_lossy(&run.stderr).into_owned()
+}
+
+/// The polylines of an SVG layer (`<g id="role">`), as point lists in millimetres.
+fn layer_polylines(svg: &str, role: &str) -> Vec<Vec<[f64; 2]>> {
+    let Some(part) = svg.split(&format!("<g id=\"{role}\"")).nth(1) else {
+        return Vec::new();
+    };
+    let part = part.split("\n  </g>").next().unwrap_or(part);
+    part.split("points=\"")
+        .skip(1)
+        .map(|p| {
+            p.split('"')
+                .next()
+                .unwrap_or_default()
+                .split(' ')
+                .map(|xy| {
+                    let mut c = xy.split(',').map(|v| v.parse::<f64>().expect("number"));
+                    [c.next().expect("x"), c.next().expect("y")]
+                })
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn a_section_drawing_has_the_cut_square_hatched_and_a_layer_per_role_in_svg_pdf_and_dxf() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let cube = fixture("shapes/cube.obj");
+    // The unit cube cut at x = 0.5, seen from the cut-away side straight on, orthographic.
+    let view = [
+        "--section", "1,0,0,0.5", "--azimuth", "90", "--elevation", "0", "--ortho", "--hidden",
+        "--scale", "50", "--cut-color", "1,0,0",
+    ];
+    let out = |name: &str| dir.path().join(name);
+    for name in ["cube.svg", "cube.pdf", "cube.dxf"] {
+        chamfer(&[&["draw", path_str(&cube), "-o", path_str(&out(name))][..], &view].concat());
+    }
+    let svg = std::fs::read_to_string(out("cube.svg")).expect("svg");
+    // The cut outline: one closed loop around the 50 x 50 mm square.
+    let cut = layer_polylines(&svg, "cut");
+    assert_eq!(cut.len(), 1, "{svg}");
+    let outline = &cut[0];
+    assert_eq!(outline.first(), outline.last());
+    let (lo, hi) = outline.iter().fold(([f64::MAX; 2], [f64::MIN; 2]), |(lo, hi), p| {
+        ([lo[0].min(p[0]), lo[1].min(p[1])], [hi[0].max(p[0]), hi[1].max(p[1])])
+    });
+    assert!(((hi[0] - lo[0]) - 50.0).abs() < 0.01 && ((hi[1] - lo[1]) - 50.0).abs() < 0.01);
+    // Hatch lines at 45 degrees, 2 mm apart, inside the square.
+    let hatch = layer_polylines(&svg, "hatch");
+    let diagonal = 50.0 * 2f64.sqrt();
+    assert!((hatch.len() as f64 - diagonal / 2.0).abs() <= 1.0, "{} hatch lines", hatch.len());
+    for line in &hatch {
+        let [a, b] = [line[0], line[line.len() - 1]];
+        assert!((((b[1] - a[1]) / (b[0] - a[0])).abs() - 1.0).abs() < 1e-3);
+        for p in [a, b] {
+            assert!(p[0] >= lo[0] - 1e-3 && p[0] <= hi[0] + 1e-3);
+            assert!(p[1] >= lo[1] - 1e-3 && p[1] <= hi[1] + 1e-3);
+        }
+    }
+    assert!(svg.contains("#cut polyline { stroke: #ff0000; stroke-width: 0.7; }"), "{svg}");
+    assert!(svg.contains("Section: --section 1,0,0,0.5."));
+    // Nothing of the half cut away: the whole drawing is the square (the x = 0 face behind it is
+    // hidden, its edges on the hidden layer... which lie under the cut outline here).
+    for role in ["silhouette", "visible", "boundary"] {
+        for line in layer_polylines(&svg, role) {
+            for p in line {
+                assert!(p[0] >= lo[0] - 1e-3 && p[0] <= hi[0] + 1e-3, "{role}");
+            }
+        }
+    }
+
+    // The PDF is well formed (qpdf), one page of the same size, a layer per role.
+    let pdf = out("cube.pdf");
+    let check = Command::new("qpdf")
+        .args(["--check", path_str(&pdf)])
+        .output()
+        .expect("qpdf is installed by scripts/setup.sh");
+    assert!(check.status.success(), "{}", String::from_utf8_lossy(&check.stdout));
+    let bytes = std::fs::read(&pdf).expect("pdf");
+    let text = String::from_utf8_lossy(&bytes);
+    for role in ["cut", "hatch", "hidden"] {
+        assert!(text.contains(&format!("/Type /OCG\n  /Name ({role})")), "{role}: {text}");
+    }
+    assert!(text.contains("/OCProperties"));
+    assert!(text.contains("1 0 0 RG"), "the cut's colour");
+
+    // The DXF names its layers and units (read back in full by ezdxf in the Python tests).
+    let dxf = std::fs::read_to_string(out("cube.dxf")).expect("dxf");
+    assert!(dxf.contains("$INSUNITS\r\n 70\r\n     4") || dxf.contains("$INSUNITS"), "{dxf}");
+    for role in ["cut", "hatch"] {
+        assert!(dxf.contains(&format!("\n{role}\r\n")) || dxf.contains(&format!("\n{role}\n")), "{role}");
+    }
+    assert!(dxf.matches("LWPOLYLINE").count() >= 1 + hatch.len());
+}
+
+#[test]
+fn line_styles_come_from_a_style_file_and_the_flags_override_it() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let cube = fixture("shapes/cube.obj");
+    let style = dir.path().join("roles.json");
+    std::fs::write(&style, r#"{"hidden_dash": [1, 2], "cut_weight": 1.4, "hatch_spacing": 0}"#)
+        .expect("style");
+    let svg = dir.path().join("out.svg");
+    let base = ["draw", path_str(&cube), "-o", path_str(&svg), "--section", "1,0,0,0.5", "--hidden"];
+    chamfer(&[&base[..], &["--style", path_str(&style), "--cut-weight", "0.9"]].concat());
+    let text = std::fs::read_to_string(&svg).expect("svg");
+    assert!(text.contains("#hidden polyline { stroke: #000000; stroke-width: 0.25; stroke-dasharray: 1 2; }"));
+    assert!(text.contains("#cut polyline { stroke: #000000; stroke-width: 0.9; }"));
+    assert!(layer_polylines(&text, "hatch").is_empty(), "hatch_spacing 0: no hatch");
+
+    // Bad styles, sections and outputs are refused by name, and nothing is written.
+    std::fs::remove_file(&svg).expect("remove");
+    std::fs::write(&style, r#"{"cut_wieght": 1}"#).expect("style");
+    let message = refused(&[&base[..], &["--style", path_str(&style)]].concat());
+    assert!(message.contains("roles.json") && message.contains("cut_wieght"), "{message}");
+    std::fs::write(&style, "{\"cut_dash\": [1]}").expect("style");
+    let message = refused(&[&base[..], &["--style", path_str(&style)]].concat());
+    assert!(message.contains("roles.json") && message.contains("cut_dash"), "{message}");
+    let message = refused(&[&base[..], &["--cut-color", "1,0"]].concat());
+    assert!(message.contains("--cut-color must be three numbers"), "{message}");
+    let message = refused(&[&base[..], &["--hidden-weight", "NaN"]].concat());
+    assert!(message.contains("--hidden-weight"), "{message}");
+    let bad_section = ["draw", path_str(&cube), "-o", path_str(&svg)];
+    let message = refused(&[&bad_section[..], &["--section", "1,0,0"]].concat());
+    assert!(message.contains("--section must be 1 to 6 planes"), "{message}");
+    let message = refused(&[&bad_section[..], &["--section", "0,0,0,1"]].concat());
+    assert!(message.contains("non-zero normal"), "{message}");
+    let message = refused(&[&bad_section[..], &["--section", "1,0,0,0,0,1,0,0"]].concat());
+    assert!(message.contains("one section plane"), "{message}");
+    let message = refused(&[&bad_section[..], &["--section-box", "0,0,0,1,1,1"]].concat());
+    assert!(message.contains("not a box"), "{message}");
+    let message = refused(&[&bad_section[..], &["--section", "a,b,c,d"]].concat());
+    assert!(message.contains("is not a number"), "{message}");
+    let png = dir.path().join("out.png");
+    let message = refused(&["draw", path_str(&cube), "-o", path_str(&png)]);
+    assert!(message.contains(".svg, .pdf or .dxf"), "{message}");
+    assert!(!svg.exists() && !png.exists());
 }

@@ -1,9 +1,10 @@
-//! Writing a [`Drawing`] as DXF (the `dxf` crate; AutoCAD R2000 text): one layer per line role,
+//! Writing a [`Drawing`] as DXF (the `dxf` crate; AutoCAD 2004 text, the first with true colours): one layer per line role,
 //! named after it, with a line type holding the role's dash pattern; each polyline an LWPOLYLINE on
 //! its role's layer (closed where it is a loop) in the role's colour (true colour) and line weight
 //! (the nearest of DXF's standard weights: the crate sets weights per entity, not per layer).
 //! Units are millimetres on paper ($INSUNITS 4, $MEASUREMENT metric), y up, the sheet's lower
-//! left corner at the origin.
+//! left corner at the origin. The header's dates are the Unix epoch and its GUIDs nil, so the
+//! output depends only on the drawing and the options.
 
 use std::io::{self, Write};
 
@@ -26,10 +27,20 @@ pub fn write_dxf(
     let Sheet { k, lo, hi } = Sheet::new(drawing, style, options);
     let to_paper = |p: [f32; 2]| (f64::from(p[0]) * k - lo[0], hi[1] - f64::from(p[1]) * k);
     let mut dxf = dxf::Drawing::new();
-    dxf.header.version = AcadVersion::R2000;
+    dxf.header.version = AcadVersion::R2004;
     dxf.header.default_drawing_units = Units::Millimeters;
     dxf.header.drawing_units = dxf::enums::DrawingUnits::Metric;
     dxf.header.project_name = options.title.clone();
+    // The same drawing gives the same file: no clock, no random GUIDs.
+    let epoch = chrono::DateTime::<chrono::Utc>::UNIX_EPOCH;
+    dxf.header.creation_date_universal = epoch;
+    dxf.header.update_date_universal = epoch;
+    if let Some(local) = chrono::TimeZone::from_local_datetime(&chrono::Local, &epoch.naive_utc()).earliest() {
+        dxf.header.creation_date = local;
+        dxf.header.update_date = local;
+    }
+    dxf.header.fingerprint_guid = uuid::Uuid::nil();
+    dxf.header.version_guid = uuid::Uuid::nil();
     for (role, sets) in layers(drawing) {
         let s = style.role(role);
         let line_type = if s.dash_mm.is_empty() {
@@ -57,7 +68,9 @@ pub fn write_dxf(
         dxf.add_layer(Layer {
             name: role.name().to_owned(),
             line_type_name: line_type,
-            color: Color::by_layer(),
+            // ACI 7 (black on paper, white on a dark screen) where the true colour is black,
+            // which DXF writers leave out as "unset".
+            color: Color::from_index(7),
             ..Layer::default()
         });
         let true_color = (r << 16) | (g << 8) | b;

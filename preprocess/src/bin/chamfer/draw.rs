@@ -114,6 +114,7 @@ fn line_style(args: &DrawArgs) -> anyhow::Result<DrawingStyle> {
         }
     };
     let flags = &args.style.0;
+    // Flags that differ from the defaults are set over the file's values.
     for entry in DrawingStyle::ENTRIES {
         if entry.is_given(flags) {
             if let Some(value) = entry.get(flags) {
@@ -121,13 +122,15 @@ fn line_style(args: &DrawArgs) -> anyhow::Result<DrawingStyle> {
             }
         }
     }
-    style.check().map_err(|e| {
-        let spelled = e.spelled(chamfer_runtime::schema::flag);
-        match &args.style_file {
-            Some(path) => anyhow::anyhow!("{}: {spelled}", path.display()),
-            None => anyhow::anyhow!(spelled),
-        }
-    })?;
+    // The flags alone first, so an error is spelled as the flag or the file's key it came from.
+    flags
+        .check()
+        .map_err(|e| anyhow::anyhow!(e.spelled(chamfer_runtime::schema::flag)))?;
+    if let Some(path) = &args.style_file {
+        style
+            .check()
+            .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    }
     Ok(style)
 }
 
