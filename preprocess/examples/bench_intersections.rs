@@ -8,7 +8,10 @@
 //! triangles, many intersecting pairs). Intersections: `find_intersections` on the welded mesh (the bake's step) against
 //! all pairs with a box test and the same exact pair test (`intersect_triangles`), on the small scenes
 //! where all pairs is feasible. Draw: `hidden_lines` plus the SVG (the `chamfer draw` default camera,
-//! 1024 x 768) of the baked asset. Times are medians.
+//! 1024 x 768) of the baked asset. Section drawings (issue 43): the same camera with hidden lines and a
+//! plane through the middle of the box along x, against the whole model's drawing with hidden lines
+//! (the baseline of the same run), and the section drawing written as SVG, PDF and DXF. Times are
+//! medians.
 
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -98,6 +101,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "\n| mesh | triangles | bake (with intersections) | draw: hidden lines | draw: SVG | lines | occlusion tests | polylines |"
     );
     println!("|---|---:|---:|---:|---:|---:|---:|---:|");
+    let mut sections = Vec::new();
     for (name, mesh) in &meshes {
         let start = Instant::now();
         let asset = bake(
@@ -133,8 +137,81 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             drawing.stats.lines,
             drawing.stats.occlusion_tests,
         );
+        sections.push((name.clone(), section_row(&asset, &camera, runs)?));
+    }
+    println!(
+        "\n| mesh | whole, hidden lines (baseline) | section, hidden lines | ratio | cut outlines | SVG | PDF | DXF |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|");
+    for (name, row) in sections {
+        println!("| {name} | {row} |");
     }
     Ok(())
+}
+
+/// The section drawing's times against the whole model's, and its writes.
+fn section_row(
+    asset: &chamfer_runtime::asset::Asset,
+    camera: &Camera,
+    runs: usize,
+) -> Result<String, Box<dyn std::error::Error>> {
+    let lo = Vec3::from(asset.header.bounds_min);
+    let hi = Vec3::from(asset.header.bounds_max);
+    let plane = chamfer_runtime::section::Plane {
+        normal: [1.0, 0.0, 0.0],
+        offset: f64::from((lo.x + hi.x) * 0.5),
+    };
+    let whole_options = DrawOptions::DEFAULT.with_hidden(true);
+    let section_options = whole_options.with_section(Some(plane));
+    let whole = median(runs, || {
+        let start = Instant::now();
+        let _ = hidden_lines(asset, camera, &whole_options);
+        start.elapsed()
+    });
+    let mut drawing = None;
+    let section = median(runs, || {
+        let start = Instant::now();
+        drawing = Some(hidden_lines(asset, camera, &section_options));
+        start.elapsed()
+    });
+    let drawing = drawing.ok_or("no run")?;
+    let outlines = drawing
+        .lines
+        .iter()
+        .filter(|s| s.class == chamfer_preprocess::draw::LineClass::Cut)
+        .map(|s| s.polylines.len())
+        .sum::<usize>();
+    let style = DrawingStyle::default();
+    let paper = PaperOptions::DEFAULT;
+    let mut writes = Vec::new();
+    type Writer = fn(
+        &chamfer_preprocess::draw::Drawing,
+        &DrawingStyle,
+        &PaperOptions,
+        &mut Vec<u8>,
+    ) -> std::io::Result<()>;
+    let writers: [Writer; 3] = [
+        |d, s, p, o| write_svg(d, s, p, o),
+        |d, s, p, o| chamfer_preprocess::draw::pdf::write_pdf(d, s, p, o),
+        |d, s, p, o| chamfer_preprocess::draw::dxf::write_dxf(d, s, p, o),
+    ];
+    for write in writers {
+        let mut bytes = Vec::new();
+        let time = median(runs, || {
+            bytes.clear();
+            let start = Instant::now();
+            let _ = write(&drawing, &style, &paper, &mut bytes);
+            start.elapsed()
+        });
+        writes.push(format!("{:.1} ms ({} kB)", ms(time), bytes.len() / 1000));
+    }
+    Ok(format!(
+        "{:.1} ms | {:.1} ms | {:.2}x | {outlines} | {}",
+        ms(whole),
+        ms(section),
+        section.as_secs_f64() / whole.as_secs_f64().max(1e-12),
+        writes.join(" | ")
+    ))
 }
 
 fn ms(d: Duration) -> f64 {

@@ -22,7 +22,9 @@ use std::time::Instant;
 
 use chamfer_preprocess::annotate::{GltfEdges, annotate_with};
 use chamfer_preprocess::compact::Meshopt;
-use chamfer_preprocess::draw::{Camera, DrawOptions, hidden_lines};
+use chamfer_preprocess::draw::paper::PaperOptions;
+use chamfer_preprocess::draw::style::DrawingStyle;
+use chamfer_preprocess::draw::{Camera, DrawOptions, dxf, hidden_lines, pdf, svg};
 use chamfer_preprocess::{
     BakeOptions, Companions, Limits, bake, bake_bytes, bake_with_companions, input, load,
 };
@@ -1048,7 +1050,104 @@ fn read_and_draw(path: &Path, bytes: &[u8]) -> bool {
         viewport: [256, 192],
     };
     hidden_lines(&read.asset, &view, &DrawOptions::DEFAULT.with_hidden(true));
+    // A section drawing through the middle (issue 43), written in every format.
+    let plane = chamfer_runtime::section::Plane {
+        normal: glam::DVec3::new(0.8, 0.5, 0.33).normalize().to_array(),
+        offset: glam::DVec3::new(0.8, 0.5, 0.33)
+            .normalize()
+            .dot(center.as_dvec3()),
+    };
+    let options = DrawOptions::DEFAULT
+        .with_hidden(true)
+        .with_section(Some(plane));
+    let drawing = hidden_lines(&read.asset, &view, &options);
+    write_every_format(&drawing, &DrawingStyle::default());
     true
+}
+
+/// The drawing as SVG, PDF and DXF, into memory (which cannot fail).
+fn write_every_format(drawing: &chamfer_preprocess::draw::Drawing, style: &DrawingStyle) {
+    let paper = PaperOptions::DEFAULT;
+    let mut out = Vec::new();
+    svg::write_svg(drawing, style, &paper, &mut out).expect("svg into memory");
+    pdf::write_pdf(drawing, style, &paper, &mut out).expect("pdf into memory");
+    dxf::write_dxf(drawing, style, &paper, &mut out).expect("dxf into memory");
+}
+
+/// What `chamfer draw --style FILE` does with a mutated style file: parse it, check it, and write
+/// a small section drawing with it in every format. True if the style was accepted.
+fn style_file(_: &Path, bytes: &[u8]) -> bool {
+    let Ok(text) = std::str::from_utf8(bytes) else {
+        return false;
+    };
+    let Ok(style) = serde_json::from_str::<DrawingStyle>(text) else {
+        return false;
+    };
+    if style.check().is_err() {
+        return false;
+    }
+    let drawing = style_drawing();
+    write_every_format(drawing, &style);
+    true
+}
+
+/// A section drawing of the unit cube with a line of every role but intersections, drawn once.
+fn style_drawing() -> &'static chamfer_preprocess::draw::Drawing {
+    static DRAWING: std::sync::OnceLock<chamfer_preprocess::draw::Drawing> =
+        std::sync::OnceLock::new();
+    DRAWING.get_or_init(|| {
+        let read = input::read_asset(&fixture("shapes/cube.obj"), &BakeOptions::DEFAULT)
+            .expect("the cube");
+        let view = Camera::orbit(
+            [read.asset.header.bounds_min, read.asset.header.bounds_max],
+            &chamfer_runtime::camera::Orbit::default(),
+            [128, 96],
+        );
+        let plane = chamfer_runtime::section::Plane {
+            normal: [1.0, 0.0, 0.0],
+            offset: 0.5,
+        };
+        hidden_lines(
+            &read.asset,
+            &view,
+            &DrawOptions::DEFAULT
+                .with_hidden(true)
+                .with_section(Some(plane)),
+        )
+    })
+}
+
+/// Style-file mutations: JSON values changed, keys and lines shuffled, and the style names.
+fn mutate_style(bytes: &mut Vec<u8>, rng: &mut Rng) {
+    if rng.below(2) == 0 {
+        if let Ok(mut document) = serde_json::from_slice::<Value>(bytes) {
+            mutate_json(&mut document, rng);
+            *bytes = document.to_string().into_bytes();
+            return;
+        }
+    }
+    mutate_text(
+        bytes,
+        rng,
+        &["cut_weight", "hidden_dash", "hatch_color", "[]", "[1e38, -1]", "NaN", "1e400", "\"x\""],
+    );
+}
+
+#[test]
+fn fuzz_style_file() {
+    let seeds = [
+        r#"{"cut_weight": 0.7, "hidden_dash": [3, 0.75], "hatch_spacing": 2}"#,
+        "{\n  \"cut_color\": [1, 0, 0],\n  \"hatch_angle\": 135,\n  \"visible_dash\": [1, 1, 2, 1]\n}",
+        r#"{"silhouette_weight": 0.5, "boundary_dash": [], "hidden_color": [0.5, 0.5, 0.5]}"#,
+    ]
+    .iter()
+    .enumerate()
+    .map(|(i, text)| Seed {
+        name: format!("style-{i}.json"),
+        bytes: text.as_bytes().to_vec(),
+    })
+    .collect();
+    run("style_file", 23, seeds, mutate_style, style_file);
 }
 
 /// What `chamfer render` reads before it draws: the mutated file as `render` reads it (baked

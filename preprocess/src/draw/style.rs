@@ -6,6 +6,8 @@
 //! for cut outlines, 0.5 for outlines, 0.35 for edges, 0.25 dashed (12 d dashes, 3 d gaps) for
 //! hidden lines, 0.18 for hatches (ISO 128-50).
 
+use std::path::{Path, PathBuf};
+
 use chamfer_runtime::schema::{Numbers, Schema, SchemaError};
 
 use super::LineClass;
@@ -231,6 +233,78 @@ impl DrawingStyle {
             dash_mm: dash.as_slice().iter().map(|&x| f64::from(x)).collect(),
         }
     }
+}
+
+/// The largest style file read.
+pub const MAX_STYLE_FILE: u64 = 1 << 20;
+
+/// Why a style file cannot be used; every message names the file.
+#[derive(Debug, thiserror::Error)]
+pub enum StyleFileError {
+    /// The file cannot be opened or read, or is not a regular file.
+    #[error("{}: cannot read the style file: {reason}", path.display())]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// What went wrong.
+        reason: String,
+    },
+    /// The file is larger than [`MAX_STYLE_FILE`].
+    #[error("{}: a style file is at most {MAX_STYLE_FILE} bytes", path.display())]
+    TooLarge {
+        /// The file.
+        path: PathBuf,
+    },
+    /// The file is not a JSON object of style entries (unknown keys are refused).
+    #[error("{}: not a style file: {message}", path.display())]
+    Parse {
+        /// The file.
+        path: PathBuf,
+        /// serde_json's message (with the line and column).
+        message: String,
+    },
+    /// A value the style's check refuses.
+    #[error("{}: {error}", path.display())]
+    Invalid {
+        /// The file.
+        path: PathBuf,
+        /// The entry and why.
+        error: SchemaError,
+    },
+}
+
+/// Reads a JSON style file: an object with [`DrawingStyle`]'s entry names as keys (those left out
+/// keep their defaults), checked. Reads at most [`MAX_STYLE_FILE`] bytes of a regular file.
+pub fn read_style_file(path: &Path) -> Result<DrawingStyle, StyleFileError> {
+    use std::io::Read;
+    let read_error = |reason: String| StyleFileError::Read {
+        path: path.to_owned(),
+        reason,
+    };
+    let metadata = std::fs::metadata(path).map_err(|e| read_error(e.to_string()))?;
+    if !metadata.is_file() {
+        return Err(read_error("not a regular file".into()));
+    }
+    let file = std::fs::File::open(path).map_err(|e| read_error(e.to_string()))?;
+    let mut bytes = Vec::new();
+    file.take(MAX_STYLE_FILE + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| read_error(e.to_string()))?;
+    if bytes.len() as u64 > MAX_STYLE_FILE {
+        return Err(StyleFileError::TooLarge {
+            path: path.to_owned(),
+        });
+    }
+    let style: DrawingStyle =
+        serde_json::from_slice(&bytes).map_err(|e| StyleFileError::Parse {
+            path: path.to_owned(),
+            message: e.to_string(),
+        })?;
+    style.check().map_err(|error| StyleFileError::Invalid {
+        path: path.to_owned(),
+        error,
+    })?;
+    Ok(style)
 }
 
 #[cfg(test)]

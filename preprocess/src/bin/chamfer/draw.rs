@@ -8,7 +8,7 @@ use anyhow::bail;
 use chamfer_preprocess::draw::dxf::write_dxf;
 use chamfer_preprocess::draw::paper::{PaperOptions, mm_per_px, section_note};
 use chamfer_preprocess::draw::pdf::write_pdf;
-use chamfer_preprocess::draw::style::DrawingStyle;
+use chamfer_preprocess::draw::style::{DrawingStyle, read_style_file};
 use chamfer_preprocess::draw::svg::write_svg;
 use chamfer_preprocess::draw::{DrawOptions, Hatch, LineClass, hidden_lines, units_per_px};
 use chamfer_preprocess::write::{ensure_not_an_input, write_atomically};
@@ -88,30 +88,12 @@ enum Format {
     Dxf,
 }
 
-/// The largest style file read.
-const MAX_STYLE_FILE: u64 = 1 << 20;
-
 /// The style file's styles, with the flags that differ from the defaults over them.
 fn line_style(args: &DrawArgs) -> anyhow::Result<DrawingStyle> {
     use chamfer_runtime::schema::Schema;
     let mut style = match &args.style_file {
         None => DrawingStyle::default(),
-        Some(path) => {
-            let name = path.display();
-            let file = std::fs::File::open(path)
-                .map_err(|e| anyhow::anyhow!("{name}: cannot read the style file: {e}"))?;
-            let mut text = String::new();
-            std::io::Read::read_to_string(
-                &mut std::io::Read::take(file, MAX_STYLE_FILE + 1),
-                &mut text,
-            )
-            .map_err(|e| anyhow::anyhow!("{name}: cannot read the style file: {e}"))?;
-            if text.len() as u64 > MAX_STYLE_FILE {
-                bail!("{name}: a style file is at most {MAX_STYLE_FILE} bytes");
-            }
-            serde_json::from_str(&text)
-                .map_err(|e| anyhow::anyhow!("{name}: not a style file: {e}"))?
-        }
+        Some(path) => read_style_file(path)?,
     };
     let flags = &args.style.0;
     // Flags that differ from the defaults are set over the file's values.
