@@ -14,8 +14,10 @@
 //! share one of its vertices) through rounding; intervals closer than 1e-3 px are merged, and pieces
 //! shorter than 1e-2 px dropped.
 
+#[cfg(feature = "vector-drawings")]
 pub mod dxf;
 pub mod paper;
+#[cfg(feature = "vector-drawings")]
 pub mod pdf;
 pub mod section;
 pub mod style;
