@@ -125,7 +125,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let drawing = drawing.ok_or("no run")?;
         let mut svg = Vec::new();
         let start = Instant::now();
-        write_svg(&drawing, &DrawingStyle::default(), &PaperOptions::DEFAULT, &mut svg)?;
+        write_svg(
+            &drawing,
+            &DrawingStyle::default(),
+            &PaperOptions::DEFAULT,
+            &mut svg,
+        )?;
         let written = start.elapsed();
         let polylines: usize = drawing.lines.iter().map(|s| s.polylines.len()).sum();
         println!(

@@ -399,12 +399,28 @@ fn a_section_drawing_has_the_cut_square_hatched_and_a_layer_per_role_in_svg_pdf_
     let cube = fixture("shapes/cube.obj");
     // The unit cube cut at x = 0.5, seen from the cut-away side straight on, orthographic.
     let view = [
-        "--section", "1,0,0,0.5", "--azimuth", "90", "--elevation", "0", "--ortho", "--hidden",
-        "--scale", "50", "--cut-color", "1,0,0",
+        "--section",
+        "1,0,0,0.5",
+        "--azimuth",
+        "90",
+        "--elevation",
+        "0",
+        "--ortho",
+        "--hidden",
+        "--scale",
+        "50",
+        "--cut-color",
+        "1,0,0",
     ];
     let out = |name: &str| dir.path().join(name);
     for name in ["cube.svg", "cube.pdf", "cube.dxf"] {
-        chamfer(&[&["draw", path_str(&cube), "-o", path_str(&out(name))][..], &view].concat());
+        chamfer(
+            &[
+                &["draw", path_str(&cube), "-o", path_str(&out(name))][..],
+                &view,
+            ]
+            .concat(),
+        );
     }
     let svg = std::fs::read_to_string(out("cube.svg")).expect("svg");
     // The cut outline: one closed loop around the 50 x 50 mm square.
@@ -412,14 +428,23 @@ fn a_section_drawing_has_the_cut_square_hatched_and_a_layer_per_role_in_svg_pdf_
     assert_eq!(cut.len(), 1, "{svg}");
     let outline = &cut[0];
     assert_eq!(outline.first(), outline.last());
-    let (lo, hi) = outline.iter().fold(([f64::MAX; 2], [f64::MIN; 2]), |(lo, hi), p| {
-        ([lo[0].min(p[0]), lo[1].min(p[1])], [hi[0].max(p[0]), hi[1].max(p[1])])
-    });
+    let (lo, hi) = outline
+        .iter()
+        .fold(([f64::MAX; 2], [f64::MIN; 2]), |(lo, hi), p| {
+            (
+                [lo[0].min(p[0]), lo[1].min(p[1])],
+                [hi[0].max(p[0]), hi[1].max(p[1])],
+            )
+        });
     assert!(((hi[0] - lo[0]) - 50.0).abs() < 0.01 && ((hi[1] - lo[1]) - 50.0).abs() < 0.01);
     // Hatch lines at 45 degrees, 2 mm apart, inside the square.
     let hatch = layer_polylines(&svg, "hatch");
     let diagonal = 50.0 * 2f64.sqrt();
-    assert!((hatch.len() as f64 - diagonal / 2.0).abs() <= 1.0, "{} hatch lines", hatch.len());
+    assert!(
+        (hatch.len() as f64 - diagonal / 2.0).abs() <= 1.0,
+        "{} hatch lines",
+        hatch.len()
+    );
     for line in &hatch {
         let [a, b] = [line[0], line[line.len() - 1]];
         assert!((((b[1] - a[1]) / (b[0] - a[0])).abs() - 1.0).abs() < 1e-3);
@@ -428,7 +453,10 @@ fn a_section_drawing_has_the_cut_square_hatched_and_a_layer_per_role_in_svg_pdf_
             assert!(p[1] >= lo[1] - 1e-3 && p[1] <= hi[1] + 1e-3);
         }
     }
-    assert!(svg.contains("#cut polyline { stroke: #ff0000; stroke-width: 0.7; }"), "{svg}");
+    assert!(
+        svg.contains("#cut polyline { stroke: #ff0000; stroke-width: 0.7; }"),
+        "{svg}"
+    );
     assert!(svg.contains("Section: --section 1,0,0,0.5."));
     // Nothing of the half cut away: the whole drawing is the square (the x = 0 face behind it is
     // hidden, its edges on the hidden layer... which lie under the cut outline here).
@@ -446,20 +474,33 @@ fn a_section_drawing_has_the_cut_square_hatched_and_a_layer_per_role_in_svg_pdf_
         .args(["--check", path_str(&pdf)])
         .output()
         .expect("qpdf is installed by scripts/setup.sh");
-    assert!(check.status.success(), "{}", String::from_utf8_lossy(&check.stdout));
+    assert!(
+        check.status.success(),
+        "{}",
+        String::from_utf8_lossy(&check.stdout)
+    );
     let bytes = std::fs::read(&pdf).expect("pdf");
     let text = String::from_utf8_lossy(&bytes);
     for role in ["cut", "hatch", "hidden"] {
-        assert!(text.contains(&format!("/Type /OCG\n  /Name ({role})")), "{role}: {text}");
+        assert!(
+            text.contains(&format!("/Type /OCG\n  /Name ({role})")),
+            "{role}: {text}"
+        );
     }
     assert!(text.contains("/OCProperties"));
     assert!(text.contains("1 0 0 RG"), "the cut's colour");
 
     // The DXF names its layers and units (read back in full by ezdxf in the Python tests).
     let dxf = std::fs::read_to_string(out("cube.dxf")).expect("dxf");
-    assert!(dxf.contains("$INSUNITS\r\n 70\r\n     4") || dxf.contains("$INSUNITS"), "{dxf}");
+    assert!(
+        dxf.contains("$INSUNITS\r\n 70\r\n     4") || dxf.contains("$INSUNITS"),
+        "{dxf}"
+    );
     for role in ["cut", "hatch"] {
-        assert!(dxf.contains(&format!("\n{role}\r\n")) || dxf.contains(&format!("\n{role}\n")), "{role}");
+        assert!(
+            dxf.contains(&format!("\n{role}\r\n")) || dxf.contains(&format!("\n{role}\n")),
+            "{role}"
+        );
     }
     assert!(dxf.matches("LWPOLYLINE").count() >= 1 + hatch.len());
 }
@@ -469,31 +510,65 @@ fn line_styles_come_from_a_style_file_and_the_flags_override_it() {
     let dir = tempfile::tempdir().expect("tempdir");
     let cube = fixture("shapes/cube.obj");
     let style = dir.path().join("roles.json");
-    std::fs::write(&style, r#"{"hidden_dash": [1, 2], "cut_weight": 1.4, "hatch_spacing": 0}"#)
-        .expect("style");
+    std::fs::write(
+        &style,
+        r#"{"hidden_dash": [1, 2], "cut_weight": 1.4, "hatch_spacing": 0}"#,
+    )
+    .expect("style");
     let svg = dir.path().join("out.svg");
-    let base = ["draw", path_str(&cube), "-o", path_str(&svg), "--section", "1,0,0,0.5", "--hidden"];
-    chamfer(&[&base[..], &["--style", path_str(&style), "--cut-weight", "0.9"]].concat());
+    let base = [
+        "draw",
+        path_str(&cube),
+        "-o",
+        path_str(&svg),
+        "--section",
+        "1,0,0,0.5",
+        "--hidden",
+    ];
+    chamfer(
+        &[
+            &base[..],
+            &["--style", path_str(&style), "--cut-weight", "0.9"],
+        ]
+        .concat(),
+    );
     let text = std::fs::read_to_string(&svg).expect("svg");
-    assert!(text.contains("#hidden polyline { stroke: #000000; stroke-width: 0.25; stroke-dasharray: 1 2; }"));
+    assert!(text.contains(
+        "#hidden polyline { stroke: #000000; stroke-width: 0.25; stroke-dasharray: 1 2; }"
+    ));
     assert!(text.contains("#cut polyline { stroke: #000000; stroke-width: 0.9; }"));
-    assert!(layer_polylines(&text, "hatch").is_empty(), "hatch_spacing 0: no hatch");
+    assert!(
+        layer_polylines(&text, "hatch").is_empty(),
+        "hatch_spacing 0: no hatch"
+    );
 
     // Bad styles, sections and outputs are refused by name, and nothing is written.
     std::fs::remove_file(&svg).expect("remove");
     std::fs::write(&style, r#"{"cut_wieght": 1}"#).expect("style");
     let message = refused(&[&base[..], &["--style", path_str(&style)]].concat());
-    assert!(message.contains("roles.json") && message.contains("cut_wieght"), "{message}");
+    assert!(
+        message.contains("roles.json") && message.contains("cut_wieght"),
+        "{message}"
+    );
     std::fs::write(&style, "{\"cut_dash\": [1]}").expect("style");
     let message = refused(&[&base[..], &["--style", path_str(&style)]].concat());
-    assert!(message.contains("roles.json") && message.contains("cut_dash"), "{message}");
+    assert!(
+        message.contains("roles.json") && message.contains("cut_dash"),
+        "{message}"
+    );
     let message = refused(&[&base[..], &["--cut-color", "1,0"]].concat());
-    assert!(message.contains("--cut-color must be three numbers"), "{message}");
+    assert!(
+        message.contains("--cut-color must be three numbers"),
+        "{message}"
+    );
     let message = refused(&[&base[..], &["--hidden-weight", "NaN"]].concat());
     assert!(message.contains("--hidden-weight"), "{message}");
     let bad_section = ["draw", path_str(&cube), "-o", path_str(&svg)];
     let message = refused(&[&bad_section[..], &["--section", "1,0,0"]].concat());
-    assert!(message.contains("--section must be 1 to 6 planes"), "{message}");
+    assert!(
+        message.contains("--section must be 1 to 6 planes"),
+        "{message}"
+    );
     let message = refused(&[&bad_section[..], &["--section", "0,0,0,1"]].concat());
     assert!(message.contains("non-zero normal"), "{message}");
     let message = refused(&[&bad_section[..], &["--section", "1,0,0,0,0,1,0,0"]].concat());

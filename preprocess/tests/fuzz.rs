@@ -1129,7 +1129,16 @@ fn mutate_style(bytes: &mut Vec<u8>, rng: &mut Rng) {
     mutate_text(
         bytes,
         rng,
-        &["cut_weight", "hidden_dash", "hatch_color", "[]", "[1e38, -1]", "NaN", "1e400", "\"x\""],
+        &[
+            "cut_weight",
+            "hidden_dash",
+            "hatch_color",
+            "[]",
+            "[1e38, -1]",
+            "NaN",
+            "1e400",
+            "\"x\"",
+        ],
     );
 }
 

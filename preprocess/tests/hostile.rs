@@ -1622,16 +1622,56 @@ fn hostile_style_files_are_refused_naming_the_file() {
     use chamfer_preprocess::draw::style::{MAX_STYLE_FILE, read_style_file};
     let dir = tempfile::tempdir().expect("tempdir");
     let cases: Vec<(&str, Vec<u8>, &str)> = vec![
-        ("truncated.json", br#"{"cut_weight": 0.7, "hidden_dash": [3,"#.to_vec(), "not a style file"),
-        ("wrong-type.json", br#"{"cut_weight": "wide"}"#.to_vec(), "not a style file"),
-        ("wrong-shape.json", br#"{"cut_color": [[1, 0, 0]]}"#.to_vec(), "not a style file"),
-        ("short-colour.json", br#"{"cut_color": [1, 0]}"#.to_vec(), "cut_color must be three numbers"),
-        ("odd-dashes.json", br#"{"hidden_dash": [1, 2, 3]}"#.to_vec(), "hidden_dash must be dash,gap pairs"),
-        ("too-many.json", format!("{{\"hidden_dash\": [{}]}}", vec!["1"; 25].join(",")).into_bytes(), "at most 24 numbers"),
-        ("huge.json", br#"{"cut_weight": 1e39}"#.to_vec(), "cut_weight must be 0.01 to 10"),
-        ("negative.json", br#"{"hatch_spacing": -2}"#.to_vec(), "hatch_spacing must be 0 to 1000"),
-        ("unknown.json", br#"{"cut_wieght": 1}"#.to_vec(), "unknown field"),
-        ("not-utf8.json", vec![b'{', 0xff, 0xfe, b'}'], "not a style file"),
+        (
+            "truncated.json",
+            br#"{"cut_weight": 0.7, "hidden_dash": [3,"#.to_vec(),
+            "not a style file",
+        ),
+        (
+            "wrong-type.json",
+            br#"{"cut_weight": "wide"}"#.to_vec(),
+            "not a style file",
+        ),
+        (
+            "wrong-shape.json",
+            br#"{"cut_color": [[1, 0, 0]]}"#.to_vec(),
+            "not a style file",
+        ),
+        (
+            "short-colour.json",
+            br#"{"cut_color": [1, 0]}"#.to_vec(),
+            "cut_color must be three numbers",
+        ),
+        (
+            "odd-dashes.json",
+            br#"{"hidden_dash": [1, 2, 3]}"#.to_vec(),
+            "hidden_dash must be dash,gap pairs",
+        ),
+        (
+            "too-many.json",
+            format!("{{\"hidden_dash\": [{}]}}", vec!["1"; 25].join(",")).into_bytes(),
+            "at most 24 numbers",
+        ),
+        (
+            "huge.json",
+            br#"{"cut_weight": 1e39}"#.to_vec(),
+            "cut_weight must be 0.01 to 10",
+        ),
+        (
+            "negative.json",
+            br#"{"hatch_spacing": -2}"#.to_vec(),
+            "hatch_spacing must be 0 to 1000",
+        ),
+        (
+            "unknown.json",
+            br#"{"cut_wieght": 1}"#.to_vec(),
+            "unknown field",
+        ),
+        (
+            "not-utf8.json",
+            vec![b'{', 0xff, 0xfe, b'}'],
+            "not a style file",
+        ),
         ("array.json", b"[1, 2]".to_vec(), "not a style file"),
     ];
     for (name, bytes, expected) in cases {
@@ -1639,7 +1679,10 @@ fn hostile_style_files_are_refused_naming_the_file() {
         let error = within(10, move || read_style_file(&path))
             .expect_err(name)
             .to_string();
-        assert!(error.contains(name) && error.contains(expected), "{name}: {error}");
+        assert!(
+            error.contains(name) && error.contains(expected),
+            "{name}: {error}"
+        );
         assert_eq!(error.lines().count(), 1, "{error}");
     }
     // Over the size limit: refused after reading at most one byte past it.
@@ -1649,18 +1692,27 @@ fn hostile_style_files_are_refused_naming_the_file() {
         vec![b' '; usize::try_from(MAX_STYLE_FILE).expect("fits") + 10],
     );
     let error = read_style_file(&big).expect_err("big").to_string();
-    assert!(error.contains("big.json") && error.contains("at most"), "{error}");
+    assert!(
+        error.contains("big.json") && error.contains("at most"),
+        "{error}"
+    );
     // Not a regular file: a folder, and a FIFO (which would block a plain read).
     let folder = dir.path().join("folder.json");
     std::fs::create_dir(&folder).expect("mkdir");
     let error = read_style_file(&folder).expect_err("folder").to_string();
-    assert!(error.contains("folder.json") && error.contains("not a regular file"), "{error}");
+    assert!(
+        error.contains("folder.json") && error.contains("not a regular file"),
+        "{error}"
+    );
     let fifo = dir.path().join("fifo.json");
     mkfifo(&fifo);
     let error = within(10, move || read_style_file(&fifo))
         .expect_err("fifo")
         .to_string();
-    assert!(error.contains("fifo.json") && error.contains("not a regular file"), "{error}");
+    assert!(
+        error.contains("fifo.json") && error.contains("not a regular file"),
+        "{error}"
+    );
     let missing = dir.path().join("missing.json");
     let error = read_style_file(&missing).expect_err("missing").to_string();
     assert!(error.contains("missing.json"), "{error}");

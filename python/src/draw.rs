@@ -11,9 +11,9 @@ use chamfer_preprocess::draw::pdf::write_pdf;
 use chamfer_preprocess::draw::style::DrawingStyle;
 use chamfer_preprocess::draw::svg::write_svg;
 use chamfer_preprocess::draw::{Camera, DrawOptions, Hatch, LineClass, hidden_lines, units_per_px};
-use chamfer_runtime::section::Section;
 use chamfer_preprocess::write::{ensure_not_an_input, write_atomically};
 use chamfer_runtime::asset::Asset;
+use chamfer_runtime::section::Section;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
 
@@ -163,7 +163,9 @@ impl Request {
             options::group_from_kwargs::<Section>(py, "section", Some(&options))?;
         let (style, options) =
             options::group_from_kwargs::<DrawingStyle>(py, "drawing_style", Some(&options))?;
-        section.check().map_err(|e| errors::options(e.to_string()))?;
+        section
+            .check()
+            .map_err(|e| errors::options(e.to_string()))?;
         style.check().map_err(|e| errors::options(e.to_string()))?;
         if section.section_box.is_some() {
             return Err(errors::options(

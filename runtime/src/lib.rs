@@ -18,5 +18,5 @@ pub mod highlight;
 #[cfg(feature = "render")]
 pub mod render;
 pub mod scene;
-pub mod section;
 pub mod schema;
+pub mod section;

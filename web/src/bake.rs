@@ -105,7 +105,7 @@ pub fn svg_of(
         &PaperOptions::default().with_title(name),
         &mut svg,
     )
-        .map_err(|e| format!("{name}: cannot write the drawing: {e}"))?;
+    .map_err(|e| format!("{name}: cannot write the drawing: {e}"))?;
     String::from_utf8(svg).map_err(|e| format!("{name}: the drawing is not text: {e}"))
 }
 

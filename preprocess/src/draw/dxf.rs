@@ -13,9 +13,9 @@ use dxf::enums::{AcadVersion, Units};
 use dxf::tables::{Layer, LineType};
 use dxf::{Color, LwPolylineVertex};
 
+use super::Drawing;
 use super::paper::{PaperOptions, Sheet, layers};
 use super::style::DrawingStyle;
-use super::Drawing;
 
 /// Writes `drawing` as DXF.
 pub fn write_dxf(
@@ -35,7 +35,9 @@ pub fn write_dxf(
     let epoch = chrono::DateTime::<chrono::Utc>::UNIX_EPOCH;
     dxf.header.creation_date_universal = epoch;
     dxf.header.update_date_universal = epoch;
-    if let Some(local) = chrono::TimeZone::from_local_datetime(&chrono::Local, &epoch.naive_utc()).earliest() {
+    if let Some(local) =
+        chrono::TimeZone::from_local_datetime(&chrono::Local, &epoch.naive_utc()).earliest()
+    {
         dxf.header.creation_date = local;
         dxf.header.update_date = local;
     }
@@ -118,6 +120,10 @@ fn standard_lineweight(mm: f64) -> i16 {
     let wanted = mm * 100.0;
     LINEWEIGHTS
         .into_iter()
-        .min_by(|&a, &b| (f64::from(a) - wanted).abs().total_cmp(&(f64::from(b) - wanted).abs()))
+        .min_by(|&a, &b| {
+            (f64::from(a) - wanted)
+                .abs()
+                .total_cmp(&(f64::from(b) - wanted).abs())
+        })
         .unwrap_or(0)
 }

@@ -490,10 +490,8 @@ struct Occluders {
 
 impl Occluders {
     fn new(triangles: Vec<[DVec3; 3]>, scene: &Scene) -> Self {
-        let screen: Vec<Option<Aabb>> = triangles
-            .par_iter()
-            .map(|t| screen_box(scene, t))
-            .collect();
+        let screen: Vec<Option<Aabb>> =
+            triangles.par_iter().map(|t| screen_box(scene, t)).collect();
         let everywhere = (0..triangles.len() as u32)
             .filter(|&t| screen[t as usize].is_none())
             .collect();

@@ -1,6 +1,6 @@
-//! Writing a [`Drawing`] as a one-page vector PDF (pdf-writer): the page is the sheet of
-//! [`Sheet`] in PostScript points (1 mm = 72/25.4 pt, so printing at 100 % keeps the scale), and
-//! each line role is an optional content group (a layer a PDF viewer lists and can hide) holding
+//! Writing a [`Drawing`] as a one-page vector PDF (pdf-writer): the page is the sheet that fits
+//! the lines (as the SVG's view box), in PostScript points (1 mm = 72/25.4 pt, so printing at
+//! 100 % keeps the scale), and each line role is an optional content group (a layer a PDF viewer lists and can hide) holding
 //! its polylines, stroked with the role's weight, colour and dashes, round caps and joins.
 
 use std::io::{self, Write};
@@ -8,9 +8,9 @@ use std::io::{self, Write};
 use pdf_writer::types::{LineCapStyle, LineJoinStyle};
 use pdf_writer::{Content, Name, Pdf, Rect, Ref, TextStr};
 
+use super::Drawing;
 use super::paper::{PaperOptions, Sheet, layers};
 use super::style::DrawingStyle;
-use super::Drawing;
 
 /// Points per millimetre.
 const PT_PER_MM: f64 = 72.0 / 25.4;
@@ -44,9 +44,15 @@ pub fn write_pdf(
         let mut root = pdf.catalog(catalog);
         root.pages(tree);
         let mut properties = root.insert(Name(b"OCProperties")).dict();
-        properties.insert(Name(b"OCGs")).array().items(groups.iter().copied());
+        properties
+            .insert(Name(b"OCGs"))
+            .array()
+            .items(groups.iter().copied());
         let mut config = properties.insert(Name(b"D")).dict();
-        config.insert(Name(b"Order")).array().items(groups.iter().copied());
+        config
+            .insert(Name(b"Order"))
+            .array()
+            .items(groups.iter().copied());
         config.pair(Name(b"BaseState"), Name(b"ON"));
     }
     pdf.pages(tree).kids([page]).count(1);

@@ -55,7 +55,10 @@ pub fn cut(asset: &Asset, plane: &Plane) -> Cut {
             })
         })
         .collect();
-    let distance: Vec<f64> = points.iter().map(|p| plane.distance(p.to_array())).collect();
+    let distance: Vec<f64> = points
+        .iter()
+        .map(|p| plane.distance(p.to_array()))
+        .collect();
     let cut_away = |v: u32| distance[v as usize] >= 0.0;
     let triangles: Vec<[u32; 3]> = (0..asset.triangle_count())
         .map(|t| std::array::from_fn(|k| vertex_of[asset.mesh_indices.get(3 * t + k) as usize]))
@@ -104,11 +107,7 @@ pub fn cut(asset: &Asset, plane: &Plane) -> Cut {
     let outlines: Vec<Outline> = crate::polylines::chain(crossing_points.len(), &segments)
         .into_iter()
         .map(|chain| {
-            let capped = chain.closed
-                && chain
-                    .points
-                    .iter()
-                    .all(|&p| crossing_capped[p as usize]);
+            let capped = chain.closed && chain.points.iter().all(|&p| crossing_capped[p as usize]);
             let mut points: Vec<DVec3> = chain
                 .points
                 .iter()
@@ -144,7 +143,8 @@ fn edge_point(points: &[DVec3], distance: &[f64], kept: u32, away: u32) -> DVec3
 /// Per triangle: whether its connected piece of surface is closed (every edge of the piece has
 /// exactly two triangles).
 fn closed_pieces(triangles: &[[u32; 3]]) -> Vec<bool> {
-    let mut edges: HashMap<(u32, u32), (u32, u32)> = HashMap::with_capacity(3 * triangles.len() / 2);
+    let mut edges: HashMap<(u32, u32), (u32, u32)> =
+        HashMap::with_capacity(3 * triangles.len() / 2);
     let mut parent: Vec<u32> = (0..triangles.len() as u32).collect();
     fn root(parent: &mut [u32], mut t: u32) -> u32 {
         while parent[t as usize] != t {
@@ -205,7 +205,15 @@ fn triangulate_caps(outlines: &[Outline], [u, v]: [DVec3; 2]) -> Vec<[DVec3; 3]>
     let rings: Vec<(&Outline, Vec<DVec2>)> = outlines
         .iter()
         .filter(|o| o.capped && o.points.len() >= 4)
-        .map(|o| (o, o.points.iter().map(|p| DVec2::new(p.dot(u), p.dot(v))).collect()))
+        .map(|o| {
+            (
+                o,
+                o.points
+                    .iter()
+                    .map(|p| DVec2::new(p.dot(u), p.dot(v)))
+                    .collect(),
+            )
+        })
         .collect();
     // Nesting: which rings contain each ring's first point.
     let containers: Vec<Vec<usize>> = rings
@@ -229,7 +237,10 @@ fn triangulate_caps(outlines: &[Outline], [u, v]: [DVec3; 2]) -> Vec<[DVec3; 3]>
             .filter(|&j| containers[j].len() == depth + 1 && containers[j].contains(&i))
             .collect();
         let mut points3: Vec<DVec3> = outer.points[..outer.points.len() - 1].to_vec();
-        let mut points2: Vec<[f64; 2]> = ring[..ring.len() - 1].iter().map(|p| p.to_array()).collect();
+        let mut points2: Vec<[f64; 2]> = ring[..ring.len() - 1]
+            .iter()
+            .map(|p| p.to_array())
+            .collect();
         let mut starts: Vec<u32> = Vec::new();
         for &h in &holes {
             starts.push(points2.len() as u32);
@@ -360,7 +371,9 @@ mod tests {
             triangles,
             ..Mesh::default()
         };
-        bake(mesh, "test", &BakeOptions::DEFAULT).expect("bakes").asset
+        bake(mesh, "test", &BakeOptions::DEFAULT)
+            .expect("bakes")
+            .asset
     }
 
     fn plane(normal: [f64; 3], offset: f64) -> Plane {
@@ -433,7 +446,12 @@ mod tests {
             let corner = DVec3::new(0.5, corner[0], corner[1]);
             assert!(outline.points.contains(&corner), "{corner}");
         }
-        assert!(outline.points.iter().all(|p| p.y == 0.0 || p.y == 1.0 || p.z == 0.0 || p.z == 1.0));
+        assert!(
+            outline
+                .points
+                .iter()
+                .all(|p| p.y == 0.0 || p.y == 1.0 || p.z == 0.0 || p.z == 1.0)
+        );
         assert!((area(&cut.caps) - 1.0).abs() < 1e-12);
         // The kept half: the x = 0 face and half of each of four sides.
         assert!((area(&cut.kept) - 3.0).abs() < 1e-12);
@@ -455,7 +473,8 @@ mod tests {
         // Across the axis: an annulus, its inner outline a hole.
         let across = cut(&shape, &plane([0.0, 0.0, 1.0], 0.0));
         assert_eq!(across.outlines.len(), 2);
-        let ring = std::f64::consts::PI * (f64::from(major + minor).powi(2) - f64::from(major - minor).powi(2));
+        let ring = std::f64::consts::PI
+            * (f64::from(major + minor).powi(2) - f64::from(major - minor).powi(2));
         let capped = area(&across.caps);
         assert!((capped / ring - 1.0).abs() < 0.01, "{capped} vs {ring}");
     }
@@ -468,15 +487,23 @@ mod tests {
             .collect();
         let id = |i: u32, j: u32| j * (n + 1) + i;
         let triangles = (0..n)
-            .flat_map(|j| (0..n).flat_map(move |i| {
-                [[id(i, j), id(i + 1, j), id(i + 1, j + 1)], [id(i, j), id(i + 1, j + 1), id(i, j + 1)]]
-            }))
+            .flat_map(|j| {
+                (0..n).flat_map(move |i| {
+                    [
+                        [id(i, j), id(i + 1, j), id(i + 1, j + 1)],
+                        [id(i, j), id(i + 1, j + 1), id(i, j + 1)],
+                    ]
+                })
+            })
             .collect();
         let sheet = asset_of(positions, triangles);
         let cut = cut(&sheet, &plane([1.0, 0.0, 0.0], 1.3));
         assert_eq!(cut.outlines.len(), 1);
         assert!(!cut.outlines[0].capped);
-        assert_ne!(cut.outlines[0].points.first(), cut.outlines[0].points.last());
+        assert_ne!(
+            cut.outlines[0].points.first(),
+            cut.outlines[0].points.last()
+        );
         assert!(cut.caps.is_empty());
         // A closed tube (a cylinder without ends) is open too: its circle is not capped.
         let tube = asset_of(
@@ -488,7 +515,8 @@ mod tests {
                 .collect(),
             (0..16u32)
                 .flat_map(|i| {
-                    let (a, b, c, d) = (2 * i, 2 * ((i + 1) % 16), 2 * ((i + 1) % 16) + 1, 2 * i + 1);
+                    let (a, b, c, d) =
+                        (2 * i, 2 * ((i + 1) % 16), 2 * ((i + 1) % 16) + 1, 2 * i + 1);
                     [[a, b, c], [a, c, d]]
                 })
                 .collect(),
@@ -496,7 +524,10 @@ mod tests {
         let cut = super::cut(&tube, &plane([0.0, 0.0, 1.0], 1.0));
         assert_eq!(cut.outlines.len(), 1);
         assert!(!cut.outlines[0].capped, "a tube has no material inside");
-        assert_eq!(cut.outlines[0].points.first(), cut.outlines[0].points.last());
+        assert_eq!(
+            cut.outlines[0].points.first(),
+            cut.outlines[0].points.last()
+        );
         assert!(cut.caps.is_empty());
     }
 
@@ -511,7 +542,11 @@ mod tests {
         let lo = glam::Vec3::from(fandisk.header.bounds_min).as_dvec3();
         let hi = glam::Vec3::from(fandisk.header.bounds_max).as_dvec3();
         let size = (hi - lo).length();
-        for (normal, at) in [([1.0, 0.0, 0.0], 0.37), ([0.3, 1.0, -0.2], 0.52), ([0.0, 0.0, 1.0], 0.61)] {
+        for (normal, at) in [
+            ([1.0, 0.0, 0.0], 0.37),
+            ([0.3, 1.0, -0.2], 0.52),
+            ([0.0, 0.0, 1.0], 0.61),
+        ] {
             let n = DVec3::from(normal).normalize();
             let centre = lo + (hi - lo) * at;
             let plane = Plane {
@@ -522,8 +557,10 @@ mod tests {
             let mut reference: Vec<[DVec3; 2]> = Vec::new();
             for t in 0..fandisk.triangle_count() {
                 let p: [DVec3; 3] = std::array::from_fn(|k| {
-                    glam::Vec3::from(fandisk.render_positions[fandisk.mesh_indices.get(3 * t + k) as usize])
-                        .as_dvec3()
+                    glam::Vec3::from(
+                        fandisk.render_positions[fandisk.mesh_indices.get(3 * t + k) as usize],
+                    )
+                    .as_dvec3()
                 });
                 let d = p.map(|q| n.dot(q) - plane.offset);
                 let mut ends = Vec::new();
@@ -572,7 +609,10 @@ mod tests {
         let mut offsets: Vec<f64> = Vec::new();
         for [a, b] in &lines {
             for p in [a, b] {
-                assert!((9.999..=110.001).contains(&p.x) && (19.999..=120.001).contains(&p.y), "{p}");
+                assert!(
+                    (9.999..=110.001).contains(&p.x) && (19.999..=120.001).contains(&p.y),
+                    "{p}"
+                );
             }
             assert!(((*b - *a).normalize().dot(direction)).abs() > 1.0 - 1e-9);
             offsets.push(a.dot(across));

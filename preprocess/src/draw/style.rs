@@ -178,7 +178,9 @@ pub struct RoleStyle {
 impl RoleStyle {
     /// The colour as `#rrggbb`.
     pub fn hex(&self) -> String {
-        let [r, g, b] = self.color.map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8);
+        let [r, g, b] = self
+            .color
+            .map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8);
         format!("#{r:02x}{g:02x}{b:02x}")
     }
 }
@@ -220,10 +222,22 @@ impl DrawingStyle {
         let (weight, color, dash): (f32, &Numbers, &Numbers) = match role {
             Role::Cut => (self.cut_weight, &self.cut_color, &self.cut_dash),
             Role::Hatch => (self.hatch_weight, &self.hatch_color, &self.hatch_dash),
-            Role::Silhouette => (self.silhouette_weight, &self.silhouette_color, &self.silhouette_dash),
-            Role::Boundary => (self.boundary_weight, &self.boundary_color, &self.boundary_dash),
+            Role::Silhouette => (
+                self.silhouette_weight,
+                &self.silhouette_color,
+                &self.silhouette_dash,
+            ),
+            Role::Boundary => (
+                self.boundary_weight,
+                &self.boundary_color,
+                &self.boundary_dash,
+            ),
             Role::Visible => (self.visible_weight, &self.visible_color, &self.visible_dash),
-            Role::Intersection => (self.intersection_weight, &self.intersection_color, &self.intersection_dash),
+            Role::Intersection => (
+                self.intersection_weight,
+                &self.intersection_color,
+                &self.intersection_dash,
+            ),
             Role::Hidden => (self.hidden_weight, &self.hidden_color, &self.hidden_dash),
         };
         let c = color.as_slice();
@@ -327,12 +341,22 @@ mod tests {
             cut_dash: Numbers::from_array([1.0]),
             ..style
         };
-        assert!(odd.check().expect_err("odd").to_string().contains("cut_dash"));
+        assert!(
+            odd.check()
+                .expect_err("odd")
+                .to_string()
+                .contains("cut_dash")
+        );
         let grey = DrawingStyle {
             hatch_color: Numbers::from_array([0.5, 0.5]),
             ..style
         };
-        assert!(grey.check().expect_err("two").to_string().contains("hatch_color"));
+        assert!(
+            grey.check()
+                .expect_err("two")
+                .to_string()
+                .contains("hatch_color")
+        );
         let bright = DrawingStyle {
             hatch_color: Numbers::from_array([0.5, 0.5, 2.0]),
             ..style

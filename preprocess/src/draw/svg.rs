@@ -15,8 +15,9 @@ use super::{Drawing, LineClass};
 /// The style block: each role's weight, colour and dashes, in millimetres, the drawing's user
 /// units.
 fn style_rules(style: &DrawingStyle) -> String {
-    let mut rules =
-        String::from("    polyline { fill: none; stroke-linecap: round; stroke-linejoin: round; }\n");
+    let mut rules = String::from(
+        "    polyline { fill: none; stroke-linecap: round; stroke-linejoin: round; }\n",
+    );
     for role in Role::ALL {
         let s = style.role(role);
         let dash = if s.dash_mm.is_empty() {

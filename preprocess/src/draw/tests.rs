@@ -238,12 +238,20 @@ fn a_section_drawing_of_the_fandisk_outlines_its_cut_in_closed_loops_over_a_hatc
     let cut = lines_of(&drawing, LineClass::Cut, false);
     assert!(!cut.is_empty());
     for outline in cut {
-        assert!(outline.len() > 3 && outline.first() == outline.last(), "{outline:?}");
+        assert!(
+            outline.len() > 3 && outline.first() == outline.last(),
+            "{outline:?}"
+        );
     }
     assert!(lines_of(&drawing, LineClass::Cut, true).is_empty());
     assert!(!lines_of(&drawing, LineClass::Hatch, false).is_empty());
     // Hatches are never drawn hidden, and nothing is drawn from the half cut away.
-    assert!(drawing.lines.iter().all(|s| !(s.class == LineClass::Hatch && s.hidden)));
+    assert!(
+        drawing
+            .lines
+            .iter()
+            .all(|s| !(s.class == LineClass::Hatch && s.hidden))
+    );
     let whole = hidden_lines(&asset, &view, &DrawOptions::DEFAULT.with_hidden(true));
     let count = |d: &Drawing| d.lines.iter().map(|s| s.polylines.len()).sum::<usize>();
     assert_ne!(count(&whole), 0);
@@ -264,6 +272,9 @@ fn a_section_drawing_of_the_fandisk_outlines_its_cut_in_closed_loops_over_a_hatc
         length(lines_of(&drawing, LineClass::Cut, false)),
         length(lines_of(&drawing, LineClass::Cut, true)),
     );
-    assert!(hidden > 0.3 * (seen + hidden) && seen > 0.3 * (seen + hidden), "{seen} seen, {hidden} hidden");
+    assert!(
+        hidden > 0.3 * (seen + hidden) && seen > 0.3 * (seen + hidden),
+        "{seen} seen, {hidden} hidden"
+    );
     assert!(lines_of(&drawing, LineClass::Hatch, false).is_empty());
 }

@@ -194,13 +194,11 @@ pub fn run(args: &DrawArgs) -> anyhow::Result<()> {
         || args.input.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
     );
-    let paper = paper
-        .with_title(name)
-        .with_description(format!(
-            "Camera: chamfer render {}.{}",
-            args.camera.describe(),
-            planes.first().map(section_note).unwrap_or_default()
-        ));
+    let paper = paper.with_title(name).with_description(format!(
+        "Camera: chamfer render {}.{}",
+        args.camera.describe(),
+        planes.first().map(section_note).unwrap_or_default()
+    ));
     let start = Instant::now();
     write_atomically(&args.output, |out| match format {
         Format::Svg => write_svg(&drawing, &style, &paper, out),

@@ -5,9 +5,9 @@
 use chamfer_preprocess::BakeSettings;
 use chamfer_preprocess::draw::style::DrawingStyle;
 use chamfer_runtime::camera::Orbit;
-use chamfer_runtime::section::Section;
 use chamfer_runtime::render::{StyleSettings, Technique};
 use chamfer_runtime::schema::{Entry, Kind, Numbers, Schema, Value, flag};
+use chamfer_runtime::section::Section;
 use clap::error::ErrorKind;
 use clap::{Arg, ArgAction, ArgMatches, Args, Command, FromArgMatches, value_parser};
 
