@@ -577,6 +577,8 @@ fn line_styles_come_from_a_style_file_and_the_flags_override_it() {
     assert!(message.contains("not a box"), "{message}");
     let message = refused(&[&bad_section[..], &["--section", "a,b,c,d"]].concat());
     assert!(message.contains("is not a number"), "{message}");
+    let message = refused(&[&bad_section[..], &["--scale", "1:0"]].concat());
+    assert!(message.contains("--scale: a scale is"), "{message}");
     let png = dir.path().join("out.png");
     let message = refused(&["draw", path_str(&cube), "-o", path_str(&png)]);
     assert!(message.contains(".svg, .pdf or .dxf"), "{message}");

@@ -187,7 +187,8 @@ def draw_svg(
     height: int = 768,
     hidden: bool = False,
     classes: Optional[Sequence[str]] = None,
-    scale: Optional[float] = None,
+    scale: Optional[Union[float, str]] = None,
+    units: str = "mm",
     title: Optional[str] = None,
     **options: Unpack[DrawOptions],
 ) -> str: ...
@@ -199,7 +200,8 @@ def draw_pdf(
     height: int = 768,
     hidden: bool = False,
     classes: Optional[Sequence[str]] = None,
-    scale: Optional[float] = None,
+    scale: Optional[Union[float, str]] = None,
+    units: str = "mm",
     title: Optional[str] = None,
     **options: Unpack[DrawOptions],
 ) -> bytes: ...
@@ -211,7 +213,8 @@ def draw_dxf(
     height: int = 768,
     hidden: bool = False,
     classes: Optional[Sequence[str]] = None,
-    scale: Optional[float] = None,
+    scale: Optional[Union[float, str]] = None,
+    units: str = "mm",
     title: Optional[str] = None,
     **options: Unpack[DrawOptions],
 ) -> str: ...

@@ -6,7 +6,7 @@
 use std::path::PathBuf;
 
 use chamfer_preprocess::draw::dxf::write_dxf;
-use chamfer_preprocess::draw::paper::{PaperOptions, section_note};
+use chamfer_preprocess::draw::paper::{ModelUnit, PaperOptions, parse_scale, section_note};
 use chamfer_preprocess::draw::pdf::write_pdf;
 use chamfer_preprocess::draw::style::DrawingStyle;
 use chamfer_preprocess::draw::svg::write_svg;
@@ -26,7 +26,8 @@ use crate::{errors, options};
 /// `source` is an Asset, a `.chamfer` file, or a mesh file (baked first, with intersection
 /// edges, and the bake options as for bake()). `classes` picks the line classes (contour,
 /// boundary, marked, crease, intersection, cut, hatch; default all), `hidden` also draws the
-/// hidden parts (dashed), `scale` is paper millimetres per model unit (default 96 dpi), `title`
+/// hidden parts (dashed), `scale` is paper millimetres per model unit (a number, default 96 dpi)
+/// or a ratio paper:real (`"1:50"`) of model lengths in `units` (mm, cm, m, in, ft), `title`
 /// defaults to the file's name (or the asset's source). When `output` is given the drawing is
 /// also written there atomically. The interpreter is released while drawing.
 ///
@@ -48,7 +49,7 @@ use crate::{errors, options};
 #[pyfunction]
 #[pyo3(signature = (
     source, output = None, *, width = 1024, height = 768, hidden = false, classes = None,
-    scale = None, title = None, **options
+    scale = None, units = "mm", title = None, **options
 ))]
 #[allow(clippy::too_many_arguments)]
 pub fn draw_svg(
@@ -59,10 +60,12 @@ pub fn draw_svg(
     height: u32,
     hidden: bool,
     classes: Option<Vec<String>>,
-    scale: Option<f64>,
+    scale: Option<&Bound<'_, PyAny>>,
+    units: &str,
     title: Option<String>,
     options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<String> {
+    let scale = read_scale(scale, units)?;
     let request = Request::new(py, [width, height], hidden, classes, scale, title, options)?;
     let svg = request.draw(py, source, output, Format::Svg)?;
     // write_svg writes Rust strings: UTF-8.
@@ -75,7 +78,7 @@ pub fn draw_svg(
 #[pyfunction]
 #[pyo3(signature = (
     source, output = None, *, width = 1024, height = 768, hidden = false, classes = None,
-    scale = None, title = None, **options
+    scale = None, units = "mm", title = None, **options
 ))]
 #[allow(clippy::too_many_arguments)]
 pub fn draw_pdf<'py>(
@@ -86,10 +89,12 @@ pub fn draw_pdf<'py>(
     height: u32,
     hidden: bool,
     classes: Option<Vec<String>>,
-    scale: Option<f64>,
+    scale: Option<&Bound<'_, PyAny>>,
+    units: &str,
     title: Option<String>,
     options: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyBytes>> {
+    let scale = read_scale(scale, units)?;
     let request = Request::new(py, [width, height], hidden, classes, scale, title, options)?;
     let pdf = request.draw(py, source, output, Format::Pdf)?;
     Ok(PyBytes::new(py, &pdf))
@@ -100,7 +105,7 @@ pub fn draw_pdf<'py>(
 #[pyfunction]
 #[pyo3(signature = (
     source, output = None, *, width = 1024, height = 768, hidden = false, classes = None,
-    scale = None, title = None, **options
+    scale = None, units = "mm", title = None, **options
 ))]
 #[allow(clippy::too_many_arguments)]
 pub fn draw_dxf(
@@ -111,13 +116,38 @@ pub fn draw_dxf(
     height: u32,
     hidden: bool,
     classes: Option<Vec<String>>,
-    scale: Option<f64>,
+    scale: Option<&Bound<'_, PyAny>>,
+    units: &str,
     title: Option<String>,
     options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<String> {
+    let scale = read_scale(scale, units)?;
     let request = Request::new(py, [width, height], hidden, classes, scale, title, options)?;
     let dxf = request.draw(py, source, output, Format::Dxf)?;
     Ok(String::from_utf8_lossy(&dxf).into_owned())
+}
+
+/// `scale` (a number or a ratio text) as paper millimetres per model unit.
+fn read_scale(scale: Option<&Bound<'_, PyAny>>, units: &str) -> PyResult<Option<f64>> {
+    let unit = ModelUnit::named(units).map_err(|e| errors::options(format!("units: {e}")))?;
+    let Some(scale) = scale else {
+        return Ok(None);
+    };
+    let text = if let Ok(text) = scale.extract::<String>() {
+        text
+    } else if scale.is_instance_of::<pyo3::types::PyBool>() {
+        return Err(errors::options(
+            "scale must be a number or a ratio like \"1:50\"".into(),
+        ));
+    } else {
+        let number: f64 = scale.extract().map_err(|_| {
+            errors::options("scale must be a number or a ratio like \"1:50\"".into())
+        })?;
+        number.to_string()
+    };
+    parse_scale(&text, unit)
+        .map(Some)
+        .map_err(|e| errors::options(format!("scale: {e}")))
 }
 
 #[derive(Clone, Copy)]
@@ -183,11 +213,6 @@ impl Request {
         }
         // Checked whatever the source: a misspelt keyword is an error even where nothing is baked.
         let bake_options = options::from_kwargs(Some(&options))?.with_intersections(true);
-        if scale.is_some_and(|s| !(s.is_finite() && s > 0.0)) {
-            return Err(errors::options(
-                "scale must be a positive number of millimetres per model unit".into(),
-            ));
-        }
         let classes = match classes {
             None => LineClass::ALL.to_vec(),
             Some(names) => names

@@ -163,3 +163,19 @@ def test_every_section_and_style_entry_is_a_keyword_that_draws_what_chamfer_draw
         # Styles of roles this cut has no line of (boundary, intersection) change only the
         # style block; every entry changes the document.
         assert drawn != default, entry["name"]
+
+
+def test_a_scale_ratio_is_the_scale_in_millimetres_of_the_model_unit(cli, tmp_path):
+    """`--scale 1:50 --units m` is 20 mm per model unit, in the CLI and in Python."""
+    mesh = SHAPES / "cube.obj"
+    cli.run("draw", mesh, "-o", tmp_path / "ratio.svg", "--scale", "1:50", "--units", "m")
+    cli.run("draw", mesh, "-o", tmp_path / "mm.svg", "--scale", "20")
+    expected = (tmp_path / "mm.svg").read_text()
+    assert (tmp_path / "ratio.svg").read_text() == expected
+    assert chamfer.draw_svg(mesh, scale="1:50", units="m") == expected
+    assert chamfer.draw_svg(mesh, scale=20) == expected
+    assert chamfer.draw_svg(mesh, scale="2:5", units="cm") == chamfer.draw_svg(mesh, scale=4.0)
+    for scale, units, message in [("1:0", "mm", "scale"), (-2.0, "mm", "scale"), (True, "mm", "scale"),
+                                  ("1:50", "yd", "unknown unit")]:
+        with pytest.raises(chamfer.OptionsError, match=message):
+            chamfer.draw_svg(mesh, scale=scale, units=units)

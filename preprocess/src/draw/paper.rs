@@ -147,3 +147,95 @@ pub fn section_note(plane: &chamfer_runtime::section::Plane) -> String {
     let [x, y, z] = plane.normal.map(|c| c as f32);
     format!(" Section: --section {x},{y},{z},{}.", plane.offset as f32)
 }
+
+/// What one model unit is, for scales written as ratios (`1:50`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ModelUnit {
+    /// Millimetres (3MF's default, and STL's by convention).
+    Millimetre,
+    /// Centimetres.
+    Centimetre,
+    /// Metres (glTF's).
+    Metre,
+    /// Inches.
+    Inch,
+    /// Feet.
+    Foot,
+}
+
+impl ModelUnit {
+    /// Every unit, with its name on the command line and in Python.
+    pub const ALL: [(&'static str, Self); 5] = [
+        ("mm", Self::Millimetre),
+        ("cm", Self::Centimetre),
+        ("m", Self::Metre),
+        ("in", Self::Inch),
+        ("ft", Self::Foot),
+    ];
+
+    /// The unit named `name` (`mm`, `cm`, `m`, `in`, `ft`).
+    pub fn named(name: &str) -> Result<Self, String> {
+        Self::ALL
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|&(_, unit)| unit)
+            .ok_or_else(|| format!("unknown unit {name:?} (mm, cm, m, in, ft)"))
+    }
+
+    /// Its length in millimetres.
+    pub const fn millimetres(self) -> f64 {
+        match self {
+            Self::Millimetre => 1.0,
+            Self::Centimetre => 10.0,
+            Self::Metre => 1000.0,
+            Self::Inch => 25.4,
+            Self::Foot => 304.8,
+        }
+    }
+}
+
+/// Paper millimetres per model unit from a scale as drafters write it: a number (millimetres per
+/// model unit) or a ratio `A:B` (A paper lengths for B real ones: `1:50`, `2:1`), real lengths in
+/// `unit`. Refuses what is not a positive finite scale.
+pub fn parse_scale(text: &str, unit: ModelUnit) -> Result<f64, String> {
+    let positive = |x: f64| x.is_finite() && x > 0.0;
+    let refused = || {
+        format!(
+            "a scale is millimetres per model unit (20) or a ratio paper:real (1:50), not {text:?}"
+        )
+    };
+    let mm_per_unit = match text.split_once(':') {
+        Some((paper, real)) => {
+            let paper: f64 = paper.trim().parse().map_err(|_| refused())?;
+            let real: f64 = real.trim().parse().map_err(|_| refused())?;
+            if !(positive(paper) && positive(real)) {
+                return Err(refused());
+            }
+            unit.millimetres() * paper / real
+        }
+        None => text.trim().parse().map_err(|_| refused())?,
+    };
+    if positive(mm_per_unit) {
+        Ok(mm_per_unit)
+    } else {
+        Err(refused())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn scales_are_numbers_or_ratios_of_the_model_unit() {
+        assert_eq!(parse_scale("20", ModelUnit::Millimetre), Ok(20.0));
+        assert_eq!(parse_scale("1:50", ModelUnit::Millimetre), Ok(0.02));
+        assert_eq!(parse_scale("1:50", ModelUnit::Metre), Ok(20.0));
+        assert_eq!(parse_scale("2:1", ModelUnit::Inch), Ok(50.8));
+        for bad in ["0", "-1", "1:0", "a:b", "1:-5", "NaN", "inf", "", "1:50:2"] {
+            assert!(parse_scale(bad, ModelUnit::Metre).is_err(), "{bad}");
+        }
+        assert_eq!(ModelUnit::named("ft"), Ok(ModelUnit::Foot));
+        assert!(ModelUnit::named("yd").is_err());
+    }
+}

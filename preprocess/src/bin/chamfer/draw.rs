@@ -6,7 +6,9 @@ use std::time::Instant;
 
 use anyhow::bail;
 use chamfer_preprocess::draw::dxf::write_dxf;
-use chamfer_preprocess::draw::paper::{PaperOptions, mm_per_px, section_note};
+use chamfer_preprocess::draw::paper::{
+    ModelUnit, PaperOptions, mm_per_px, parse_scale, section_note,
+};
 use chamfer_preprocess::draw::pdf::write_pdf;
 use chamfer_preprocess::draw::style::{DrawingStyle, read_style_file};
 use chamfer_preprocess::draw::svg::write_svg;
@@ -30,6 +32,7 @@ use crate::render::CameraArgs;
   chamfer draw assembly.chamfer -o front.svg --azimuth 0 --elevation 0 --ortho --scale 20
   chamfer draw part.glb -o part.svg --hidden --classes contour,crease
   chamfer draw part.obj -o section.pdf --section 1,0,0,0 --hidden --scale 20
+  chamfer draw building.glb -o plan.pdf --section 0,1,0,1.2 --elevation 90 --ortho --scale 1:50 --units m
   chamfer draw plan.glb -o plan.dxf --section 0,1,0,1.5 --elevation 90 --ortho --style roles.json")]
 pub struct DrawArgs {
     /// A `.chamfer` asset, or an OBJ, glTF/GLB or PLY mesh.
@@ -58,10 +61,14 @@ pub struct DrawArgs {
     /// (`{"cut_weight": 0.7, "hidden_dash": [2, 1]}`); the style flags given override it.
     #[arg(long = "style", value_name = "FILE")]
     style_file: Option<PathBuf>,
-    /// Paper millimetres per model unit (in the plane through the model's centre facing the camera;
-    /// everywhere with --ortho). Default: 1 px of the frame is 1/96 inch.
-    #[arg(long, value_name = "MM")]
-    scale: Option<f64>,
+    /// The drawing's scale, in the plane through the model's centre facing the camera (everywhere
+    /// with --ortho): paper millimetres per model unit (`20`), or a ratio paper:real (`1:50`) with
+    /// the model's unit given by --units. Default: 1 px of the frame is 1/96 inch.
+    #[arg(long, value_name = "MM|A:B")]
+    scale: Option<String>,
+    /// What one model unit is, for a --scale ratio.
+    #[arg(long, value_name = "UNIT", default_value = "mm", value_parser = ["mm", "cm", "m", "in", "ft"])]
+    units: String,
     /// Print the time of each step.
     #[arg(long)]
     timings: bool,
@@ -118,9 +125,11 @@ fn line_style(args: &DrawArgs) -> anyhow::Result<DrawingStyle> {
 
 pub fn run(args: &DrawArgs) -> anyhow::Result<()> {
     args.camera.check()?;
-    if args.scale.is_some_and(|s| !(s.is_finite() && s > 0.0)) {
-        bail!("--scale must be a positive number of millimetres per model unit");
-    }
+    let unit = ModelUnit::named(&args.units).map_err(|e| anyhow::anyhow!("--units: {e}"))?;
+    let scale = match &args.scale {
+        Some(text) => Some(parse_scale(text, unit).map_err(|e| anyhow::anyhow!("--scale: {e}"))?),
+        None => None,
+    };
     let format = match args
         .output
         .extension()
@@ -176,7 +185,7 @@ pub fn run(args: &DrawArgs) -> anyhow::Result<()> {
             Class::Hatch => LineClass::Hatch,
         })
         .collect();
-    let paper = PaperOptions::DEFAULT.with_mm_per_unit(args.scale);
+    let paper = PaperOptions::DEFAULT.with_mm_per_unit(scale);
     let mm_per_frame_px = paper.mm_per_px_at(units_per_px(&asset, &camera));
     let options = DrawOptions::DEFAULT
         .with_classes(&classes)
