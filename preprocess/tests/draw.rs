@@ -577,6 +577,41 @@ fn line_styles_come_from_a_style_file_and_the_flags_override_it() {
     assert!(message.contains("not a box"), "{message}");
     let message = refused(&[&bad_section[..], &["--section", "a,b,c,d"]].concat());
     assert!(message.contains("is not a number"), "{message}");
+    let message = refused(&[&bad_section[..], &["--scale", "20", "--units", "m"]].concat());
+    assert!(
+        message.contains("--units applies to a --scale ratio"),
+        "{message}"
+    );
+    // A flag given at its default still overrides the style file.
+    std::fs::write(&style, r#"{"cut_weight": 1.4}"#).expect("style");
+    chamfer(
+        &[
+            &base[..],
+            &["--style", path_str(&style), "--cut-weight", "0.7"],
+        ]
+        .concat(),
+    );
+    let text = std::fs::read_to_string(&svg).expect("svg");
+    assert!(
+        text.contains("#cut polyline { stroke: #000000; stroke-width: 0.7; }"),
+        "{text}"
+    );
+    std::fs::remove_file(&svg).expect("remove");
+    let message = refused(&[&bad_section[..], &["--hatch-spacing", "0.001"]].concat());
+    assert!(
+        message.contains("--hatch-spacing must be 0 (no hatch) or at least 0.05 mm"),
+        "{message}"
+    );
+    let message = refused(&[&bad_section[..], &["--hidden-dash", "0.001,0.001"]].concat());
+    assert!(
+        message.contains("--hidden-dash must be at least 0.05 mm"),
+        "{message}"
+    );
+    let message = refused(&[&bad_section[..], &["--section", "1,0,0,NaN"]].concat());
+    assert!(
+        message.contains("--section must be a finite number"),
+        "{message}"
+    );
     let message = refused(&[&bad_section[..], &["--scale", "1:0"]].concat());
     assert!(message.contains("--scale: a scale is"), "{message}");
     let png = dir.path().join("out.png");

@@ -130,6 +130,12 @@ pub fn draw_dxf(
 /// `scale` (a number or a ratio text) as paper millimetres per model unit.
 fn read_scale(scale: Option<&Bound<'_, PyAny>>, units: &str) -> PyResult<Option<f64>> {
     let unit = ModelUnit::named(units).map_err(|e| errors::options(format!("units: {e}")))?;
+    let ratio = scale.is_some_and(|s| s.extract::<String>().is_ok_and(|t| t.contains(':')));
+    if unit != ModelUnit::Millimetre && !ratio {
+        return Err(errors::options(format!(
+            "units applies to a scale ratio (scale=\"1:50\", units={units:?})"
+        )));
+    }
     let Some(scale) = scale else {
         return Ok(None);
     };
@@ -285,6 +291,25 @@ impl Request {
             .with_title(title)
             .with_description(description);
         if let Some(output) = &output {
+            let extension = output
+                .extension()
+                .and_then(|e| e.to_str())
+                .map(str::to_ascii_lowercase);
+            let (wanted, function) = match format {
+                Format::Svg => ("svg", "draw_svg"),
+                Format::Pdf => ("pdf", "draw_pdf"),
+                Format::Dxf => ("dxf", "draw_dxf"),
+            };
+            if extension
+                .as_deref()
+                .is_some_and(|e| ["svg", "pdf", "dxf"].contains(&e) && e != wanted)
+            {
+                return Err(errors::options(format!(
+                    "{}: {function}() writes .{wanted}, not .{}",
+                    output.display(),
+                    extension.unwrap_or_default()
+                )));
+            }
             let inputs: Vec<&std::path::Path> = input.iter().map(PathBuf::as_path).collect();
             ensure_not_an_input(output, &inputs)
                 .map_err(|e| errors::from_library_writing(e, output))?;

@@ -176,6 +176,10 @@ def test_a_scale_ratio_is_the_scale_in_millimetres_of_the_model_unit(cli, tmp_pa
     assert chamfer.draw_svg(mesh, scale=20) == expected
     assert chamfer.draw_svg(mesh, scale="2:5", units="cm") == chamfer.draw_svg(mesh, scale=4.0)
     for scale, units, message in [("1:0", "mm", "scale"), (-2.0, "mm", "scale"), (True, "mm", "scale"),
-                                  ("1:50", "yd", "unknown unit")]:
+                                  ("1:50", "yd", "unknown unit"), (20.0, "m", "units applies to a scale ratio")]:
         with pytest.raises(chamfer.OptionsError, match=message):
             chamfer.draw_svg(mesh, scale=scale, units=units)
+    # The function says the format: a mismatched extension is refused, nothing written.
+    with pytest.raises(chamfer.OptionsError, match=r"draw_svg\(\) writes .svg, not .pdf"):
+        chamfer.draw_svg(mesh, tmp_path / "drawing.pdf")
+    assert not (tmp_path / "drawing.pdf").exists()

@@ -18,12 +18,12 @@ crate::schema! {
         /// points at the part cut away; it need not be unit length). Up to six planes, one after
         /// the other; all of them cut.
         section: Option<Numbers> = None, { group: "section", value: "NX,NY,NZ,D",
-            range: Some((-crate::schema::FINITE, crate::schema::FINITE)),
+            range: None,
             example: Some(Numbers::from_array([1.0, 0.0, 0.0, 0.0])),
             conflicts: [section_box], requires: [] },
         /// A section box, `xmin,ymin,zmin,xmax,ymax,zmax` in model units: keeps what lies inside.
         section_box: Option<Numbers> = None, { group: "section", value: "X0,Y0,Z0,X1,Y1,Z1",
-            range: Some((-crate::schema::FINITE, crate::schema::FINITE)),
+            range: None,
             example: Some(Numbers::from_array([-0.25, -0.25, -0.25, 0.25, 0.25, 0.25])),
             conflicts: [section], requires: [] },
     }
@@ -45,7 +45,8 @@ impl Plane {
         x * p[0] + y * p[1] + z * p[2] - self.offset
     }
 
-    /// The plane as `[nx, ny, nz, -d]` in f32, for shaders: `dot(plane, vec4(p, 1)) > 0` is cut.
+    /// The plane as `[nx, ny, nz, -d]` in f32, for shaders: `dot(plane, vec4(p, 1)) >= 0` is cut
+    /// (a point on the plane is cut away, as the drawings' exact cut has it).
     pub fn to_vec4(&self) -> [f32; 4] {
         let [x, y, z] = self.normal;
         [x as f32, y as f32, z as f32, -self.offset as f32]

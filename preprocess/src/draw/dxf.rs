@@ -1,7 +1,9 @@
 //! Writing a [`Drawing`] as DXF (the `dxf` crate; AutoCAD 2004 text, the first with true colours): one layer per line role,
 //! named after it, with a line type holding the role's dash pattern; each polyline an LWPOLYLINE on
 //! its role's layer (closed where it is a loop) in the role's colour (true colour) and line weight
-//! (the nearest of DXF's standard weights: the crate sets weights per entity, not per layer).
+//! (the nearest of DXF's standard weights, at most 2.11 mm; set per entity, because the crate's
+//! `LineWeight` has no public constructor for a layer's value). The line types carry no shape
+//! codes (group 74), which ezdxf reads and which strict readers may want.
 //! Units are millimetres on paper ($INSUNITS 4, $MEASUREMENT metric), y up, the sheet's lower
 //! left corner at the origin. The header's dates are the Unix epoch and its GUIDs nil, so the
 //! output depends only on the drawing and the options.

@@ -116,6 +116,15 @@ pub fn cut(asset: &Asset, plane: &Plane) -> Cut {
             points.dedup();
             Outline { points, capped }
         })
+        // A vertex touching the plane with all its neighbours kept chains to a point: no outline.
+        .filter(|outline| outline.points.len() >= 2)
+        .map(|mut outline| {
+            // A closed chain of fewer than three distinct points encloses nothing.
+            if outline.capped && outline.points.len() < 4 {
+                outline.capped = false;
+            }
+            outline
+        })
         .collect();
 
     let basis = plane_basis(normal);
@@ -199,8 +208,31 @@ fn inside(ring: &[DVec2], point: DVec2) -> bool {
     odd
 }
 
+/// A point strictly inside the closed 2D polygon `ring`, next to the middle of its longest side:
+/// unlike a vertex, it is not on the boundary of a neighbouring ring that shares a vertex or a
+/// side with this one, so it tells nesting from touching.
+fn inner_point(ring: &[DVec2]) -> DVec2 {
+    let Some(pair) = ring.windows(2).max_by(|a, b| {
+        a[0].distance_squared(a[1])
+            .total_cmp(&b[0].distance_squared(b[1]))
+    }) else {
+        return ring.first().copied().unwrap_or_default();
+    };
+    let (a, b) = (pair[0], pair[1]);
+    let middle = (a + b) * 0.5;
+    let across = (b - a).perp() * 1e-6;
+    if inside(ring, middle + across) {
+        middle + across
+    } else {
+        middle - across
+    }
+}
+
 /// The capped outlines' inside as triangles: each outline nested an even number of times is an
 /// outer boundary, and the outlines directly inside it are its holes (even-odd, as the hatch).
+/// Nesting is tested with a point just inside each outline ([`inner_point`]), against the outlines
+/// whose bounding box holds it. Outlines that cross each other (parts that overlap) are not
+/// resolved: the overlap counts twice, and even-odd leaves it out of both the cap and the hatch.
 fn triangulate_caps(outlines: &[Outline], [u, v]: [DVec3; 2]) -> Vec<[DVec3; 3]> {
     let rings: Vec<(&Outline, Vec<DVec2>)> = outlines
         .iter()
@@ -215,13 +247,29 @@ fn triangulate_caps(outlines: &[Outline], [u, v]: [DVec3; 2]) -> Vec<[DVec3; 3]>
             )
         })
         .collect();
-    // Nesting: which rings contain each ring's first point.
+    let boxes: Vec<(DVec2, DVec2)> = rings
+        .iter()
+        .map(|(_, ring)| {
+            ring.iter()
+                .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), &p| {
+                    (lo.min(p), hi.max(p))
+                })
+        })
+        .collect();
+    // Nesting: which rings contain a point inside each ring.
     let containers: Vec<Vec<usize>> = rings
         .iter()
         .enumerate()
         .map(|(i, (_, ring))| {
+            let probe = inner_point(ring);
             (0..rings.len())
-                .filter(|&j| j != i && inside(&rings[j].1, ring[0]))
+                .filter(|&j| {
+                    let (lo, hi) = boxes[j];
+                    j != i
+                        && probe.cmpge(lo).all()
+                        && probe.cmple(hi).all()
+                        && inside(&rings[j].1, probe)
+                })
                 .collect()
         })
         .collect();
@@ -258,7 +306,9 @@ fn triangulate_caps(outlines: &[Outline], [u, v]: [DVec3; 2]) -> Vec<[DVec3; 3]>
     triangles
 }
 
-/// The render triangles clipped to the kept half.
+/// The render triangles clipped to the kept half, with the cut's convention (a point on the plane
+/// is cut away: a triangle lying in the plane is dropped, one touching it is kept) and its edge
+/// points, so clipped triangles meet the outline bit for bit.
 fn kept_triangles(asset: &Asset, plane: &Plane) -> Vec<[DVec3; 3]> {
     let mut kept = Vec::with_capacity(asset.triangle_count());
     for t in 0..asset.triangle_count() {
@@ -267,23 +317,25 @@ fn kept_triangles(asset: &Asset, plane: &Plane) -> Vec<[DVec3; 3]> {
                 .as_dvec3()
         });
         let d = corners.map(|p| plane.distance(p.to_array()));
-        if d.iter().all(|&x| x <= 0.0) {
-            kept.push(corners);
-            continue;
-        }
-        if d.iter().all(|&x| x >= 0.0) {
-            continue;
+        let away = d.map(|x| x >= 0.0);
+        match away.iter().filter(|&&a| a).count() {
+            0 => {
+                kept.push(corners);
+                continue;
+            }
+            3 => continue,
+            _ => {}
         }
         // Sutherland–Hodgman against one plane: at most four corners.
         let mut polygon: Vec<DVec3> = Vec::with_capacity(4);
         for k in 0..3 {
-            let (p, q) = (corners[k], corners[(k + 1) % 3]);
-            let (dp, dq) = (d[k], d[(k + 1) % 3]);
-            if dp <= 0.0 {
-                polygon.push(p);
+            let next = (k + 1) % 3;
+            if !away[k] {
+                polygon.push(corners[k]);
             }
-            if (dp < 0.0 && dq > 0.0) || (dp > 0.0 && dq < 0.0) {
-                polygon.push(p + (q - p) * (dp / (dp - dq)));
+            if away[k] != away[next] {
+                let (inside, outside) = if away[k] { (next, k) } else { (k, next) };
+                polygon.push(edge_point(&corners, &d, inside as u32, outside as u32));
             }
         }
         for k in 1..polygon.len().saturating_sub(1) {
@@ -334,7 +386,7 @@ pub fn hatch(
     let first = (lo / spacing_px).ceil() as i64;
     let last = (hi / spacing_px).floor() as i64;
     let mut segments = Vec::new();
-    // A hatch cannot have more rows than the frame has pixels across, times a little.
+    // At most 2^20 rows: the style's least spacing keeps a hatch far below that on any frame.
     for row in first..=last.min(first.saturating_add(1 << 20)) {
         let y = row as f64 * spacing_px;
         let mut xs: Vec<f64> = Vec::new();
@@ -595,6 +647,36 @@ mod tests {
             // The fandisk is closed: every outline is a capped loop.
             assert!(cut.outlines.iter().all(|o| o.capped), "{normal:?}");
         }
+    }
+
+    #[test]
+    fn outlines_touching_at_a_vertex_are_two_caps_and_a_ring_inside_another_a_hole() {
+        let square = |lo: [f64; 2], size: f64, start: usize| {
+            let corners = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+            let mut points: Vec<DVec3> = (0..4)
+                .map(|k| {
+                    let [x, y] = corners[(k + start) % 4];
+                    DVec3::new(lo[0] + size * x, lo[1] + size * y, 0.0)
+                })
+                .collect();
+            points.push(points[0]);
+            Outline {
+                points,
+                capped: true,
+            }
+        };
+        let basis = plane_basis(DVec3::Z);
+        // Each starts at the shared corner (1, 1), where a test of the first point is ambiguous.
+        let touching = [square([0.0, 0.0], 1.0, 2), square([1.0, 1.0], 1.0, 0)];
+        assert!((area(&triangulate_caps(&touching, basis)) - 2.0).abs() < 1e-12);
+        let nested = [square([0.0, 0.0], 3.0, 0), square([1.0, 1.0], 1.0, 0)];
+        assert!((area(&triangulate_caps(&nested, basis)) - 8.0).abs() < 1e-12);
+        let three = [
+            square([0.0, 0.0], 5.0, 0),
+            square([1.0, 1.0], 3.0, 1),
+            square([2.0, 2.0], 1.0, 3),
+        ];
+        assert!((area(&triangulate_caps(&three, basis)) - (25.0 - 9.0 + 1.0)).abs() < 1e-12);
     }
 
     #[test]

@@ -164,6 +164,10 @@ chamfer_runtime::schema! {
     }
 }
 
+/// The finest dash pattern and hatch spacing taken, millimetres: finer than a pen or a printer
+/// draws, and a bound on the work of a hatch (its rows) and of a PDF or SVG reader (its dashes).
+pub const MIN_LENGTH_MM: f32 = 0.05;
+
 /// One role's style, in paper millimetres.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RoleStyle {
@@ -190,6 +194,15 @@ impl DrawingStyle {
     /// are not pairs of lengths (at most four pairs) with some dash.
     pub fn check(&self) -> Result<(), SchemaError> {
         self.check_ranges()?;
+        if self.hatch_spacing != 0.0 && self.hatch_spacing < MIN_LENGTH_MM {
+            return Err(SchemaError::Invalid {
+                name: "hatch_spacing",
+                reason: format!(
+                    "must be 0 (no hatch) or at least {MIN_LENGTH_MM} mm, not {}",
+                    self.hatch_spacing
+                ),
+            });
+        }
         for entry in Self::ENTRIES {
             let Some(chamfer_runtime::schema::Value::Numbers(numbers)) = entry.get(self) else {
                 continue;
@@ -202,8 +215,10 @@ impl DrawingStyle {
                     "must be dash,gap pairs (up to four), not {} numbers",
                     n.len()
                 ))
-            } else if !n.is_empty() && n.iter().all(|&x| x == 0.0) {
-                Some("must have a dash or a gap longer than 0".to_owned())
+            } else if !n.is_empty() && n.iter().sum::<f32>() < MIN_LENGTH_MM {
+                Some(format!(
+                    "must be at least {MIN_LENGTH_MM} mm long in all (a pattern finer than that is a solid line to any printer)"
+                ))
             } else {
                 None
             };
@@ -295,11 +310,22 @@ pub fn read_style_file(path: &Path) -> Result<DrawingStyle, StyleFileError> {
         path: path.to_owned(),
         reason,
     };
-    let metadata = std::fs::metadata(path).map_err(|e| read_error(e.to_string()))?;
-    if !metadata.is_file() {
+    // Refused before it is opened: opening a FIFO blocks until someone writes to it.
+    if !std::fs::metadata(path)
+        .map_err(|e| read_error(e.to_string()))?
+        .is_file()
+    {
         return Err(read_error("not a regular file".into()));
     }
     let file = std::fs::File::open(path).map_err(|e| read_error(e.to_string()))?;
+    // And checked again on what was opened, in case the path changed in between.
+    if !file
+        .metadata()
+        .map_err(|e| read_error(e.to_string()))?
+        .is_file()
+    {
+        return Err(read_error("not a regular file".into()));
+    }
     let mut bytes = Vec::new();
     file.take(MAX_STYLE_FILE + 1)
         .read_to_end(&mut bytes)

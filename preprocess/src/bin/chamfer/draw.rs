@@ -23,7 +23,7 @@ use crate::render::CameraArgs;
 /// (`.chamfer`) or a mesh (baked on the fly with the bake flags, intersections included) as an SVG,
 /// PDF or DXF line drawing (by the output's extension), hidden lines removed exactly. The camera
 /// flags are `chamfer render`'s: the same flags give a drawing that lies on the render pixel for
-/// pixel. With --section the half the plane keeps is drawn, with the cut outline and hatched cut
+/// pixel. With --section (one plane: a drawing takes no box) the half the plane keeps is drawn, with the cut outline and hatched cut
 /// faces; every line has a role (cut, hatch, silhouette, boundary, visible, intersection, hidden),
 /// a layer of its own with the weight, colour and dashes the style flags or --style give.
 #[derive(Args)]
@@ -102,10 +102,10 @@ fn line_style(args: &DrawArgs) -> anyhow::Result<DrawingStyle> {
         None => DrawingStyle::default(),
         Some(path) => read_style_file(path)?,
     };
-    let flags = &args.style.0;
-    // Flags that differ from the defaults are set over the file's values.
+    let (flags, given) = (&args.style.0, &args.style.1);
+    // The flags given are set over the file's values.
     for entry in DrawingStyle::ENTRIES {
-        if entry.is_given(flags) {
+        if given.contains(&entry.name) {
             if let Some(value) = entry.get(flags) {
                 entry.set(&mut style, value)?;
             }
@@ -130,6 +130,12 @@ pub fn run(args: &DrawArgs) -> anyhow::Result<()> {
         Some(text) => Some(parse_scale(text, unit).map_err(|e| anyhow::anyhow!("--scale: {e}"))?),
         None => None,
     };
+    if unit != ModelUnit::Millimetre && !args.scale.as_deref().is_some_and(|s| s.contains(':')) {
+        bail!(
+            "--units applies to a --scale ratio (--scale 1:50 --units {})",
+            args.units
+        );
+    }
     let format = match args
         .output
         .extension()

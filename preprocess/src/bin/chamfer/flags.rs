@@ -62,8 +62,14 @@ fn typed_arg(
         .help(help)
 }
 
-/// Sets into `settings` the values of `group`'s flags that `matches` holds.
-fn read<S: Schema>(matches: &ArgMatches, group: &str, settings: &mut S) -> Result<(), clap::Error> {
+/// Sets into `settings` the values of `group`'s flags that `matches` holds, and returns their
+/// names (a flag given at its default value included).
+fn read<S: Schema>(
+    matches: &ArgMatches,
+    group: &str,
+    settings: &mut S,
+) -> Result<Vec<&'static str>, clap::Error> {
+    let mut given = Vec::new();
     for entry in S::ENTRIES.iter().filter(|entry| entry.group == group) {
         let value = match entry.kind {
             Kind::Number => matches
@@ -84,27 +90,31 @@ fn read<S: Schema>(matches: &ArgMatches, group: &str, settings: &mut S) -> Resul
             entry
                 .set(settings, value)
                 .map_err(|e| clap::Error::raw(ErrorKind::ValueValidation, e))?;
+            given.push(entry.name);
         }
     }
-    Ok(())
+    Ok(given)
 }
 
 /// Flags for the entries of one group of a schema.
 macro_rules! group_flags {
     ($(#[$meta:meta])* $name:ident($schema:ty), $group:literal) => {
         $(#[$meta])*
+        /// The settings, and the names of the entries given on the command line.
         #[derive(Clone, Default)]
-        pub struct $name(pub $schema);
+        pub struct $name(pub $schema, pub Vec<&'static str>);
 
         impl FromArgMatches for $name {
             fn from_arg_matches(matches: &ArgMatches) -> Result<Self, clap::Error> {
                 let mut settings = <$schema>::default();
-                read(matches, $group, &mut settings)?;
-                Ok(Self(settings))
+                let given = read(matches, $group, &mut settings)?;
+                Ok(Self(settings, given))
             }
 
             fn update_from_arg_matches(&mut self, matches: &ArgMatches) -> Result<(), clap::Error> {
-                read(matches, $group, &mut self.0)
+                let given = read(matches, $group, &mut self.0)?;
+                self.1.extend(given);
+                Ok(())
             }
         }
 
