@@ -8,9 +8,10 @@ use std::path::PathBuf;
 use chamfer_preprocess::draw::dxf::write_dxf;
 use chamfer_preprocess::draw::paper::{ModelUnit, PaperOptions, parse_scale, section_note};
 use chamfer_preprocess::draw::pdf::write_pdf;
+use chamfer_preprocess::draw::section::drawing_plane;
 use chamfer_preprocess::draw::style::DrawingStyle;
 use chamfer_preprocess::draw::svg::write_svg;
-use chamfer_preprocess::draw::{Camera, DrawOptions, Hatch, LineClass, hidden_lines, units_per_px};
+use chamfer_preprocess::draw::{Camera, DrawOptions, LineClass, hidden_lines, units_per_px};
 use chamfer_preprocess::write::{ensure_not_an_input, write_atomically};
 use chamfer_runtime::asset::Asset;
 use chamfer_runtime::section::Section;
@@ -199,24 +200,8 @@ impl Request {
             options::group_from_kwargs::<Section>(py, "section", Some(&options))?;
         let (style, options) =
             options::group_from_kwargs::<DrawingStyle>(py, "drawing_style", Some(&options))?;
-        section
-            .check()
-            .map_err(|e| errors::options(e.to_string()))?;
         style.check().map_err(|e| errors::options(e.to_string()))?;
-        if section.section_box.is_some() {
-            return Err(errors::options(
-                "a drawing takes one section plane (section), not a box".into(),
-            ));
-        }
-        let planes = section
-            .planes()
-            .map_err(|e| errors::options(e.to_string()))?;
-        if planes.len() > 1 {
-            return Err(errors::options(format!(
-                "a drawing takes one section plane, not {}",
-                planes.len()
-            )));
-        }
+        let plane = drawing_plane(&section).map_err(|e| errors::options(e.to_string()))?;
         // Checked whatever the source: a misspelt keyword is an error even where nothing is baked.
         let bake_options = options::from_kwargs(Some(&options))?.with_intersections(true);
         let classes = match classes {
@@ -242,8 +227,8 @@ impl Request {
             draw_options: DrawOptions::DEFAULT
                 .with_classes(&classes)
                 .with_hidden(hidden)
-                .with_section(planes.first().copied()),
-            section: planes.first().copied(),
+                .with_section(plane),
+            section: plane,
             style,
             scale,
             title,
@@ -317,10 +302,7 @@ impl Request {
         let bounds = [asset.header.bounds_min, asset.header.bounds_max];
         let view = Camera::orbit(bounds, &self.orbit, self.viewport);
         let mm_per_px = paper.mm_per_px_at(units_per_px(asset, &view));
-        let options = self.draw_options.with_hatch(Hatch {
-            spacing_px: f64::from(self.style.hatch_spacing) / mm_per_px,
-            angle_deg: f64::from(self.style.hatch_angle),
-        });
+        let options = self.draw_options.with_hatch(self.style.hatch(mm_per_px));
         let style = self.style;
         let bytes = py.detach(|| {
             let drawing = hidden_lines(asset, &view, &options);

@@ -39,6 +39,32 @@ pub struct Cut {
     pub basis: [DVec3; 2],
 }
 
+/// The plane of a section drawing: `section` checked, and refused (naming the entry) when it
+/// is a box or more than one plane, which a drawing cannot take; `None` when nothing is cut.
+pub fn drawing_plane(
+    section: &chamfer_runtime::section::Section,
+) -> Result<Option<Plane>, chamfer_runtime::schema::SchemaError> {
+    use chamfer_runtime::schema::SchemaError;
+    section.check()?;
+    if section.section_box.is_some() {
+        return Err(SchemaError::Invalid {
+            name: "section_box",
+            reason: "cannot be drawn: a drawing takes one section plane, not a box".into(),
+        });
+    }
+    let planes = section.planes()?;
+    if planes.len() > 1 {
+        return Err(SchemaError::Invalid {
+            name: "section",
+            reason: format!(
+                "must be one section plane in a drawing, not {}",
+                planes.len()
+            ),
+        });
+    }
+    Ok(planes.first().copied())
+}
+
 /// Cuts `asset` by `plane`.
 pub fn cut(asset: &Asset, plane: &Plane) -> Cut {
     let normal = DVec3::from(plane.normal);
@@ -437,22 +463,11 @@ mod tests {
     }
 
     fn unit_cube() -> Asset {
-        let positions = (0..8)
-            .map(|i| [i & 1, (i >> 1) & 1, (i >> 2) & 1].map(|c| c as f32))
-            .collect();
-        let quads = [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-        ];
-        let triangles = quads
-            .iter()
-            .flat_map(|&[a, b, c, d]| [[a, b, c], [a, c, d]])
-            .collect();
-        asset_of(positions, triangles)
+        let (positions, triangles) = crate::classify::tests::cube();
+        asset_of(
+            positions.iter().map(glam::Vec3::to_array).collect(),
+            triangles,
+        )
     }
 
     /// A torus around +Z: `major` the radius of its centre circle, `minor` of its tube.

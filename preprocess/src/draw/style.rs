@@ -232,6 +232,14 @@ impl DrawingStyle {
         Ok(())
     }
 
+    /// The hatch laid out in a frame of `mm_per_px` paper millimetres per pixel.
+    pub fn hatch(&self, mm_per_px: f64) -> super::Hatch {
+        super::Hatch {
+            spacing_px: f64::from(self.hatch_spacing) / mm_per_px,
+            angle_deg: f64::from(self.hatch_angle),
+        }
+    }
+
     /// The style of `role`.
     pub fn role(&self, role: Role) -> RoleStyle {
         let (weight, color, dash): (f32, &Numbers, &Numbers) = match role {

@@ -10,9 +10,10 @@ use chamfer_preprocess::draw::paper::{
     ModelUnit, PaperOptions, mm_per_px, parse_scale, section_note,
 };
 use chamfer_preprocess::draw::pdf::write_pdf;
+use chamfer_preprocess::draw::section::drawing_plane;
 use chamfer_preprocess::draw::style::{DrawingStyle, read_style_file};
 use chamfer_preprocess::draw::svg::write_svg;
-use chamfer_preprocess::draw::{DrawOptions, Hatch, LineClass, hidden_lines, units_per_px};
+use chamfer_preprocess::draw::{DrawOptions, LineClass, hidden_lines, units_per_px};
 use chamfer_preprocess::write::{ensure_not_an_input, write_atomically};
 use clap::{Args, ValueEnum};
 
@@ -152,17 +153,8 @@ pub fn run(args: &DrawArgs) -> anyhow::Result<()> {
         ),
     };
     let style = line_style(args)?;
-    args.section
-        .0
-        .check()
+    let plane = drawing_plane(&args.section.0)
         .map_err(|e| anyhow::anyhow!(e.spelled(chamfer_runtime::schema::flag)))?;
-    if args.section.0.section_box.is_some() {
-        bail!("a drawing takes one section plane (--section), not a box");
-    }
-    let planes = args.section.0.planes()?;
-    if planes.len() > 1 {
-        bail!("a drawing takes one section plane, not {}", planes.len());
-    }
     let mut inputs = vec![args.input.as_path()];
     inputs.extend(args.style_file.as_deref());
     ensure_not_an_input(&args.output, &inputs)?;
@@ -196,11 +188,8 @@ pub fn run(args: &DrawArgs) -> anyhow::Result<()> {
     let options = DrawOptions::DEFAULT
         .with_classes(&classes)
         .with_hidden(args.hidden)
-        .with_section(planes.first().copied())
-        .with_hatch(Hatch {
-            spacing_px: f64::from(style.hatch_spacing) / mm_per_frame_px,
-            angle_deg: f64::from(style.hatch_angle),
-        });
+        .with_section(plane)
+        .with_hatch(style.hatch(mm_per_frame_px));
     let start = Instant::now();
     let drawing = hidden_lines(&asset, &camera, &options);
     let drawn = start.elapsed();
@@ -212,7 +201,7 @@ pub fn run(args: &DrawArgs) -> anyhow::Result<()> {
     let paper = paper.with_title(name).with_description(format!(
         "Camera: chamfer render {}.{}",
         args.camera.describe(),
-        planes.first().map(section_note).unwrap_or_default()
+        plane.as_ref().map(section_note).unwrap_or_default()
     ));
     let start = Instant::now();
     write_atomically(&args.output, |out| match format {
