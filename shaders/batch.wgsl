@@ -54,6 +54,10 @@ fn view_color(k: u32) -> vec4<f32> {
     return instance_frames[viewing].colors[k];
 }
 
+fn view_section(k: u32) -> vec4<f32> {
+    return instance_frames[viewing].section[k];
+}
+
 // The element (edge, triangle) a batched draw's instance index names, `per_instance` of them per
 // instance of the batch; enters that instance.
 fn enter_element(index: u32, per_instance: u32) -> u32 {

@@ -3,7 +3,7 @@
 // and, at a silhouette, to the sharp edge (the pixels the outline pass trims, outline.wgsl).
 
 // The pixels that edge end `end` hands over to a drawn rounded corner at its vertex (0: none, or the
-// end was moved by the near-plane clip); `far` is the edge's other end.
+// end was moved by the near plane or a section plane); `far` is the edge's other end.
 fn hand_over_at(end: u32, clipped: u32, far: vec3<f32>) -> f32 {
     if lighting.corners == 0u || clipped != 0u {
         return 0.0;
@@ -16,20 +16,11 @@ fn hand_over_at(end: u32, clipped: u32, far: vec3<f32>) -> f32 {
     return select(0.0, hand_over(c, far), corner_drawn(c));
 }
 
-// The edge's model-space points at the ends of its screen quad: the near plane moved the clipped
-// ends, as `edge_screen` moved them in clip space (which is linear in the model's).
-fn quad_ends(p0: vec3<f32>, p1: vec3<f32>, clipped: u32) -> array<vec3<f32>, 2> {
-    let mvp = view_mvp();
-    let f0 = in_front(mvp * vec4<f32>(p0, 1.0));
-    let f1 = in_front(mvp * vec4<f32>(p1, 1.0));
-    var ends = array<vec3<f32>, 2>(p0, p1);
-    if (clipped & 1u) != 0u {
-        ends[0] = mix(p0, p1, f0 / (f0 - f1));
-    }
-    if (clipped & 2u) != 0u {
-        ends[1] = mix(p1, p0, f1 / (f1 - f0));
-    }
-    return ends;
+// The edge's model-space points at the ends of its screen quad: where the near plane and the
+// section planes left them, as `edge_screen` did.
+fn quad_ends(p0: vec3<f32>, p1: vec3<f32>) -> array<vec3<f32>, 2> {
+    let span = kept_span(p0, p1);
+    return array<vec3<f32>, 2>(mix(p0, p1, span.x), mix(p0, p1, span.y));
 }
 
 @compute @workgroup_size(WORKGROUP)
@@ -63,7 +54,7 @@ fn chamfer_records(@builtin(global_invocation_id) id: vec3<u32>) {
     let radius = unpack2x16float(attributes[e] >> 16u).x * frame.radius_scale;
     let eye = view_eye();
     let distance = select(0.0, length(eye.xyz - middle), eye.w > 0.0);
-    let ends = quad_ends(p0, p1, s.clipped);
+    let ends = quad_ends(p0, p1);
     let record = ChamferRecord(
         vec4<f32>(normalize(normals[0]), radius),
         vec4<f32>(normalize(normals[1]), distance),

@@ -58,6 +58,8 @@ struct Frame {
     batch_instances: u32,
     table_mask: u32,
     survivor_capacity: u32,
+    // The section planes in this instance's model space (section.wgsl).
+    section: array<vec4<f32>, SECTION_PLANES>,
 }
 
 // One instance's camera in its model space (the joined technique, batch.wgsl), written by the host
@@ -78,6 +80,8 @@ struct InstanceFrame {
     _pad0: u32,
     _pad1: u32,
     _pad2: u32,
+    // The instance's section planes in its model space.
+    section: array<vec4<f32>, SECTION_PLANES>,
 }
 @group(0) @binding(1) var<storage, read> topology: array<f32>;
 @group(0) @binding(2) var<storage, read> edge_vertices: array<u32>;
@@ -251,11 +255,30 @@ fn half_width(w: f32) -> f32 {
     return 0.5 * max(px, frame.min_width);
 }
 
+// The part of the segment p0 -> p1 that is drawn, as parameters from p0: what lies in front of the
+// near plane (clip space is linear in the model's, so the near plane cuts at the same parameter)
+// and is kept by the section planes. Empty (x >= y) when nothing is left.
+fn kept_span(p0: vec3<f32>, p1: vec3<f32>) -> vec2<f32> {
+    let mvp = view_mvp();
+    let f0 = in_front(mvp * vec4<f32>(p0, 1.0));
+    let f1 = in_front(mvp * vec4<f32>(p1, 1.0));
+    var span = vec2<f32>(0.0, 1.0);
+    if f0 < 0.0 && f1 < 0.0 {
+        return vec2<f32>(1.0, 0.0);
+    }
+    if f0 < 0.0 {
+        span.x = f0 / (f0 - f1);
+    } else if f1 < 0.0 {
+        span.y = f0 / (f0 - f1);
+    }
+    return section_span(p0, p1, span);
+}
+
 // An edge's quad on the screen. `left` and `right` are the quad's extents on either side of the
 // line, per end (x: end 0, y: end 1), measured against the direction `d` from end 0 to end 1.
 struct EdgeScreen {
     visible: bool,
-    // Bit k: end k was moved by the near-plane clip, so it is not the mesh vertex.
+    // Bit k: end k was moved by the near plane or a section plane, so it is not the mesh vertex.
     clipped: u32,
     s0: vec2<f32>,
     s1: vec2<f32>,
@@ -270,20 +293,15 @@ fn edge_screen(e: u32, word: u32) -> EdgeScreen {
     var out: EdgeScreen;
     out.visible = false;
     let mvp = view_mvp();
-    var c0 = mvp * vec4<f32>(position(edge_vertex(4u * e)), 1.0);
-    var c1 = mvp * vec4<f32>(position(edge_vertex(4u * e + 1u)), 1.0);
-    let f0 = in_front(c0);
-    let f1 = in_front(c1);
-    if f0 < 0.0 && f1 < 0.0 {
+    let p0 = position(edge_vertex(4u * e));
+    let p1 = position(edge_vertex(4u * e + 1u));
+    let span = kept_span(p0, p1);
+    if !(span.x < span.y) {
         return out;
     }
-    if f0 < 0.0 {
-        c0 = mix(c0, c1, f0 / (f0 - f1));
-        out.clipped = 1u;
-    } else if f1 < 0.0 {
-        c1 = mix(c1, c0, f1 / (f1 - f0));
-        out.clipped = 2u;
-    }
+    let c0 = mvp * vec4<f32>(mix(p0, p1, span.x), 1.0);
+    let c1 = mvp * vec4<f32>(mix(p0, p1, span.y), 1.0);
+    out.clipped = select(0u, 1u, span.x > 0.0) | select(0u, 2u, span.y < 1.0);
     out.s0 = to_pixels(c0);
     out.s1 = to_pixels(c1);
     let along = out.s1 - out.s0;

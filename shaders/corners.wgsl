@@ -48,11 +48,12 @@ fn corner_of_end(end: u32) -> u32 {
 }
 
 // Whether the corner is drawn in this view: a face of it looks at the camera (on the silhouette the
-// part of the sphere and cylinders the eye sees, issue 39) and its vertex is in front of the near plane.
+// part of the sphere and cylinders the eye sees, issue 39) and its vertex is in front of the near
+// plane and kept by the section (a cut edge ends at the cut, without a corner).
 fn corner_drawn(c: Corner) -> bool {
     let v = c.vertex.xyz;
     let clip = view_mvp() * vec4<f32>(v, 1.0);
-    if clip.w <= 0.0 || in_front(clip) < 0.0 {
+    if clip.w <= 0.0 || in_front(clip) < 0.0 || section_cuts(v) {
         return false;
     }
     return face_front(c.normals[0].xyz, v) || face_front(c.normals[1].xyz, v) || face_front(c.normals[2].xyz, v);

@@ -73,5 +73,5 @@ fn fin_vertex(@builtin(vertex_index) i: u32, @builtin(instance_index) index: u32
         // Listing 3: crease fins move towards the camera in view space.
         clip = clip + params.z_bias * frame.proj_z;
     }
-    return flat_vertex(word, clip);
+    return flat_vertex(word, clip, base);
 }

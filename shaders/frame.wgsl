@@ -38,6 +38,10 @@ fn view_color(k: u32) -> vec4<f32> {
     return frame.colors[k];
 }
 
+fn view_section(k: u32) -> vec4<f32> {
+    return frame.section[k];
+}
+
 // The element (edge, triangle) a vertex shader's instance index names: with one instance per
 // block, the index itself (batch.wgsl splits it into instance and element).
 fn enter_element(index: u32, per_instance: u32) -> u32 {

@@ -65,8 +65,8 @@ fn at_corner(tri: ClipTriangle, k: u32, px: vec2<f32>, offset_px: f32) -> vec4<f
     return from_pixels(px, depth, c.w);
 }
 
-fn contour_out(ok: bool, position: vec4<f32>) -> FlatVarying {
-    return flat_vertex(select(NOT_DRAWN, COLOR_CONTOUR, ok), position);
+fn contour_out(ok: bool, position: vec4<f32>, point: vec3<f32>) -> FlatVarying {
+    return flat_vertex(select(NOT_DRAWN, COLOR_CONTOUR, ok), position, point);
 }
 
 // Corner i (0..5) of the quad of width 2h around the segment a-b; ends in `k0`, `k1` of `tri`.
@@ -88,13 +88,14 @@ fn hw_wire_vertex(@builtin(vertex_index) i: u32, @builtin(instance_index) t: u32
     let ok = tri.ok && !(back_only && tri.front);
     let h = half_width(tri.c[edge].w);
     let position = segment_quad(tri, edge, (edge + 1u) % 3u, i % 6u, h, -params.offset_px);
-    return contour_out(ok, position);
+    let k = select(edge, (edge + 1u) % 3u, ((0x16u >> (i % 6u)) & 1u) == 1u);
+    return contour_out(ok, position, tri.p[k]);
 }
 
 @vertex
 fn hw_back_vertex(@builtin(vertex_index) i: u32, @builtin(instance_index) t: u32) -> FlatVarying {
     let tri = clip_triangle(t);
-    return contour_out(tri.ok && !tri.front, at_corner(tri, i, tri.s[i], params.offset_px));
+    return contour_out(tri.ok && !tri.front, at_corner(tri, i, tri.s[i], params.offset_px), tri.p[i]);
 }
 
 // The fattened polygon of a back face: corner k's two pushed-out copies (one per edge at k), as a
@@ -108,7 +109,7 @@ fn hw_fat_vertex(@builtin(vertex_index) i: u32, @builtin(instance_index) t: u32)
     let ring = (i / 3u + select(0u, triangle_vertex - 1u, triangle_vertex > 0u)) % 6u;
     if triangle_vertex == 0u {
         let c = (tri.c[0] + tri.c[1] + tri.c[2]) / 3.0;
-        return contour_out(tri.ok && !tri.front, from_pixels(centre, c.z / c.w, c.w));
+        return contour_out(tri.ok && !tri.front, from_pixels(centre, c.z / c.w, c.w), (tri.p[0] + tri.p[1] + tri.p[2]) / 3.0);
     }
     let k = ring / 2u;
     // Even: the edge from k - 1 to k; odd: the edge from k to k + 1.
@@ -121,7 +122,7 @@ fn hw_fat_vertex(@builtin(vertex_index) i: u32, @builtin(instance_index) t: u32)
     let h = 2.0 * half_width(tri.c[k].w);
     // No depth offset: the fattened rim shows only where it leaves the front faces' outline.
     let c = tri.c[k];
-    return contour_out(tri.ok && !tri.front, from_pixels(tri.s[k] + n * h, c.z / c.w, c.w));
+    return contour_out(tri.ok && !tri.front, from_pixels(tri.s[k] + n * h, c.z / c.w, c.w), tri.p[k]);
 }
 
 // §4.5: the whole mesh, shifted by a pixel step in one of four directions (instance / triangles).
@@ -134,11 +135,12 @@ fn hw_shift_vertex(@builtin(vertex_index) i: u32, @builtin(instance_index) insta
     let px = tri.s[i] + shifts[min(instance / frame.triangle_count, 3u)];
     // Front faces only, as the mesh is normally drawn: each copy then covers a pixel once where the
     // surface does not fold over itself.
-    return contour_out(tri.ok && tri.front, from_pixels(px, tri.c[i].z / tri.c[i].w, tri.c[i].w));
+    return contour_out(tri.ok && tri.front, from_pixels(px, tri.c[i].z / tri.c[i].w, tri.c[i].w), tri.p[i]);
 }
 
 struct LineVarying {
     @builtin(position) position: vec4<f32>,
+    @location(1) section_point: vec4<f32>,
 }
 
 // §4.6: the front faces' wireframe as one-pixel lines, each drawn between its ends in one order (by
@@ -147,7 +149,7 @@ struct LineVarying {
 fn hw_line_vertex(@builtin(vertex_index) i: u32, @builtin(instance_index) t: u32) -> LineVarying {
     let tri = clip_triangle(t);
     if !tri.ok || !tri.front {
-        return LineVarying(NOWHERE);
+        return LineVarying(NOWHERE, vec4<f32>(0.0));
     }
     let edge = i / 2u;
     let a = tri.s[edge];
@@ -157,23 +159,28 @@ fn hw_line_vertex(@builtin(vertex_index) i: u32, @builtin(instance_index) t: u32
     if (i % 2u == 1u) == a_first {
         k = (edge + 1u) % 3u;
     }
-    return LineVarying(at_corner(tri, k, tri.s[k], frame.bias_px));
+    return LineVarying(at_corner(tri, k, tri.s[k], frame.bias_px), vec4<f32>(tri.p[k], 1.0));
 }
 
+// Writes stencil (and depth) only, where the section keeps the geometry.
 @fragment
-fn stencil_only() {}
+fn stencil_only(@location(1) section_point: vec4<f32>) {
+    if flat_cut(section_point) {
+        discard;
+    }
+}
 
 // The mesh from its position vertex buffer, for depth-only passes.
 @vertex
-fn hw_depth_vertex(@location(0) position: vec3<f32>) -> @builtin(position) vec4<f32> {
-    return frame.mvp * vec4<f32>(position, 1.0);
+fn hw_depth_vertex(@location(0) position: vec3<f32>) -> FlatVarying {
+    return FlatVarying(frame.mvp * vec4<f32>(position, 1.0), vec4<f32>(0.0), vec4<f32>(position, 1.0));
 }
 
 // A triangle covering the screen.
 @vertex
 fn fullscreen_vertex(@builtin(vertex_index) i: u32) -> FlatVarying {
     let xy = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u)) * 2.0 - 1.0;
-    return FlatVarying(vec4<f32>(xy, near_depth(), 1.0), frame.colors[COLOR_CONTOUR]);
+    return FlatVarying(vec4<f32>(xy, near_depth(), 1.0), frame.colors[COLOR_CONTOUR], vec4<f32>(0.0));
 }
 
 // §4.7: for each edge of a front face, a quad of the line width leaving the edge away from the face,
@@ -206,7 +213,7 @@ fn hw_crease_vertex(@builtin(vertex_index) i: u32, @builtin(instance_index) inst
     let length_world = 2.0 * half_width(tri.c[k].w) * frame.pixel_scale * tri.c[k].w;
     let p = base + select(0.0, length_world, far) * dir;
     let color = select(COLOR_VALLEY, COLOR_RIDGE, ridge);
-    return flat_vertex(select(NOT_DRAWN, color, tri.ok && tri.front), frame.mvp * vec4<f32>(p, 1.0));
+    return flat_vertex(select(NOT_DRAWN, color, tri.ok && tri.front), frame.mvp * vec4<f32>(p, 1.0), base);
 }
 
 // Valleys are kept only between the front surface (the pipeline's reversed depth test) and the back
@@ -215,7 +222,7 @@ fn hw_crease_vertex(@builtin(vertex_index) i: u32, @builtin(instance_index) inst
 fn valley_fragment(v: FlatVarying) -> @location(0) vec4<f32> {
     let back = textureLoad(back_depth, vec2<i32>(v.position.xy), 0);
     let behind_back = select(v.position.z >= back, v.position.z <= back, frame.reverse_z != 0u);
-    if behind_back {
+    if behind_back || flat_cut(v.section_point) {
         discard;
     }
     return v.color;

@@ -61,15 +61,19 @@ fn hybrid_fragment(v: PostVarying) -> @location(0) vec4<f32> {
 
 struct MaskVarying {
     @builtin(position) position: vec4<f32>,
+    @location(0) model_position: vec3<f32>,
 }
 
 // The object of interest filled white (§3.1's first steps), into our own mask texture.
 @vertex
 fn mask_vertex(@location(0) position: vec3<f32>) -> MaskVarying {
-    return MaskVarying(post.mvp * vec4<f32>(position, 1.0));
+    return MaskVarying(post.mvp * vec4<f32>(position, 1.0), position);
 }
 
 @fragment
-fn mask_fragment() -> @location(0) vec4<f32> {
+fn mask_fragment(v: MaskVarying) -> @location(0) vec4<f32> {
+    if section_cuts(v.model_position) {
+        discard;
+    }
     return vec4<f32>(1.0);
 }

@@ -113,15 +113,19 @@ fn image_fragment(v: PostVarying) -> @location(0) vec4<f32> {
 struct NormalVarying {
     @builtin(position) position: vec4<f32>,
     @location(0) normal: vec3<f32>,
+    @location(1) model_position: vec3<f32>,
 }
 
 // The normal buffer (§5.3): the asset's model-space normals, into our own texture.
 @vertex
 fn normal_vertex(@location(0) position: vec3<f32>, @location(1) normal: vec3<f32>) -> NormalVarying {
-    return NormalVarying(post.mvp * vec4<f32>(position, 1.0), normal);
+    return NormalVarying(post.mvp * vec4<f32>(position, 1.0), normal, position);
 }
 
 @fragment
 fn normal_fragment(v: NormalVarying) -> @location(0) vec4<f32> {
+    if section_cuts(v.model_position) {
+        discard;
+    }
     return vec4<f32>(normalize(v.normal), 1.0);
 }

@@ -24,8 +24,14 @@ fn segment_vertex(@builtin(vertex_index) i: u32, @builtin(instance_index) s: u32
     if (frame.classes & INTERSECTION) == 0u {
         return out;
     }
-    let c0 = frame.mvp * vec4<f32>(segment_end(s, 0u), 1.0);
-    let c1 = frame.mvp * vec4<f32>(segment_end(s, 1u), 1.0);
+    let p0 = segment_end(s, 0u);
+    let p1 = segment_end(s, 1u);
+    let span = section_span(p0, p1, vec2<f32>(0.0, 1.0));
+    if !(span.x < span.y) {
+        return out;
+    }
+    let c0 = frame.mvp * vec4<f32>(mix(p0, p1, span.x), 1.0);
+    let c1 = frame.mvp * vec4<f32>(mix(p0, p1, span.y), 1.0);
     // Segments are short: one that reaches behind the camera is not drawn.
     if in_front(c0) < 0.0 || in_front(c1) < 0.0 || c0.w <= 0.0 || c1.w <= 0.0 {
         return out;

@@ -27,5 +27,5 @@ fn hull_vertex(
     let w = (frame.mvp * vec4<f32>(position, 1.0)).w;
     let push = 2.0 * half_width(w) * frame.pixel_scale * w;
     let c = frame.mvp * vec4<f32>(position + normalize(n) * push, 1.0);
-    return flat_vertex(COLOR_CONTOUR, c);
+    return flat_vertex(COLOR_CONTOUR, c, position);
 }

@@ -19,6 +19,12 @@ struct MeshFrame {
     eye: vec4<f32>,
     // PBR: metallic, α = roughness².
     surface: vec4<f32>,
+    // The section planes in the instance's model space (section.wgsl).
+    section: array<vec4<f32>, SECTION_PLANES>,
+}
+
+fn view_section(k: u32) -> vec4<f32> {
+    return mesh.section[k];
 }
 
 @group(0) @binding(0) var<uniform> mesh: MeshFrame;
@@ -37,6 +43,9 @@ fn mesh_vertex(@location(0) position: vec3<f32>, @location(1) normal: vec3<f32>)
 
 @fragment
 fn mesh_fragment(v: MeshVarying, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
+    if section_cuts(v.model_position) {
+        discard;
+    }
     let n = normalize(select(-v.normal, v.normal, front));
     let to_light = towards_light(mesh.light, v.model_position);
     let light = light_radiance(mesh.light, v.model_position);

@@ -12,9 +12,15 @@ struct Post {
     // Clip w of the model's centre, for depth-scaled steps; 0: constant.
     depth_ref: f32,
     _pad: u32,
+    // The mesh pass's section planes, in its model space (section.wgsl).
+    section: array<vec4<f32>, SECTION_PLANES>,
 }
 
 @group(0) @binding(0) var<uniform> post: Post;
+
+fn view_section(k: u32) -> vec4<f32> {
+    return post.section[k];
+}
 
 struct PostVarying {
     @builtin(position) position: vec4<f32>,

@@ -23,6 +23,9 @@ fn angle_vertex(@location(0) position: vec3<f32>, @location(1) normal: vec3<f32>
 
 @fragment
 fn angle_fragment(v: AngleVarying) -> @location(0) vec4<f32> {
+    if section_cuts(v.model_position) {
+        discard;
+    }
     let to_viewer = normalize(frame.eye.xyz - v.model_position * frame.eye.w);
     if abs(dot(normalize(v.normal), to_viewer)) >= params.threshold {
         discard;

@@ -23,6 +23,8 @@ struct VertexEdge {
     h: vec2<f32>,
     depth: vec2<f32>,
     w: vec2<f32>,
+    // The middle of the part the section keeps, in model space.
+    kept: vec3<f32>,
 }
 
 fn screen_dir(from_px: vec2<f32>, to_clip: vec4<f32>) -> vec2<f32> {
@@ -53,8 +55,15 @@ fn vertex_edge(e: u32) -> VertexEdge {
         return out;
     }
     let mvp = view_mvp();
-    let c0 = mvp * vec4<f32>(v0, 1.0);
-    let c1 = mvp * vec4<f32>(v1, 1.0);
+    // The part the section planes keep (section.wgsl); its ends stand for the edge's.
+    let span = section_span(v0, v1, vec2<f32>(0.0, 1.0));
+    if !(span.x < span.y) {
+        return out;
+    }
+    let e0 = mix(v0, v1, span.x);
+    let e1 = mix(v0, v1, span.y);
+    let c0 = mvp * vec4<f32>(e0, 1.0);
+    let c1 = mvp * vec4<f32>(e1, 1.0);
     // Like the thesis, no near-plane clipping: an edge that reaches behind the camera is not drawn.
     if in_front(c0) < 0.0 || in_front(c1) < 0.0 || c0.w <= 0.0 || c1.w <= 0.0 {
         return out;
@@ -67,11 +76,12 @@ fn vertex_edge(e: u32) -> VertexEdge {
     }
     out.word = word;
     out.p = perp(normalize(along));
-    out.m0 = screen_dir(out.s0, mvp * vec4<f32>(v0 + vertex_normals[i0].xyz, 1.0));
-    out.m1 = screen_dir(out.s1, mvp * vec4<f32>(v1 + vertex_normals[i1].xyz, 1.0));
+    out.m0 = screen_dir(out.s0, mvp * vec4<f32>(e0 + vertex_normals[i0].xyz, 1.0));
+    out.m1 = screen_dir(out.s1, mvp * vec4<f32>(e1 + vertex_normals[i1].xyz, 1.0));
     out.h = vec2<f32>(half_width(c0.w), half_width(c1.w));
     out.depth = vec2<f32>(biased_depth(c0), biased_depth(c1));
     out.w = vec2<f32>(c0.w, c1.w);
+    out.kept = mix(e0, e1, 0.5);
     return out;
 }
 
@@ -86,5 +96,6 @@ fn outward(edge: VertexEdge) -> vec2<f32> {
 }
 
 fn edge_vertex_out(edge: VertexEdge, position: vec4<f32>) -> FlatVarying {
-    return flat_vertex(edge.word, position);
+    // The segment is clipped already; its kept middle passes the fragment's section test.
+    return flat_vertex(edge.word, position, edge.kept);
 }

@@ -27,6 +27,8 @@ struct WireVarying {
     @location(0) @interpolate(linear) coords: vec3<f32>,
     // Which coordinates mark a drawn edge (bit k: the edge opposite corner k).
     @location(1) @interpolate(flat) shown: u32,
+    // The model-space point, for the section planes.
+    @location(2) point: vec3<f32>,
 }
 
 fn balanced(d: f32, side: f32, sine: f32) -> f32 {
@@ -73,11 +75,15 @@ fn wire_vertex(@builtin(vertex_index) k: u32, @builtin(instance_index) t: u32) -
         out.coords = coords;
     }
     out.position = vec4<f32>(c[k].xy, biased_depth(c[k]) * c[k].w, c[k].w);
+    out.point = p[k];
     return out;
 }
 
 @fragment
 fn wire_fragment(v: WireVarying) -> @location(0) vec4<f32> {
+    if section_cuts(v.point) {
+        discard;
+    }
     var coverage = 0.0;
     // How fast each coordinate changes, taken before any branch: derivatives need uniform control
     // flow (WebGPU's compilers refuse them inside the loop's `continue`).

@@ -132,6 +132,111 @@ impl Section {
     }
 }
 
+/// Section planes as the renderer's shaders take them: up to [`MAX_PLANES`] rows `[nx, ny, nz, -d]`
+/// ([`Plane::to_vec4`]); a point `p` with `dot(row, (p, 1)) >= 0` for any row is cut away. Rows past
+/// the planes given are `[0, 0, 0, -1]`, which cut nothing, so shaders loop over all of them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ClipPlanes {
+    rows: [[f32; 4]; MAX_PLANES],
+    count: usize,
+}
+
+impl Default for ClipPlanes {
+    fn default() -> Self {
+        Self::NONE
+    }
+}
+
+impl ClipPlanes {
+    /// No plane: nothing is cut.
+    pub const NONE: Self = Self {
+        rows: [[0.0, 0.0, 0.0, -1.0]; MAX_PLANES],
+        count: 0,
+    };
+
+    /// The first [`MAX_PLANES`] of `planes` (a checked [`Section`] has no more).
+    pub fn new(planes: &[Plane]) -> Self {
+        let mut out = Self::NONE;
+        for (row, plane) in out.rows.iter_mut().zip(planes) {
+            *row = plane.to_vec4();
+        }
+        out.count = planes.len().min(MAX_PLANES);
+        out
+    }
+
+    /// The planes of `section`, or its error ([`Section::check`]).
+    pub fn from_section(section: &Section) -> Result<Self, SchemaError> {
+        section.check()?;
+        Ok(Self::new(&section.planes()?))
+    }
+
+    /// The planes given, as rows.
+    pub fn planes(&self) -> &[[f32; 4]] {
+        &self.rows[..self.count]
+    }
+
+    /// True when nothing is cut.
+    pub fn is_empty(&self) -> bool {
+        self.count == 0
+    }
+
+    /// All rows, the unused ones included: what a uniform holds.
+    pub fn rows(&self) -> [[f32; 4]; MAX_PLANES] {
+        self.rows
+    }
+
+    /// These planes (in world space) in the model space of an instance placed by `model_to_world`:
+    /// a plane row `P` becomes `Mᵀ P` (so `P·(M p) = (Mᵀ P)·p`), normal made unit length again so
+    /// distances stay in model units. A row the transform degenerates (a zero scale) cuts nothing.
+    pub fn to_model(&self, model_to_world: glam::Mat4) -> Self {
+        let mut out = *self;
+        for row in &mut out.rows[..self.count] {
+            let p = model_to_world.transpose() * glam::Vec4::from_array(*row);
+            let length = p.truncate().length();
+            *row = if length > 0.0 && length.is_finite() {
+                (p / length).to_array()
+            } else {
+                [0.0, 0.0, 0.0, -1.0]
+            };
+        }
+        out
+    }
+
+    /// True if `p` is cut away, as the shaders decide it (`section_cuts` in
+    /// `shaders/section.wgsl`).
+    pub fn cuts(&self, p: [f32; 3]) -> bool {
+        self.planes()
+            .iter()
+            .any(|r| r[0] * p[0] + r[1] * p[1] + r[2] * p[2] + r[3] >= 0.0)
+    }
+
+    /// Whether the box `lo..hi` is wholly cut away by one plane (nothing of it is drawn) and which
+    /// planes pass through it (those that cut it and may need a cap there), as bits.
+    pub fn against_box(&self, lo: [f32; 3], hi: [f32; 3]) -> (bool, u32) {
+        let mut crossing = 0;
+        for (k, r) in self.planes().iter().enumerate() {
+            // The box's corner farthest along the normal, and the nearest.
+            let pick = |toward: bool| {
+                [0, 1, 2].map(|i| {
+                    if (r[i] >= 0.0) == toward {
+                        hi[i]
+                    } else {
+                        lo[i]
+                    }
+                })
+            };
+            let distance = |p: [f32; 3]| r[0] * p[0] + r[1] * p[1] + r[2] * p[2] + r[3];
+            if distance(pick(false)) >= 0.0 {
+                return (true, 0);
+            }
+            if distance(pick(true)) >= 0.0 {
+                crossing |= 1 << k;
+            }
+        }
+        (false, crossing)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -157,6 +262,29 @@ mod tests {
         assert!(planes.iter().all(|p| p.distance([0.9, 1.9, -2.9]) < 0.0));
         assert!(planes.iter().any(|p| p.distance([0.0, 0.0, 3.1]) > 0.0));
         assert!(Section::default().planes().expect("none").is_empty());
+    }
+
+    #[test]
+    fn clip_planes_follow_an_instance_and_sort_boxes() {
+        let x = Plane {
+            normal: [1.0, 0.0, 0.0],
+            offset: 1.0,
+        };
+        let planes = ClipPlanes::new(&[x]);
+        assert!(planes.cuts([1.0, 0.0, 0.0]) && !planes.cuts([0.99, 5.0, 0.0]));
+        assert!(!ClipPlanes::NONE.cuts([1e30, 0.0, 0.0]));
+        // An instance moved by +3 in x and scaled by 2: world x = 1 is model x = -1.
+        let m = glam::Mat4::from_translation(glam::Vec3::new(3.0, 0.0, 0.0))
+            * glam::Mat4::from_scale(glam::Vec3::splat(2.0));
+        let model = planes.to_model(m);
+        assert!(model.cuts([-0.999, 0.0, 0.0]) && !model.cuts([-1.001, 0.0, 0.0]));
+        assert!(
+            (model.planes()[0][3] - 1.0).abs() < 1e-6,
+            "unit normal, model units"
+        );
+        assert_eq!(planes.against_box([-2.0; 3], [0.0; 3]), (false, 0));
+        assert_eq!(planes.against_box([0.0; 3], [2.0; 3]), (false, 1));
+        assert_eq!(planes.against_box([1.0; 3], [2.0; 3]), (true, 0));
     }
 
     #[test]

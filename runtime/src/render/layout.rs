@@ -97,6 +97,7 @@ pub(crate) fn constants() -> Vec<(&'static str, u32)> {
         ("ENV_IRRADIANCE_WIDTH", environment::IRRADIANCE_SIZE[0]),
         ("ENV_IRRADIANCE_HEIGHT", environment::IRRADIANCE_SIZE[1]),
         ("SHADE_PBR", SHADE_PBR),
+        ("SECTION_PLANES", crate::section::MAX_PLANES as u32),
         ("SHADE_ENVIRONMENT", SHADE_ENVIRONMENT),
         ("CORNER_WORDS", crate::highlight::corners::CORNER_WORDS),
     ]
@@ -167,6 +168,8 @@ pub(crate) struct Frame {
     pub(crate) batch_instances: u32,
     pub(crate) table_mask: u32,
     pub(crate) survivor_capacity: u32,
+    /// The section planes in the instance's model space (`ClipPlanes::rows`).
+    pub(crate) section: [[f32; 4]; crate::section::MAX_PLANES],
 }
 
 /// `InstanceFrame` in `shaders/common.wgsl`: one instance's camera in its model space, for the
@@ -188,6 +191,8 @@ pub(crate) struct InstanceFrame {
     pub(crate) _pad0: u32,
     pub(crate) _pad1: u32,
     pub(crate) _pad2: u32,
+    /// The instance's section planes in its model space.
+    pub(crate) section: [[f32; 4]; crate::section::MAX_PLANES],
 }
 
 /// `Post` in `shaders/post.wgsl`: the uniform of the post-processes.
@@ -200,6 +205,8 @@ pub(crate) struct Post {
     pub(crate) viewport: [f32; 2],
     pub(crate) depth_ref: f32,
     pub(crate) _pad: u32,
+    /// The first instance's section planes in its model space (its normal or mask pass).
+    pub(crate) section: [[f32; 4]; crate::section::MAX_PLANES],
 }
 
 /// `PunctualLight` in `shaders/brdf.wgsl`.
@@ -238,6 +245,8 @@ pub(crate) struct MeshFrame {
     pub(crate) pbr: u32,
     pub(crate) eye: [f32; 4],
     pub(crate) surface: [f32; 4],
+    /// The instance's section planes in its model space.
+    pub(crate) section: [[f32; 4]; crate::section::MAX_PLANES],
 }
 
 /// `DrawArgs` in `shaders/compute.wgsl`: one indirect draw's arguments.
@@ -377,6 +386,7 @@ pub(crate) fn layouts() -> Vec<Layout> {
                 batch_instances,
                 table_mask,
                 survivor_capacity,
+                section,
             ]
         ),
         layout!(
@@ -394,7 +404,8 @@ pub(crate) fn layouts() -> Vec<Layout> {
                 visible,
                 _pad0,
                 _pad1,
-                _pad2
+                _pad2,
+                section
             ]
         ),
         layout!(
@@ -410,13 +421,21 @@ pub(crate) fn layouts() -> Vec<Layout> {
         layout!(
             "Post",
             Post,
-            [inv_projection, mvp, color, viewport, depth_ref, _pad]
+            [
+                inv_projection,
+                mvp,
+                color,
+                viewport,
+                depth_ref,
+                _pad,
+                section
+            ]
         ),
         layout!(
             "MeshFrame",
             MeshFrame,
             [
-                mvp, light, color, ambient, specular, shininess, pbr, eye, surface
+                mvp, light, color, ambient, specular, shininess, pbr, eye, surface, section
             ]
         ),
         layout!(

@@ -15,6 +15,7 @@ use super::techniques::Blocks;
 use super::{Camera, GpuAsset, Instance, Light, Pipelines, RenderError};
 use crate::highlight::environment::Environment;
 use crate::highlight::ggx::PbrMaterial;
+use crate::section::ClipPlanes;
 
 /// Where the mesh's light comes from.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -48,6 +49,10 @@ pub struct MeshStyle {
     /// colour replaces `color`'s RGB (the alpha stays), `specular` and `shininess` are unused, and
     /// point and spot lights fall off as 1/d².
     pub pbr: Option<PbrMaterial>,
+    /// Section planes in world space (issue 43): what they cut away is not drawn. Give the edges'
+    /// style the same ([`EdgeStyle::section`](super::EdgeStyle::section)); an
+    /// [`Instance`] may have its own.
+    pub section: ClipPlanes,
 }
 
 impl Default for MeshStyle {
@@ -60,6 +65,7 @@ impl Default for MeshStyle {
             specular: 0.0,
             shininess: 32.0,
             pbr: None,
+            section: ClipPlanes::NONE,
         }
     }
 }
@@ -79,6 +85,7 @@ pub(crate) fn shader() -> Shader {
         &[
             chamfer_shaders::BRDF,
             chamfer_shaders::ENVIRONMENT,
+            chamfer_shaders::SECTION,
             chamfer_shaders::MESH,
         ],
         vec![Program::draw("mesh_vertex", "mesh_fragment", &MESH)],
@@ -192,6 +199,7 @@ impl MeshRenderer {
                     _ => *style,
                 };
                 let mut frame = mesh_frame(&camera, &style);
+                frame.section = instance.model_section(&style.section).rows();
                 if lit_by_environment {
                     frame.pbr |= SHADE_ENVIRONMENT;
                 }
@@ -268,5 +276,6 @@ fn mesh_frame(camera: &Camera, style: &MeshStyle) -> MeshFrame {
         pbr,
         eye: camera.eye().to_array(),
         surface,
+        section: style.section.rows(),
     }
 }

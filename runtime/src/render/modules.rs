@@ -67,15 +67,6 @@ impl Program {
             bindings,
         }
     }
-
-    /// A render pipeline of `vertex` without a fragment stage (depth only).
-    pub(crate) const fn depth_only(vertex: &'static str, bindings: &'static Bindings) -> Self {
-        Self {
-            entry: vertex,
-            fragment: None,
-            bindings,
-        }
-    }
 }
 
 #[cfg(test)]

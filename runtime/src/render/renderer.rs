@@ -21,6 +21,7 @@ use super::layout::MAX_INSTANCES;
 use super::techniques::{self, Drawn, FrameContext, FrameOptions, Module, TechniqueFrame};
 use super::{Camera, EdgeColors, EdgeStyle, GpuAsset, Light, Pipelines, RenderError, Technique};
 use crate::highlight::environment::Environment;
+use crate::section::ClipPlanes;
 
 /// One drawn copy of an asset: where it is and, optionally, its own colours.
 #[derive(Clone, Copy, Debug)]
@@ -36,6 +37,9 @@ pub struct Instance<'a> {
     /// `MeshLight::Model`. A scene light reaches differently turned instances from different
     /// model-space directions: give each its own and draw them together.
     pub light: Option<Light>,
+    /// This instance's section planes in world space; `None`: the style's
+    /// ([`EdgeStyle::section`], [`MeshStyle::section`](super::MeshStyle::section)).
+    pub section: Option<ClipPlanes>,
 }
 
 impl<'a> Instance<'a> {
@@ -46,7 +50,24 @@ impl<'a> Instance<'a> {
             transform: Mat4::IDENTITY,
             colors: None,
             light: None,
+            section: None,
         }
+    }
+
+    /// The same instance cut by its own section planes (world space).
+    pub fn with_section(self, section: ClipPlanes) -> Self {
+        Self {
+            section: Some(section),
+            ..self
+        }
+    }
+
+    /// This instance's section planes in its model space, given the style's (world space).
+    pub fn model_section(&self, style: &ClipPlanes) -> ClipPlanes {
+        self.section
+            .as_ref()
+            .unwrap_or(style)
+            .to_model(self.transform)
     }
 
     /// The same instance at `transform`.
@@ -216,7 +237,14 @@ impl SceneRenderer {
         let drawn: Vec<Drawn<'_>> = instances
             .iter()
             .filter(|i| on_gpu || in_view(view_projection * i.transform, i.asset.bounds()))
-            .map(|i| Drawn {
+            .map(|i| (i, i.model_section(&style.section)))
+            // An instance wholly cut away draws nothing.
+            .filter(|(i, section)| {
+                let [lo, hi] = i.asset.bounds();
+                !section.against_box(lo, hi).0
+            })
+            .map(|(i, section)| Drawn {
+                section,
                 asset: i.asset,
                 camera: Camera {
                     model_view: camera.model_view * i.transform,

@@ -5,6 +5,7 @@ use crate::asset::EdgeFlags;
 use super::layout::{CONTOUR_CLASS, INTERSECTION_CLASS, drawn::COLOR_COUNT};
 use super::lighting::Highlight;
 use super::technique::Technique;
+use crate::section::ClipPlanes;
 
 /// Which edge classes to draw; combine with `|`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -185,6 +186,9 @@ pub struct EdgeStyle {
     /// ([`Technique::Joined`]; issue 14). The same edges are drawn either way; `false` classifies every
     /// edge, the baseline the cluster test is measured against.
     pub cluster_culling: bool,
+    /// Section planes in world space (issue 43): every technique clips its edges to what they keep.
+    /// An [`Instance`](super::Instance) may have its own.
+    pub section: ClipPlanes,
 }
 
 impl Default for EdgeStyle {
@@ -202,6 +206,7 @@ impl Default for EdgeStyle {
             cull_back_facing: true,
             highlight: None,
             cluster_culling: true,
+            section: ClipPlanes::NONE,
         }
     }
 }

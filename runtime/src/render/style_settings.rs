@@ -129,6 +129,7 @@ impl StyleSettings {
                 Shading::Pbr(material) => Some(material),
                 Shading::Blinn(_) => None,
             },
+            ..MeshStyle::default()
         }
     }
 

@@ -73,6 +73,7 @@ impl Pull for Alternate {
         "alternate.wgsl",
         &[
             wgsl::COMMON,
+            wgsl::SECTION,
             wgsl::FRAME,
             wgsl::FLAT,
             wgsl::VERTEX_EDGES,

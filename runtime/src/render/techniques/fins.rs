@@ -72,7 +72,13 @@ impl Pull for Fins {
     );
     const SHADER: (&'static str, &'static [&'static str]) = (
         "fins.wgsl",
-        &[wgsl::COMMON, wgsl::BATCH, wgsl::FLAT, wgsl::FINS],
+        &[
+            wgsl::COMMON,
+            wgsl::SECTION,
+            wgsl::BATCH,
+            wgsl::FLAT,
+            wgsl::FINS,
+        ],
     );
     const BATCHED: bool = true;
     const DRAWS: Draws = Draws::PerEdge(12);

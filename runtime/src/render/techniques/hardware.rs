@@ -93,6 +93,7 @@ fn shader() -> Shader {
         "hardware.wgsl",
         &[
             wgsl::COMMON,
+            wgsl::SECTION,
             wgsl::FRAME,
             wgsl::FLAT,
             wgsl::TRIANGLES,
@@ -100,7 +101,6 @@ fn shader() -> Shader {
         ],
         vec![
             stencil("hw_depth_vertex"),
-            Program::depth_only("hw_depth_vertex", &BINDINGS),
             flat("hw_wire_vertex"),
             flat("hw_back_vertex"),
             flat("hw_fat_vertex"),
@@ -285,9 +285,10 @@ impl PipelineSet for HardwarePipelines {
                 Some("valley_fragment"),
                 triangles(target.depth(false, wgpu::CompareFunction::Greater), drawn),
             )?,
+            // Through the fragment that discards what the section cuts away.
             back_depth: compiled.render(
                 "hw_depth_vertex",
-                None,
+                Some("stencil_only"),
                 Raster {
                     buffers: &VERTEX_LAYOUTS[..1],
                     primitive: wgpu::PrimitiveState {

@@ -148,7 +148,12 @@ impl PostProcess for Hybrid {
         use chamfer_shaders as wgsl;
         Shader::new(
             "hybrid.wgsl",
-            &[post::depth_source(target), wgsl::POST, wgsl::HYBRID],
+            &[
+                post::depth_source(target),
+                wgsl::POST,
+                wgsl::SECTION,
+                wgsl::HYBRID,
+            ],
             vec![
                 Program::draw("post_vertex", "hybrid_fragment", &BINDINGS),
                 Program::draw("mask_vertex", "mask_fragment", &MESH_PASS),

@@ -86,7 +86,12 @@ impl PostProcess for ImageSpace {
         use chamfer_shaders as wgsl;
         Shader::new(
             "image_space.wgsl",
-            &[post::depth_source(target), wgsl::POST, wgsl::IMAGE_SPACE],
+            &[
+                post::depth_source(target),
+                wgsl::POST,
+                wgsl::SECTION,
+                wgsl::IMAGE_SPACE,
+            ],
             vec![
                 Program::draw("post_vertex", "image_fragment", &BINDINGS),
                 Program::draw("normal_vertex", "normal_fragment", &MESH_PASS),

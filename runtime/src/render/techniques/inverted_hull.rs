@@ -67,7 +67,13 @@ impl Pull for InvertedHull {
     );
     const SHADER: (&'static str, &'static [&'static str]) = (
         "inverted_hull.wgsl",
-        &[wgsl::COMMON, wgsl::FRAME, wgsl::FLAT, wgsl::INVERTED_HULL],
+        &[
+            wgsl::COMMON,
+            wgsl::SECTION,
+            wgsl::FRAME,
+            wgsl::FLAT,
+            wgsl::INVERTED_HULL,
+        ],
     );
     const DRAWS: Draws = Draws::Mesh;
     const PROGRAMS: &'static [Program] = &[Program::draw(

@@ -49,6 +49,7 @@ impl Pull for McGuireHughes {
         "mcguire_hughes.wgsl",
         &[
             wgsl::COMMON,
+            wgsl::SECTION,
             wgsl::BATCH,
             wgsl::FLAT,
             wgsl::VERTEX_EDGES,

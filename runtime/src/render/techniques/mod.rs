@@ -177,6 +177,8 @@ pub(crate) struct Drawn<'a> {
     pub(crate) colors: EdgeColors,
     /// The highlight's light for this instance (model space); `None`: the style's.
     pub(crate) light: Option<super::Light>,
+    /// The section planes in the instance's model space.
+    pub(crate) section: crate::section::ClipPlanes,
 }
 
 /// What a technique's frame is prepared from.
@@ -277,6 +279,7 @@ pub(crate) fn frame_uniform(cx: &FrameContext<'_>, drawn: &Drawn<'_>, index: usi
         batch_instances: 0,
         table_mask: 0,
         survivor_capacity: 0,
+        section: drawn.section.rows(),
     }
 }
 
@@ -346,6 +349,7 @@ pub(crate) fn instance_view(
         _pad0: 0,
         _pad1: 0,
         _pad2: 0,
+        section: drawn.section.rows(),
     }
 }
 

@@ -90,6 +90,11 @@ pub(crate) fn uniform(cx: &FrameContext<'_>) -> Post {
         viewport: camera.viewport.map(|v| v.max(1) as f32),
         depth_ref,
         _pad: 0,
+        section: cx
+            .instances
+            .first()
+            .map_or(crate::section::ClipPlanes::NONE, |d| d.section)
+            .rows(),
     }
 }
 

@@ -49,7 +49,12 @@ impl Pull for SurfaceAngle {
     const BINDINGS: &'static Bindings = &Bindings::draw("surface angle", &[FRAME, PARAMS]);
     const SHADER: (&'static str, &'static [&'static str]) = (
         "surface_angle.wgsl",
-        &[wgsl::COMMON, wgsl::FRAME, wgsl::SURFACE_ANGLE],
+        &[
+            wgsl::COMMON,
+            wgsl::SECTION,
+            wgsl::FRAME,
+            wgsl::SURFACE_ANGLE,
+        ],
     );
     const DRAWS: Draws = Draws::Mesh;
     const PROGRAMS: &'static [Program] = &[Program::draw(

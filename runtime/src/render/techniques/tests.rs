@@ -62,6 +62,7 @@ impl Pull for Silhouette {
         "silhouette (test)",
         &[
             chamfer_shaders::COMMON,
+            chamfer_shaders::SECTION,
             chamfer_shaders::FRAME,
             SILHOUETTE_WGSL,
         ],

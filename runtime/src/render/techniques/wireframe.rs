@@ -85,7 +85,13 @@ impl Pull for Wireframe {
     );
     const SHADER: (&'static str, &'static [&'static str]) = (
         "wireframe.wgsl",
-        &[wgsl::COMMON, wgsl::FRAME, wgsl::TRIANGLES, wgsl::WIREFRAME],
+        &[
+            wgsl::COMMON,
+            wgsl::SECTION,
+            wgsl::FRAME,
+            wgsl::TRIANGLES,
+            wgsl::WIREFRAME,
+        ],
     );
     const DRAWS: Draws = Draws::PerTriangle(3);
     const PROGRAMS: &'static [Program] = &[Program::draw(

@@ -17,7 +17,13 @@ const SHADERS: [(&str, &[&str], &[Program]); 9] = [
     // Which instances are in view.
     (
         "instances.wgsl",
-        &[wgsl::COMMON, wgsl::FRAME, wgsl::LISTS, wgsl::INSTANCES],
+        &[
+            wgsl::COMMON,
+            wgsl::SECTION,
+            wgsl::FRAME,
+            wgsl::LISTS,
+            wgsl::INSTANCES,
+        ],
         &[Program::compute("place", &PLACE)],
     ),
     // Cluster culling and edge classification, every instance of an asset at once.
@@ -25,6 +31,7 @@ const SHADERS: [(&str, &[&str], &[Program]); 9] = [
         "classify.wgsl",
         &[
             wgsl::COMMON,
+            wgsl::SECTION,
             wgsl::BATCH,
             wgsl::BRDF,
             wgsl::HIGHLIGHT,
@@ -44,7 +51,13 @@ const SHADERS: [(&str, &[&str], &[Program]); 9] = [
     // The frame's bookkeeping over the lists.
     (
         "args.wgsl",
-        &[wgsl::COMMON, wgsl::BATCH, wgsl::LISTS, wgsl::ARGS],
+        &[
+            wgsl::COMMON,
+            wgsl::SECTION,
+            wgsl::BATCH,
+            wgsl::LISTS,
+            wgsl::ARGS,
+        ],
         &[
             Program::compute("reset", &ARGS),
             Program::compute("args", &ARGS),
@@ -56,6 +69,7 @@ const SHADERS: [(&str, &[&str], &[Program]); 9] = [
         "joins.wgsl",
         &[
             wgsl::COMMON,
+            wgsl::SECTION,
             wgsl::BATCH,
             wgsl::BRDF,
             wgsl::HIGHLIGHT,
@@ -74,6 +88,7 @@ const SHADERS: [(&str, &[&str], &[Program]); 9] = [
         "chamfers.wgsl",
         &[
             wgsl::COMMON,
+            wgsl::SECTION,
             wgsl::BATCH,
             wgsl::BRDF,
             wgsl::HIGHLIGHT,
@@ -89,6 +104,7 @@ const SHADERS: [(&str, &[&str], &[Program]); 9] = [
         "edges.wgsl",
         &[
             wgsl::COMMON,
+            wgsl::SECTION,
             wgsl::FRAME,
             wgsl::BRDF,
             wgsl::HIGHLIGHT,
@@ -106,6 +122,7 @@ const SHADERS: [(&str, &[&str], &[Program]); 9] = [
         "caps.wgsl",
         &[
             wgsl::COMMON,
+            wgsl::SECTION,
             wgsl::FRAME,
             wgsl::BRDF,
             wgsl::HIGHLIGHT,
@@ -119,6 +136,7 @@ const SHADERS: [(&str, &[&str], &[Program]); 9] = [
         "corner_draw.wgsl",
         &[
             wgsl::COMMON,
+            wgsl::SECTION,
             wgsl::FRAME,
             wgsl::BRDF,
             wgsl::HIGHLIGHT,
@@ -135,7 +153,12 @@ const SHADERS: [(&str, &[&str], &[Program]); 9] = [
     // Baked intersection edges.
     (
         "intersections.wgsl",
-        &[wgsl::COMMON, wgsl::FRAME, wgsl::INTERSECTIONS],
+        &[
+            wgsl::COMMON,
+            wgsl::SECTION,
+            wgsl::FRAME,
+            wgsl::INTERSECTIONS,
+        ],
         &[Program::draw(
             "segment_vertex",
             "segment_fragment",
@@ -165,6 +188,7 @@ pub(crate) fn shaders(target: &Target) -> Vec<Shader> {
         "outline.wgsl",
         &[
             wgsl::COMMON,
+            wgsl::SECTION,
             wgsl::FRAME,
             wgsl::BRDF,
             wgsl::HIGHLIGHT,

@@ -1,0 +1,36 @@
+// Section planes (issue 43): what every pass that draws the model cuts away. A pass's host file
+// defines `view_section(k)`, the instance's plane k in its model space (`ClipPlanes` in
+// runtime/src/section.rs): `dot(plane, (p, 1)) >= 0` is cut, so a point on a plane is cut away as
+// the drawings' exact cut has it, and unused rows (0, 0, 0, -1) cut nothing. Segments (edges) are
+// clipped exactly where they are projected (`section_span`); surfaces discard cut fragments
+// (`section_cuts`) or, where the device has clip distances, clip there.
+
+// True if model-space point `p` is cut away by any plane.
+fn section_cuts(p: vec3<f32>) -> bool {
+    for (var k = 0u; k < SECTION_PLANES; k++) {
+        if dot(view_section(k), vec4<f32>(p, 1.0)) >= 0.0 {
+            return true;
+        }
+    }
+    return false;
+}
+
+// The part `span` (parameters along p0 -> p1, 0 at p0) keeps of the segment from p0 to p1 once
+// every plane has cut it: empty (x >= y) when nothing is left.
+fn section_span(p0: vec3<f32>, p1: vec3<f32>, span: vec2<f32>) -> vec2<f32> {
+    var kept = span;
+    for (var k = 0u; k < SECTION_PLANES; k++) {
+        let plane = view_section(k);
+        let a = dot(plane, vec4<f32>(p0, 1.0));
+        let b = dot(plane, vec4<f32>(p1, 1.0));
+        if a >= 0.0 && b >= 0.0 {
+            return vec2<f32>(1.0, 0.0);
+        }
+        if a >= 0.0 {
+            kept.x = max(kept.x, a / (a - b));
+        } else if b >= 0.0 {
+            kept.y = min(kept.y, a / (a - b));
+        }
+    }
+    return kept;
+}
