@@ -15,7 +15,7 @@ use super::RenderError;
 use super::bindings::{self, Binding};
 use super::derived::{self, AssetExtras};
 use super::target::checked;
-use crate::asset::{Asset, IndexWidth, SectionKind};
+use crate::asset::{Asset, EdgeFlags, IndexWidth, SectionKind};
 
 /// A validated asset on the GPU. Create it once; any number of renderers can draw from it (it is a
 /// set of shared buffer handles, cheap to clone).
@@ -49,6 +49,8 @@ pub struct GpuAsset {
     pub(crate) has_rings: bool,
     pub(crate) has_chamfers: bool,
     pub(crate) bounds: [[f32; 3]; 2],
+    /// No boundary and no non-manifold edge: a section's cut faces can be filled.
+    pub(crate) closed: bool,
     pub(crate) radius_scale: f32,
     /// What [`AssetExtras`] the upload derived.
     pub(crate) extras: AssetExtras,
@@ -246,6 +248,11 @@ impl GpuAsset {
             has_rings: !asset.next_ends.is_empty(),
             has_chamfers,
             bounds: [asset.header.bounds_min, asset.header.bounds_max],
+            closed: (0..asset.edge_count()).all(|e| {
+                !asset
+                    .edge_flags(e)
+                    .intersects(EdgeFlags::BOUNDARY | EdgeFlags::NON_MANIFOLD)
+            }),
             radius_scale: asset.header.radius_scale,
             extras: AssetExtras::NONE,
             key: std::sync::Arc::new(()),
@@ -292,6 +299,12 @@ impl GpuAsset {
     /// Minimum and maximum corners of the model's bounding box.
     pub fn bounds(&self) -> [[f32; 3]; 2] {
         self.bounds
+    }
+
+    /// True if the mesh is closed (no boundary and no non-manifold edge), so a section's cut
+    /// faces are filled ([`CutRenderer`](super::CutRenderer)).
+    pub fn is_closed(&self) -> bool {
+        self.closed
     }
 
     /// The centre of the model's bounding box.

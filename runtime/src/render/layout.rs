@@ -249,6 +249,22 @@ pub(crate) struct MeshFrame {
     pub(crate) section: [[f32; 4]; crate::section::MAX_PLANES],
 }
 
+/// `CutFrame` in `shaders/cut.wgsl`: one plane of one instance's cut faces.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct CutFrame {
+    pub(crate) mvp: [[f32; 4]; 4],
+    pub(crate) section: [[f32; 4]; crate::section::MAX_PLANES],
+    pub(crate) bounds: [f32; 4],
+    pub(crate) color: [f32; 4],
+    pub(crate) hatch_color: [f32; 4],
+    pub(crate) hatch: [f32; 4],
+    pub(crate) plane: u32,
+    pub(crate) hatch_in_model: u32,
+    pub(crate) _pad0: u32,
+    pub(crate) _pad1: u32,
+}
+
 /// `DrawArgs` in `shaders/compute.wgsl`: one indirect draw's arguments.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
@@ -436,6 +452,22 @@ pub(crate) fn layouts() -> Vec<Layout> {
             MeshFrame,
             [
                 mvp, light, color, ambient, specular, shininess, pbr, eye, surface, section
+            ]
+        ),
+        layout!(
+            "CutFrame",
+            CutFrame,
+            [
+                mvp,
+                section,
+                bounds,
+                color,
+                hatch_color,
+                hatch,
+                plane,
+                hatch_in_model,
+                _pad0,
+                _pad1
             ]
         ),
         layout!(

@@ -45,6 +45,7 @@
 //! thumbnails, the `chamfer render` command).
 
 mod bindings;
+mod cut;
 mod derived;
 mod environment;
 mod error;
@@ -63,6 +64,7 @@ mod technique;
 mod techniques;
 
 pub use crate::camera::{Camera, Orbit};
+pub use cut::{CapHatch, CapStyle, CutRenderer, CutStyle};
 pub use derived::AssetExtras;
 pub use error::RenderError;
 pub use gpu_asset::GpuAsset;

@@ -112,9 +112,10 @@ pub(crate) mod tests {
                     }
                 }
             }
-            let mesh = super::super::mesh::shader();
-            if !out.iter().any(|(_, s, _)| s.source == mesh.source) {
-                out.push((target, mesh, Vec::new()));
+            for shader in [super::super::mesh::shader(), super::super::cut::shader()] {
+                if !out.iter().any(|(_, s, _)| s.source == shader.source) {
+                    out.push((target, shader, Vec::new()));
+                }
             }
         }
         out

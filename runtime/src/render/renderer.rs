@@ -40,6 +40,8 @@ pub struct Instance<'a> {
     /// This instance's section planes in world space; `None`: the style's
     /// ([`EdgeStyle::section`], [`MeshStyle::section`](super::MeshStyle::section)).
     pub section: Option<ClipPlanes>,
+    /// This instance's cut faces; `None`: the [`CutStyle`](super::CutStyle)'s.
+    pub cap: Option<super::CapStyle>,
 }
 
 impl<'a> Instance<'a> {
@@ -51,6 +53,15 @@ impl<'a> Instance<'a> {
             colors: None,
             light: None,
             section: None,
+            cap: None,
+        }
+    }
+
+    /// The same instance with its own cut faces.
+    pub fn with_cap(self, cap: super::CapStyle) -> Self {
+        Self {
+            cap: Some(cap),
+            ..self
         }
     }
 
