@@ -1,9 +1,15 @@
-// The cut faces of section planes (issue 43), by stencil parity: for each plane that crosses an
-// instance, its mesh, clipped by that plane alone, flips the stencil's bit at every fragment (no
-// depth test, no colour), so a pixel's bit ends up set exactly where the ray through it meets the
-// plane inside the closed mesh (it crosses the kept surface an odd number of times). A quad on the
-// plane then fills the pixels with the bit set, clipped by the other planes and depth tested, and
-// the same parity draw flips the bits back to zero for the next plane or instance.
+// The cut faces and cut outlines of section planes (issue 43).
+//
+// Faces, by stencil parity: for each plane that crosses an instance, its mesh, clipped by that plane
+// alone, flips the stencil's bit at every fragment (no depth test, no colour), so a pixel's bit ends
+// up set exactly where the ray through it meets the plane inside the closed mesh (it crosses the
+// kept surface an odd number of times). A quad on the plane then fills the pixels with the bit set,
+// clipped by the other planes and depth tested, and the same parity draw flips the bits back to
+// zero for the next plane or instance.
+//
+// Outlines: each triangle the plane crosses gives one segment (plane ∩ triangle), found in the
+// vertex shader every frame, clipped by the other planes and drawn as a capsule (a thick line with
+// round ends) so neighbouring segments join without gaps at any angle, as intersection lines are.
 
 struct CutFrame {
     mvp: mat4x4<f32>,
@@ -19,11 +25,19 @@ struct CutFrame {
     // The plane this draw caps.
     plane: u32,
     hatch_in_model: u32,
-    _pad0: u32,
-    _pad1: u32,
+    indices_u16: u32,
+    reverse_z: u32,
+    // The outline's colour.
+    outline: vec4<f32>,
+    // Viewport (pixels), world size of a pixel at clip w = 1, the outline's half width (pixels).
+    screen: vec4<f32>,
+    // Third column of the projection, for the outline's depth bias (common.wgsl's biased_depth).
+    proj_z: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> cut: CutFrame;
+@group(0) @binding(7) var<storage, read> render_positions: array<f32>;
+@group(0) @binding(9) var<storage, read> mesh_indices: array<u32>;
 
 fn view_section(k: u32) -> vec4<f32> {
     return cut.section[k];
@@ -93,4 +107,127 @@ fn cap_face_fragment(v: ParityVarying) -> @location(0) vec4<f32> {
         }
     }
     return cut.color;
+}
+
+fn cut_mesh_index(i: u32) -> u32 {
+    if cut.indices_u16 != 0u {
+        return (mesh_indices[i >> 1u] >> ((i & 1u) * 16u)) & 0xffffu;
+    }
+    return mesh_indices[i];
+}
+
+fn cut_render_position(r: u32) -> vec3<f32> {
+    return vec3<f32>(render_positions[3u * r], render_positions[3u * r + 1u], render_positions[3u * r + 2u]);
+}
+
+// True if `a` comes before `b` in (x, y, z) order: both triangles of an edge then interpolate
+// its cut point from the same end, and get the same point.
+fn before(a: vec3<f32>, b: vec3<f32>) -> bool {
+    return a.x < b.x || (a.x == b.x && (a.y < b.y || (a.y == b.y && a.z < b.z)));
+}
+
+// The pixel position of clip position `c` (origin top left, y down: common.wgsl's to_pixels).
+fn cut_pixels(c: vec4<f32>) -> vec2<f32> {
+    return vec2<f32>((c.x / c.w + 1.0) * 0.5 * cut.screen.x, (1.0 - c.y / c.w) * 0.5 * cut.screen.y);
+}
+
+struct OutlineVarying {
+    @builtin(position) position: vec4<f32>,
+    // The segment's ends in pixels.
+    @location(0) @interpolate(flat) ends: vec4<f32>,
+}
+
+// Vertex i (of 6) of the capsule of the segment where this draw's plane crosses triangle t.
+@vertex
+fn outline_vertex(@builtin(vertex_index) i: u32, @builtin(instance_index) t: u32) -> OutlineVarying {
+    var out: OutlineVarying;
+    out.position = vec4<f32>(2.0, 2.0, 2.0, 1.0);
+    let plane = cut.section[cut.plane];
+    var p: array<vec3<f32>, 3>;
+    var d: array<f32, 3>;
+    for (var k = 0u; k < 3u; k++) {
+        p[k] = cut_render_position(cut_mesh_index(3u * t + k));
+        d[k] = dot(plane, vec4<f32>(p[k], 1.0));
+    }
+    // A point on the plane counts as cut away (section.wgsl), so a triangle crosses 0 or 2 sides.
+    var ends: array<vec3<f32>, 2>;
+    var found = 0u;
+    for (var k = 0u; k < 3u; k++) {
+        let j = (k + 1u) % 3u;
+        if (d[k] >= 0.0) != (d[j] >= 0.0) && found < 2u {
+            var a = k;
+            var b = j;
+            if before(p[j], p[k]) {
+                a = j;
+                b = k;
+            }
+            ends[found] = mix(p[a], p[b], d[a] / (d[a] - d[b]));
+            found += 1u;
+        }
+    }
+    if found != 2u {
+        return out;
+    }
+    // The part the other planes keep.
+    var span = vec2<f32>(0.0, 1.0);
+    for (var k = 0u; k < SECTION_PLANES; k++) {
+        if k == cut.plane {
+            continue;
+        }
+        let a = dot(cut.section[k], vec4<f32>(ends[0], 1.0));
+        let b = dot(cut.section[k], vec4<f32>(ends[1], 1.0));
+        if a >= 0.0 && b >= 0.0 {
+            return out;
+        }
+        if a >= 0.0 {
+            span.x = max(span.x, a / (a - b));
+        } else if b >= 0.0 {
+            span.y = min(span.y, a / (a - b));
+        }
+    }
+    if !(span.x < span.y) {
+        return out;
+    }
+    let c0 = cut.mvp * vec4<f32>(mix(ends[0], ends[1], span.x), 1.0);
+    let c1 = cut.mvp * vec4<f32>(mix(ends[0], ends[1], span.y), 1.0);
+    // Short segments: one reaching behind the camera is not drawn.
+    if c0.w <= 0.0 || c1.w <= 0.0 {
+        return out;
+    }
+    let s0 = cut_pixels(c0);
+    let s1 = cut_pixels(c1);
+    let along = s1 - s0;
+    let dir = select(vec2<f32>(1.0, 0.0), normalize(along), dot(along, along) > 1e-8);
+    let side = vec2<f32>(-dir.y, dir.x);
+    // One pixel more than the half width, for the round ends' coverage.
+    let r = cut.screen.w + 1.0;
+    let at_end = ((0x16u >> i) & 1u) == 1u;
+    let left = ((0x34u >> i) & 1u) == 1u;
+    let c = select(c0, c1, at_end);
+    let px = select(s0 - dir * r, s1 + dir * r, at_end) + side * select(-r, r, left);
+    // Pulled towards the camera by a width's worth, to win against the cap and faces it lies on.
+    let bias = (1.0 + 3.0 * cut.screen.w) * cut.screen.z * c.w;
+    let biased = c + bias * cut.proj_z;
+    var depth = biased.z / biased.w;
+    let in_front = select(biased.z, biased.w - biased.z, cut.reverse_z != 0u);
+    if biased.w <= 0.0 || in_front <= 0.0 {
+        depth = select(0.0, 1.0, cut.reverse_z != 0u);
+    }
+    let ndc = vec2<f32>(px.x / cut.screen.x * 2.0 - 1.0, 1.0 - px.y / cut.screen.y * 2.0);
+    out.position = vec4<f32>(ndc * c.w, depth * c.w, c.w);
+    out.ends = vec4<f32>(s0, s1);
+    return out;
+}
+
+@fragment
+fn outline_fragment(v: OutlineVarying) -> @location(0) vec4<f32> {
+    let a = v.ends.xy;
+    let b = v.ends.zw;
+    let q = v.position.xy;
+    let ab = b - a;
+    let t = clamp(dot(q - a, ab) / max(dot(ab, ab), 1e-12), 0.0, 1.0);
+    if distance(q, a + t * ab) > cut.screen.w {
+        discard;
+    }
+    return cut.outline;
 }

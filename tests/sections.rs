@@ -5,8 +5,8 @@
 
 use chamfer_runtime::asset::Asset;
 use chamfer_runtime::render::{
-    Camera, CapHatch, CapMethod, CapStyle, CutRenderer, CutStyle, EdgeRenderer, EdgeStyle,
-    FinSettings, GpuAsset, Image, Instance, MeshRenderer, MeshStyle, Orbit, Technique,
+    Camera, CapHatch, CapMethod, CapStyle, CutOutline, CutRenderer, CutStyle, EdgeRenderer,
+    EdgeStyle, FinSettings, GpuAsset, Image, Instance, MeshRenderer, MeshStyle, Orbit, Technique,
 };
 use chamfer_runtime::section::{ClipPlanes, Plane};
 use chamfer_tests::cube::*;
@@ -42,6 +42,18 @@ fn picture(camera: &Camera, mesh: &MeshStyle, style: &EdgeStyle) -> Image {
 
 const GREEN: [f32; 4] = [0.0, 1.0, 0.0, 1.0];
 const BLACK: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
+const YELLOW: [f32; 4] = [1.0, 1.0, 0.0, 1.0];
+
+fn is_yellow(p: [u8; 4]) -> bool {
+    p[0] > 200 && p[1] > 200 && p[2] < 60
+}
+
+/// True if a pixel within 2 px of where `q` projects is the outline's colour.
+fn outlined_at(image: &Image, camera: &Camera, q: Vec3) -> bool {
+    disk(image, project(camera, q), 2.0)
+        .into_iter()
+        .any(is_yellow)
+}
 
 fn is_green(p: [u8; 4]) -> bool {
     p[1] > 200 && p[0] < 60 && p[2] < 60
@@ -272,6 +284,10 @@ fn a_cube_cut_through_its_middle_has_its_cut_square_filled_solid_or_hatched() {
             color: GREEN,
             hatch: None,
         },
+        outline: Some(CutOutline {
+            color: YELLOW,
+            width_px: 3.0,
+        }),
     };
     let image = cut_picture(&cube, &camera, Some(&solid), &edges);
     check_half_cube(&image, &camera).expect("the cut still drops the half");
@@ -378,6 +394,10 @@ fn a_torus_cut_through_its_hole_shows_two_discs() {
             color: GREEN,
             hatch: None,
         },
+        outline: Some(CutOutline {
+            color: YELLOW,
+            width_px: 3.0,
+        }),
     };
     let image = cut_picture(
         &asset,
@@ -391,6 +411,17 @@ fn a_torus_cut_through_its_hole_shows_two_discs() {
             let q = centre + (across * du + Vec3::Y * dv) * minor;
             let pixel = pixel_at(&image, project(&camera, q));
             assert!(is_green(pixel), "disc at {side}: {q} is {pixel:?}");
+        }
+    }
+    // Each disc's rim is outlined.
+    for side in [-1.0, 1.0] {
+        let centre = across * major * side;
+        for q in [
+            centre + across * minor,
+            centre - across * minor,
+            centre + Vec3::Y * minor,
+        ] {
+            assert!(outlined_at(&image, &camera, q), "rim of disc {side} at {q}");
         }
     }
     // The hole between them is not capped.
@@ -417,6 +448,10 @@ fn an_open_mesh_gets_no_cap() {
             color: GREEN,
             hatch: None,
         },
+        outline: Some(CutOutline {
+            color: YELLOW,
+            width_px: 3.0,
+        }),
     };
     let image = cut_picture(
         &open_box,

@@ -1,5 +1,6 @@
-//! The cut faces of section planes (issue 43, `shaders/cut.wgsl`): where a plane cuts a closed mesh,
-//! the cut is filled with a solid colour or a hatch, in screen or model space.
+//! The cut faces and cut outlines of section planes (issue 43, `shaders/cut.wgsl`): where a plane
+//! cuts a closed mesh, the cut is filled with a solid colour or a hatch, in screen or model space;
+//! where it cuts any mesh, the cut's outline is drawn as a thick line.
 //!
 //! **Stencil capping**, not cut polygons: the parity of the surface crossings along each pixel's ray
 //! decides what lies inside, so the caps follow moving planes and posed meshes with no CPU pass
@@ -8,7 +9,14 @@
 //! plane misses skip it), and needs a stencil aspect in the target (one bit). The cut polygons
 //! would need the cut segments chained and triangulated every frame. **Open meshes** (any boundary
 //! or non-manifold edge) get no cap: their parity means nothing, so a cut shows into them, their
-//! back faces lit as the mesh pass lights both sides (what the section drawings do too).
+//! back faces lit as the mesh pass lights both sides (what the section drawings do too); they keep
+//! their outline.
+//!
+//! **Outlines** are found in the vertex shader, one instanced draw per plane and instance over the
+//! mesh's triangles: a triangle the plane crosses emits the capsule of its segment (the vertices of
+//! the others fall outside the view), so the outline follows the plane each frame with no list, no
+//! counter and no capacity to outgrow. The capsules' round ends join neighbouring segments at any
+//! angle (as baked intersection lines join), so the segments are not chained.
 
 use std::sync::Arc;
 
@@ -54,17 +62,56 @@ impl Default for CapStyle {
     }
 }
 
+/// How cut outlines look.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CutOutline {
+    /// Straight-alpha RGBA.
+    pub color: [f32; 4],
+    /// Line width in pixels.
+    pub width_px: f32,
+}
+
+impl Default for CutOutline {
+    fn default() -> Self {
+        Self {
+            color: [0.05, 0.05, 0.05, 1.0],
+            width_px: 2.5,
+        }
+    }
+}
+
 /// What [`CutRenderer::prepare`] draws: the section (world space, as the mesh's and the edges'
-/// styles give it) and the caps' look; an [`Instance`] may have its own of either.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+/// styles give it), the caps' look (an [`Instance`] may have its own of either) and the outline.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CutStyle {
     /// The section planes in world space.
     pub section: ClipPlanes,
     /// The cut faces' look.
     pub cap: CapStyle,
+    /// The cut outline; `None`: not drawn.
+    pub outline: Option<CutOutline>,
 }
 
-const CUT: Bindings = Bindings::draw("cut faces", &[Binding::new(0, "cut", Kind::Block)]);
+impl Default for CutStyle {
+    fn default() -> Self {
+        Self {
+            section: ClipPlanes::NONE,
+            cap: CapStyle::default(),
+            outline: Some(CutOutline::default()),
+        }
+    }
+}
+
+const CUT_BLOCK: Binding = Binding::new(0, "cut", Kind::Block);
+const CUT: Bindings = Bindings::draw("cut faces", &[CUT_BLOCK]);
+const OUTLINE: Bindings = Bindings::draw(
+    "cut outlines",
+    &[
+        CUT_BLOCK,
+        super::bindings::asset::RENDER_POSITIONS,
+        super::bindings::asset::MESH_INDICES,
+    ],
+);
 
 /// The cut faces' module.
 pub(crate) fn shader() -> Shader {
@@ -74,6 +121,7 @@ pub(crate) fn shader() -> Shader {
         vec![
             Program::draw("parity_vertex", "parity_fragment", &CUT),
             Program::draw("cap_face_vertex", "cap_face_fragment", &CUT),
+            Program::draw("outline_vertex", "outline_fragment", &OUTLINE),
         ],
     )
 }
@@ -86,6 +134,7 @@ const PARITY_BIT: u32 = 1;
 pub(crate) struct CutPipelines {
     parity: wgpu::RenderPipeline,
     cap: wgpu::RenderPipeline,
+    outline: wgpu::RenderPipeline,
 }
 
 impl PipelineSet for CutPipelines {
@@ -154,7 +203,16 @@ impl PipelineSet for CutPipelines {
                 color: Some(target.blended_color()),
             },
         )?;
-        Ok(Self { parity, cap })
+        let outline = compiled.render(
+            "outline_vertex",
+            Some("outline_fragment"),
+            Raster::over_mesh(target),
+        )?;
+        Ok(Self {
+            parity,
+            cap,
+            outline,
+        })
     }
 }
 
@@ -166,8 +224,11 @@ pub struct CutRenderer {
     cache: Pipelines,
     blocks: Blocks,
     group: Option<wgpu::BindGroup>,
-    /// Per plane that crosses a closed instance: its block and the instance's asset.
-    draws: Vec<(u32, super::GpuAsset)>,
+    /// Per asset drawn, the outline pass's group over its mesh (and the blocks).
+    outline_groups: Vec<(Arc<()>, wgpu::BindGroup)>,
+    /// Per plane that crosses an instance: its block, the instance's asset, and whether it is capped.
+    draws: Vec<(u32, super::GpuAsset, bool)>,
+    outlined: bool,
 }
 
 impl CutRenderer {
@@ -178,7 +239,9 @@ impl CutRenderer {
             cache: pipelines.clone(),
             blocks: Blocks::new(pipelines, "cut faces", std::mem::size_of::<CutFrame>()),
             group: None,
+            outline_groups: Vec::new(),
             draws: Vec::new(),
+            outlined: false,
         })
     }
 
@@ -191,8 +254,8 @@ impl CutRenderer {
         style: &CutStyle,
     ) {
         let mut frames = Vec::new();
-        let mut assets = Vec::new();
-        for instance in instances.iter().filter(|i| i.asset.is_closed()) {
+        let mut draws = Vec::new();
+        for instance in instances {
             let section = instance.model_section(&style.section);
             let [lo, hi] = instance.asset.bounds();
             let (gone, crossing) = section.against_box(lo, hi);
@@ -205,12 +268,47 @@ impl CutRenderer {
             };
             let cap = instance.cap.unwrap_or(style.cap);
             for plane in (0..section.planes().len()).filter(|k| crossing & (1 << k) != 0) {
-                frames.push(cut_frame(&camera, instance, &section, &cap, plane as u32));
-                assets.push(instance.asset.clone());
+                let target = self.cache.target();
+                frames.push(cut_frame(
+                    &camera,
+                    instance,
+                    &section,
+                    &cap,
+                    style,
+                    target,
+                    plane as u32,
+                ));
+                draws.push((instance.asset.clone(), instance.asset.is_closed()));
             }
         }
         if self.blocks.write(&self.cache, queue, &frames) {
             self.group = None;
+            self.outline_groups.clear();
+        }
+        self.outlined = style.outline.is_some();
+        if self.outlined {
+            for (asset, _) in &draws {
+                if self
+                    .outline_groups
+                    .iter()
+                    .any(|(key, _)| Arc::ptr_eq(key, &asset.key))
+                {
+                    continue;
+                }
+                let layout = self.cache.layout(&OUTLINE);
+                let blocks = &self.blocks;
+                let group = OUTLINE.group(self.cache.device(), &layout, |binding| {
+                    Ok(match binding.index {
+                        0 => blocks.binding(),
+                        7 => asset.render_positions.as_entire_binding(),
+                        _ => asset.mesh_indices.as_entire_binding(),
+                    })
+                });
+                // A group of a block and two of the asset's buffers cannot fail to be made.
+                if let Ok(group) = group {
+                    self.outline_groups.push((asset.key.clone(), group));
+                }
+            }
         }
         if self.group.is_none() {
             let layout = self.cache.layout(&CUT);
@@ -220,10 +318,10 @@ impl CutRenderer {
                 .group(self.cache.device(), &layout, |_| Ok(blocks.binding()))
                 .ok();
         }
-        self.draws = assets
+        self.draws = draws
             .into_iter()
             .enumerate()
-            .map(|(i, asset)| (self.blocks.offset(i), asset))
+            .map(|(i, (asset, capped))| (self.blocks.offset(i), asset, capped))
             .collect();
     }
 
@@ -234,17 +332,28 @@ impl CutRenderer {
             return;
         };
         pass.set_stencil_reference(0);
-        for (offset, asset) in &self.draws {
-            pass.set_bind_group(0, group, &[*offset]);
-            pass.set_vertex_buffer(0, asset.render_positions.slice(..));
-            pass.set_index_buffer(asset.mesh_indices.slice(..), asset.index_format);
-            pass.set_pipeline(&self.pipelines.parity);
-            pass.draw_indexed(0..asset.index_count, 0, 0..1);
-            pass.set_pipeline(&self.pipelines.cap);
-            pass.draw(0..6, 0..1);
-            // Flips the bits back: the next plane or instance starts from zero.
-            pass.set_pipeline(&self.pipelines.parity);
-            pass.draw_indexed(0..asset.index_count, 0, 0..1);
+        for (offset, asset, capped) in &self.draws {
+            if *capped {
+                pass.set_bind_group(0, group, &[*offset]);
+                pass.set_vertex_buffer(0, asset.render_positions.slice(..));
+                pass.set_index_buffer(asset.mesh_indices.slice(..), asset.index_format);
+                pass.set_pipeline(&self.pipelines.parity);
+                pass.draw_indexed(0..asset.index_count, 0, 0..1);
+                pass.set_pipeline(&self.pipelines.cap);
+                pass.draw(0..6, 0..1);
+                // Flips the bits back: the next plane or instance starts from zero.
+                pass.set_pipeline(&self.pipelines.parity);
+                pass.draw_indexed(0..asset.index_count, 0, 0..1);
+            }
+            let outline = self
+                .outline_groups
+                .iter()
+                .find(|(key, _)| Arc::ptr_eq(key, &asset.key));
+            if let (true, Some((_, outline))) = (self.outlined, outline) {
+                pass.set_pipeline(&self.pipelines.outline);
+                pass.set_bind_group(0, outline, &[*offset]);
+                pass.draw(0..6, 0..asset.index_count / 3);
+            }
         }
     }
 }
@@ -255,8 +364,11 @@ fn cut_frame(
     instance: &Instance<'_>,
     section: &ClipPlanes,
     cap: &CapStyle,
+    style: &CutStyle,
+    target: &super::Target,
     plane: u32,
 ) -> CutFrame {
+    let outline = style.outline.unwrap_or_default();
     let [lo, hi] = instance.asset.bounds().map(glam::Vec3::from);
     let centre = (lo + hi) * 0.5;
     let (hatch, hatch_color, in_model) = match cap.hatch {
@@ -284,7 +396,15 @@ fn cut_frame(
         hatch,
         plane,
         hatch_in_model: in_model,
-        _pad0: 0,
-        _pad1: 0,
+        indices_u16: u32::from(instance.asset.index_format == wgpu::IndexFormat::Uint16),
+        reverse_z: u32::from(target.reverse_z),
+        outline: outline.color,
+        screen: [
+            camera.viewport[0].max(1) as f32,
+            camera.viewport[1].max(1) as f32,
+            camera.pixel_scale(),
+            0.5 * outline.width_px.clamp(0.0, 1000.0),
+        ],
+        proj_z: camera.projection.z_axis.to_array(),
     }
 }

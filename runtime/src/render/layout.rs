@@ -261,8 +261,11 @@ pub(crate) struct CutFrame {
     pub(crate) hatch: [f32; 4],
     pub(crate) plane: u32,
     pub(crate) hatch_in_model: u32,
-    pub(crate) _pad0: u32,
-    pub(crate) _pad1: u32,
+    pub(crate) indices_u16: u32,
+    pub(crate) reverse_z: u32,
+    pub(crate) outline: [f32; 4],
+    pub(crate) screen: [f32; 4],
+    pub(crate) proj_z: [f32; 4],
 }
 
 /// `DrawArgs` in `shaders/compute.wgsl`: one indirect draw's arguments.
@@ -466,8 +469,11 @@ pub(crate) fn layouts() -> Vec<Layout> {
                 hatch,
                 plane,
                 hatch_in_model,
-                _pad0,
-                _pad1
+                indices_u16,
+                reverse_z,
+                outline,
+                screen,
+                proj_z
             ]
         ),
         layout!(
