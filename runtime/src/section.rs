@@ -4,7 +4,7 @@
 //! with `n·p <= d`: its normal points at the part that is cut away, towards a viewer looking at
 //! the cut face. A box keeps what lies inside it (six planes).
 
-use crate::schema::{Numbers, Schema, SchemaError};
+use crate::schema::{FINITE, Numbers, Schema, SchemaError};
 
 /// The most planes a section has (a box is six).
 pub const MAX_PLANES: usize = 6;
@@ -26,6 +26,87 @@ crate::schema! {
             range: None,
             example: Some(Numbers::from_array([-0.25, -0.25, -0.25, 0.25, 0.25, 0.25])),
             conflicts: [section], requires: [] },
+    }
+}
+
+crate::schema! {
+    /// How a renderer shows a section's cuts: the cut faces of closed meshes (solid, or hatched on
+    /// the screen or on the model) and the cut outline. `chamfer render`'s flags, the page's section
+    /// panel and Bevy's section component are made from it; `CutStyle::from_settings` (in
+    /// `render`) turns it into the renderer's style.
+    #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+    #[serde(default, deny_unknown_fields)]
+    pub struct CutSettings {
+        /// Leave the cut faces open instead of filling them.
+        no_caps: bool = false, { group: "section", value: "", range: None, example: true,
+            conflicts: [], requires: [] },
+        /// Colour of the cut faces, red,green,blue from 0 to 1.
+        cap_color: Numbers = Numbers::from_array([0.55, 0.2, 0.2]), { group: "section",
+            value: "R,G,B", range: Some((0.0, 1.0)),
+            example: Numbers::from_array([0.2, 0.5, 0.8]), conflicts: [], requires: [] },
+        /// Hatch lines over the cut faces, this far apart: pixels, or model units with
+        /// --cap-hatch-in-model; 0: a solid fill.
+        cap_hatch_spacing: f32 = 0.0, { group: "section", value: "D", range: Some((0.0, FINITE)),
+            example: 8.0, conflicts: [], requires: [] },
+        /// Angle of the hatch lines, degrees counter-clockwise from the screen's x axis (or the
+        /// plane's first axis on the model).
+        cap_hatch_angle: f32 = 45.0, { group: "section", value: "DEG", range: Some((-360.0, 360.0)),
+            example: -30.0, conflicts: [], requires: [] },
+        /// Width of the hatch lines, pixels.
+        cap_hatch_width: f32 = 1.5, { group: "section", value: "PX", range: Some((0.0, 1000.0)),
+            example: 3.0, conflicts: [], requires: [] },
+        /// Colour of the hatch lines, red,green,blue from 0 to 1.
+        cap_hatch_color: Numbers = Numbers::from_array([0.1, 0.1, 0.1]), { group: "section",
+            value: "R,G,B", range: Some((0.0, 1.0)),
+            example: Numbers::from_array([1.0, 1.0, 1.0]), conflicts: [], requires: [] },
+        /// Fix the hatch to the model (spacing in model units) instead of the screen.
+        cap_hatch_in_model: bool = false, { group: "section", value: "", range: None,
+            example: true, conflicts: [], requires: [] },
+        /// Width of the cut outline (where the plane meets the surface), pixels; 0: none.
+        cut_outline_width: f32 = 2.5, { group: "section", value: "PX", range: Some((0.0, 1000.0)),
+            example: 5.0, conflicts: [], requires: [] },
+        /// Colour of the cut outline, red,green,blue from 0 to 1.
+        cut_outline_color: Numbers = Numbers::from_array([0.05, 0.05, 0.05]), { group: "section",
+            value: "R,G,B", range: Some((0.0, 1.0)),
+            example: Numbers::from_array([0.9, 0.6, 0.0]), conflicts: [], requires: [] },
+    }
+}
+
+impl CutSettings {
+    /// Refuses values out of range and colours that are not three numbers.
+    pub fn check(&self) -> Result<(), SchemaError> {
+        self.check_combinations()?;
+        self.check_ranges()?;
+        for (name, color) in [
+            ("cap_color", &self.cap_color),
+            ("cap_hatch_color", &self.cap_hatch_color),
+            ("cut_outline_color", &self.cut_outline_color),
+        ] {
+            if color.as_slice().len() != 3 {
+                return Err(SchemaError::Invalid {
+                    name,
+                    reason: format!(
+                        "must be three numbers r,g,b, not {}",
+                        color.as_slice().len()
+                    ),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// The cap colour, hatch colour and outline colour as opaque RGBA (a colour that is not three
+    /// numbers, which [`check`](Self::check) refuses, reads as black).
+    pub fn colors(&self) -> [[f32; 4]; 3] {
+        [
+            &self.cap_color,
+            &self.cap_hatch_color,
+            &self.cut_outline_color,
+        ]
+        .map(|c| match c.as_slice() {
+            &[r, g, b] => [r, g, b, 1.0],
+            _ => [0.0, 0.0, 0.0, 1.0],
+        })
     }
 }
 

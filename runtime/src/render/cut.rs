@@ -8,7 +8,7 @@
 //! extra draws of the instance's mesh and one quad per plane that crosses the instance (instances a
 //! plane misses skip it), and needs a stencil aspect in the target (one bit). The cut polygons
 //! would need the cut segments chained and triangulated every frame. **Open meshes** (any boundary
-//! or non-manifold edge) get no cap: their parity means nothing, so a cut shows into them, their
+//! edge) get no cap: their parity means nothing, so a cut shows into them, their
 //! back faces lit as the mesh pass lights both sides (what the section drawings do too); they keep
 //! their outline.
 //!
@@ -27,7 +27,7 @@ use super::modules::{Program, Shader};
 use super::pipelines::{PipelineSet, Raster};
 use super::techniques::Blocks;
 use super::{Camera, Instance, Pipelines, RenderError};
-use crate::section::ClipPlanes;
+use crate::section::{ClipPlanes, CutSettings};
 
 /// A hatch over a cut face: parallel lines.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -90,6 +90,8 @@ pub struct CutStyle {
     pub cap: CapStyle,
     /// The cut outline; `None`: not drawn.
     pub outline: Option<CutOutline>,
+    /// Fill the cut faces of closed meshes.
+    pub caps: bool,
 }
 
 impl Default for CutStyle {
@@ -98,6 +100,30 @@ impl Default for CutStyle {
             section: ClipPlanes::NONE,
             cap: CapStyle::default(),
             outline: Some(CutOutline::default()),
+            caps: true,
+        }
+    }
+}
+
+impl CutStyle {
+    /// The style `settings` describe, cutting with `section` (world space).
+    pub fn from_settings(section: ClipPlanes, settings: &CutSettings) -> Self {
+        let [cap, hatch, outline] = settings.colors();
+        let hatch = (settings.cap_hatch_spacing > 0.0).then_some(CapHatch {
+            color: hatch,
+            spacing: settings.cap_hatch_spacing,
+            angle_deg: settings.cap_hatch_angle,
+            width_px: settings.cap_hatch_width,
+            in_model: settings.cap_hatch_in_model,
+        });
+        Self {
+            section,
+            cap: CapStyle { color: cap, hatch },
+            outline: (settings.cut_outline_width > 0.0).then_some(CutOutline {
+                color: outline,
+                width_px: settings.cut_outline_width,
+            }),
+            caps: !settings.no_caps,
         }
     }
 }
@@ -278,7 +304,10 @@ impl CutRenderer {
                     target,
                     plane as u32,
                 ));
-                draws.push((instance.asset.clone(), instance.asset.is_closed()));
+                draws.push((
+                    instance.asset.clone(),
+                    style.caps && instance.asset.is_closed(),
+                ));
             }
         }
         if self.blocks.write(&self.cache, queue, &frames) {
@@ -406,5 +435,50 @@ fn cut_frame(
             0.5 * outline.width_px.clamp(0.0, 1000.0),
         ],
         proj_z: camera.projection.z_axis.to_array(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::schema::{Numbers, Schema};
+
+    /// Each entry's example is valid and changes the style made from the settings (with a hatch
+    /// in the base, so its angle, width and colour count); wrong values are refused by name.
+    #[test]
+    fn every_cut_setting_reaches_the_style_and_bad_values_are_refused() {
+        let base = CutSettings {
+            cap_hatch_spacing: 4.0,
+            ..CutSettings::default()
+        };
+        let style = |s: &CutSettings| CutStyle::from_settings(ClipPlanes::NONE, s);
+        assert_eq!(base.check(), Ok(()));
+        for entry in CutSettings::ENTRIES {
+            let mut settings = base;
+            entry.set_example(&mut settings);
+            assert_eq!(settings.check(), Ok(()), "{}", entry.name);
+            assert_ne!(style(&settings), style(&base), "{}", entry.name);
+        }
+        assert!(
+            CutStyle::from_settings(ClipPlanes::NONE, &CutSettings::default())
+                .cap
+                .hatch
+                .is_none()
+        );
+        let two = CutSettings {
+            cap_color: Numbers::from_array([0.5, 0.5]),
+            ..CutSettings::default()
+        };
+        assert!(
+            two.check()
+                .expect_err("two numbers")
+                .to_string()
+                .contains("cap_color")
+        );
+        let negative = CutSettings {
+            cut_outline_width: -1.0,
+            ..CutSettings::default()
+        };
+        assert!(negative.check().is_err());
     }
 }

@@ -49,7 +49,7 @@ pub struct GpuAsset {
     pub(crate) has_rings: bool,
     pub(crate) has_chamfers: bool,
     pub(crate) bounds: [[f32; 3]; 2],
-    /// No boundary and no non-manifold edge: a section's cut faces can be filled.
+    /// No boundary edge: a section's cut faces can be filled.
     pub(crate) closed: bool,
     pub(crate) radius_scale: f32,
     /// What [`AssetExtras`] the upload derived.
@@ -248,11 +248,8 @@ impl GpuAsset {
             has_rings: !asset.next_ends.is_empty(),
             has_chamfers,
             bounds: [asset.header.bounds_min, asset.header.bounds_max],
-            closed: (0..asset.edge_count()).all(|e| {
-                !asset
-                    .edge_flags(e)
-                    .intersects(EdgeFlags::BOUNDARY | EdgeFlags::NON_MANIFOLD)
-            }),
+            closed: (0..asset.edge_count())
+                .all(|e| !asset.edge_flags(e).contains(EdgeFlags::BOUNDARY)),
             radius_scale: asset.header.radius_scale,
             extras: AssetExtras::NONE,
             key: std::sync::Arc::new(()),
@@ -301,8 +298,10 @@ impl GpuAsset {
         self.bounds
     }
 
-    /// True if the mesh is closed (no boundary and no non-manifold edge), so a section's cut
-    /// faces are filled ([`CutRenderer`](super::CutRenderer)).
+    /// True if the mesh is closed (no boundary edge: every edge has two faces or more), so a
+    /// section's cut faces are filled ([`CutRenderer`](super::CutRenderer)). A non-manifold edge
+    /// (CAD exports have a few slivers with three faces) still counts as closed: the cap's parity
+    /// is then wrong only where the extra face is seen edge-on.
     pub fn is_closed(&self) -> bool {
         self.closed
     }

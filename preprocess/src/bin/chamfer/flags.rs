@@ -7,7 +7,7 @@ use chamfer_preprocess::draw::style::DrawingStyle;
 use chamfer_runtime::camera::Orbit;
 use chamfer_runtime::render::{StyleSettings, Technique};
 use chamfer_runtime::schema::{Entry, Kind, Numbers, Schema, Value, flag};
-use chamfer_runtime::section::Section;
+use chamfer_runtime::section::{CutSettings, Section};
 use clap::error::ErrorKind;
 use clap::{Arg, ArgAction, ArgMatches, Args, Command, FromArgMatches, value_parser};
 
@@ -151,8 +151,13 @@ group_flags!(
     "style"
 );
 group_flags!(
-    /// Section planes as flags (`chamfer draw`).
+    /// Section planes as flags (`chamfer render`, `draw`).
     SectionFlags(Section),
+    "section"
+);
+group_flags!(
+    /// How a render shows the section's cut faces and outline (`chamfer render`).
+    CutFlags(CutSettings),
     "section"
 );
 group_flags!(

@@ -9,16 +9,17 @@ use chamfer_preprocess::environment::read_environment;
 use chamfer_preprocess::write::{ensure_not_an_input, ensure_replaceable, write_atomically};
 use chamfer_runtime::asset::Asset;
 use chamfer_runtime::render::{
-    Camera, CapMethod, DEFAULT_LIGHT_DIRECTION, EdgeClasses, EdgeStyle, GpuAsset, Highlight, Image,
-    Instance, Light, MeshRenderer, MeshStyle, Offscreen, Pipelines, SceneRenderer,
-    Shading as ShadingModel, StyleSettings, Technique,
+    Camera, CapMethod, CutRenderer, CutStyle, DEFAULT_LIGHT_DIRECTION, EdgeClasses, EdgeStyle,
+    GpuAsset, Highlight, Image, Instance, Light, MeshRenderer, MeshStyle, Offscreen, Pipelines,
+    SceneRenderer, Shading as ShadingModel, StyleSettings, Technique,
 };
 use clap::{Args, ValueEnum};
 use glam::Mat4;
 
 use chamfer_runtime::schema::flag;
+use chamfer_runtime::section::ClipPlanes;
 
-use crate::flags::{BakeFlags, StyleFlags, TechniqueFlags, ViewFlags};
+use crate::flags::{BakeFlags, CutFlags, SectionFlags, StyleFlags, TechniqueFlags, ViewFlags};
 
 /// Render an asset (`.chamfer`) or a mesh (baked on the fly with the bake flags) to a PNG.
 #[derive(Args)]
@@ -87,6 +88,12 @@ pub struct ViewArgs {
     style: Style,
     #[command(flatten)]
     look: StyleFlags,
+    /// Cut the model open: the mesh and the edges keep what the planes keep; the cut faces of
+    /// closed meshes are filled and the cut outlined.
+    #[command(flatten)]
+    section: SectionFlags,
+    #[command(flatten)]
+    cut: CutFlags,
     /// Which technique draws the edges (`--style edges`).
     #[arg(long, default_value = "joined", value_parser = technique_names(),
           long_help = technique_help())]
@@ -200,6 +207,11 @@ impl ViewArgs {
             .0
             .check()
             .map_err(|e| anyhow::anyhow!(e.spelled(flag)))?;
+        self.section
+            .0
+            .check()
+            .and_then(|()| self.cut.0.check())
+            .map_err(|e| anyhow::anyhow!(e.spelled(flag)))?;
         if self.env.is_some() && (self.style != Style::Chamfer || self.shading != Shading::Pbr) {
             bail!("--env needs --style chamfer --shading pbr");
         }
@@ -246,8 +258,14 @@ impl ViewArgs {
                 Caps::CapBuffer => CapMethod::CapBuffer,
                 Caps::None => CapMethod::None,
             },
+            section: self.clip_planes(),
             ..EdgeStyle::default()
         })
+    }
+
+    /// The section's planes (checked in `check`).
+    fn clip_planes(&self) -> ClipPlanes {
+        ClipPlanes::from_section(&self.section.0).unwrap_or_default()
     }
 }
 
@@ -281,10 +299,15 @@ impl ViewArgs {
     }
 
     fn mesh_style(&self) -> MeshStyle {
-        if self.style != Style::Chamfer {
-            return MeshStyle::default();
+        let style = if self.style == Style::Chamfer {
+            self.look.0.mesh_style(&self.highlight())
+        } else {
+            MeshStyle::default()
+        };
+        MeshStyle {
+            section: self.clip_planes(),
+            ..style
         }
-        self.look.0.mesh_style(&self.highlight())
     }
 }
 
@@ -368,6 +391,16 @@ pub fn render_scene(
     let mut mesh = MeshRenderer::for_scenes(&pipelines)?;
     mesh.set_environment(environment.clone());
     mesh.prepare_scene(&gpu.queue, &camera, &drawn, &view.mesh_style());
+    let section = view.clip_planes();
+    let cut = match section.is_empty() {
+        true => None,
+        false => {
+            let mut cut = CutRenderer::new(&pipelines)?;
+            let style = CutStyle::from_settings(section, &view.cut.0);
+            cut.prepare(&gpu.queue, &camera, &drawn, &style);
+            Some(cut)
+        }
+    };
     let mut edges = SceneRenderer::new(&pipelines);
     edges.set_environment(environment);
     let mut encoder = gpu.encoder();
@@ -384,6 +417,9 @@ pub fn render_scene(
     {
         let mut pass = target.begin_pass(&mut encoder, [1.0, 1.0, 1.0, 1.0]);
         mesh.render(&mut pass);
+        if let Some(cut) = &cut {
+            cut.render(&mut pass);
+        }
         if let Some(prepared) = &prepared {
             prepared.render(&mut pass);
         }
