@@ -1524,6 +1524,103 @@ fn every_view_and_style_entry_is_a_render_flag_that_changes_the_picture() {
     assert!(!dir.path().join("refused.png").exists());
 }
 
+/// Issue 43: every section and cut-look entry is a flag of `chamfer render`, its example accepted
+/// and changing the picture (the cut look's over a cube cut at x = 0.5 with a hatch); malformed
+/// sections and colours are refused naming the flag, and nothing is written.
+#[test]
+fn every_section_entry_is_a_render_flag_that_changes_the_picture() {
+    use chamfer_runtime::schema::{Entry, Schema, Value, flag};
+    use chamfer_runtime::section::{CutSettings, Section};
+
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mesh = fixture("shapes/cube.obj");
+    let help = text(&succeed(&["render", "--help"]).stdout);
+    let cut = ["--section", "1,0,0,0.5", "--cap-hatch-spacing", "4"];
+    let picture = |extra: &[String], name: &str| {
+        let out = dir.path().join(format!("{name}.png"));
+        let mut args = vec!["render", path_str(&mesh), "--width", "96", "--height", "72"];
+        args.extend(extra.iter().map(String::as_str));
+        args.extend(["-o", path_str(&out)]);
+        succeed(&args);
+        std::fs::read(&out).expect("png")
+    };
+    fn flags<S: Schema>(entry: &Entry<S>) -> Vec<String> {
+        match entry.example().expect("an example") {
+            Value::Flag(_) => vec![flag(entry.name)],
+            value => vec![flag(entry.name), value.to_string()],
+        }
+    }
+    let whole = picture(&[], "whole");
+    let cut_open: Vec<String> = cut.iter().map(|a| (*a).to_owned()).collect();
+    let hatched = picture(&cut_open, "hatched");
+    assert_ne!(whole, hatched, "the section changes the picture");
+    for entry in Section::ENTRIES {
+        let given = flags(entry);
+        assert!(
+            help.contains(&given[0]),
+            "{} is not in render --help",
+            given[0]
+        );
+        assert_ne!(
+            picture(&given, entry.name),
+            whole,
+            "{given:?} changed nothing"
+        );
+    }
+    for entry in CutSettings::ENTRIES {
+        let given = flags(entry);
+        assert!(
+            help.contains(&given[0]),
+            "{} is not in render --help",
+            given[0]
+        );
+        // The hatch's own spacing replaces the base's.
+        let base = if entry.name == "cap_hatch_spacing" {
+            &cut_open[..2]
+        } else {
+            &cut_open[..]
+        };
+        let args = [base.to_vec(), given.clone()].concat();
+        assert_ne!(
+            picture(&args, entry.name),
+            hatched,
+            "{given:?} changed nothing"
+        );
+    }
+    let refused = dir.path().join("refused.png");
+    for (args, message) in [
+        (
+            &["--section", "1,0,0"][..],
+            "--section must be 1 to 6 planes",
+        ),
+        (
+            &["--section", "0,0,0,1"][..],
+            "--section needs a finite plane with a non-zero normal",
+        ),
+        (
+            &["--section-box", "1,0,0,0,1,1"][..],
+            "--section-box must be six finite numbers",
+        ),
+        (
+            &["--section", "1,0,0,0.5", "--cap-color", "1,1"][..],
+            "--cap-color must be three numbers",
+        ),
+        (
+            &["--section", "1,0,0,0.5", "--cut-outline-width", "-2"][..],
+            "--cut-outline-width must be",
+        ),
+    ] {
+        let mut all = vec!["render", path_str(&mesh), "-o", path_str(&refused)];
+        all.extend(args);
+        let run = chamfer(&all);
+        let stderr = text(&run.stderr);
+        assert!(!run.status.success(), "{args:?} accepted");
+        assert!(stderr.contains(message), "{args:?}: {stderr}");
+        assert!(!stderr.contains("panicked"), "{stderr}");
+    }
+    assert!(!refused.exists());
+}
+
 /// Issue 40: every parameter of every technique that has some (its module's table) is a flag of
 /// `chamfer render`, `--{prefix}-{name}`, in its help, accepted with its example over the first
 /// preset of its table and changing the picture; a parameter given to another technique and a value out
