@@ -6,7 +6,7 @@ use std::path::Path;
 use chamfer_preprocess::draw::paper::PaperOptions;
 use chamfer_preprocess::draw::style::DrawingStyle;
 use chamfer_preprocess::draw::svg::write_svg;
-use chamfer_preprocess::draw::{DrawOptions, hidden_lines};
+use chamfer_preprocess::draw::{DrawOptions, LineClass, hidden_lines};
 use chamfer_preprocess::inspect::summary;
 use chamfer_preprocess::{Companions, bake_with_companions, compact};
 use chamfer_runtime::asset::Asset;
@@ -93,10 +93,19 @@ pub fn svg_of(
     let asset =
         Asset::decode(bytes).map_err(|e| format!("{name}: not a valid .chamfer asset: {e}"))?;
     let camera = view.camera([asset.header.bounds_min, asset.header.bounds_max], size);
+    // The section on screen, when it is one plane (a drawing takes no box): a section drawing.
+    let plane = chamfer_preprocess::draw::section::drawing_plane(&view.section)
+        .map_err(|e| format!("{name}: {e}"))?;
+    let mut classes = view.line_classes()?;
+    if plane.is_some() {
+        classes.extend([LineClass::Cut, LineClass::Hatch]);
+    }
     let drawing = hidden_lines(
         &asset,
         &camera,
-        &DrawOptions::DEFAULT.with_classes(&view.line_classes()?),
+        &DrawOptions::DEFAULT
+            .with_classes(&classes)
+            .with_section(plane),
     );
     let mut svg = Vec::new();
     write_svg(
@@ -182,6 +191,20 @@ pub fn view_schema() -> String {
 #[wasm_bindgen(js_name = styleSchema)]
 pub fn style_schema() -> String {
     chamfer_runtime::render::StyleSettings::schema_json().to_string()
+}
+
+/// The section schema, as JSON: the section planes and box (`chamfer render --section`,
+/// `--section-box`); the view settings take the same keys (the page's slider sets `section`).
+#[wasm_bindgen(js_name = sectionSchema)]
+pub fn section_schema() -> String {
+    chamfer_runtime::section::Section::schema_json().to_string()
+}
+
+/// The cut schema, as JSON: how the cut faces and the cut outline look (`chamfer render`'s
+/// `--no-caps`, `--cap-*`, `--cut-outline-*`), from which the page builds its section panel.
+#[wasm_bindgen(js_name = cutSchema)]
+pub fn cut_schema() -> String {
+    chamfer_runtime::section::CutSettings::schema_json().to_string()
 }
 
 /// The edge classes' names, as JSON (`chamfer render --classes` takes the same).

@@ -8,7 +8,8 @@ use chamfer_runtime::render::{
     Camera, DEFAULT_LIGHT_DIRECTION, EdgeClasses, EdgeStyle, Light, MeshStyle, Orbit, Shading,
     StyleSettings, Technique,
 };
-use chamfer_runtime::schema::{Kind, Schema, Value};
+use chamfer_runtime::schema::{Schema, Value};
+use chamfer_runtime::section::{ClipPlanes, CutSettings, Section};
 use serde::Deserialize;
 
 /// How the chamfer highlight is shaded, if at all (`chamfer render --style chamfer --shading`).
@@ -38,6 +39,13 @@ pub struct ViewSettings {
     /// object's keys of the style schema's names.
     #[serde(skip)]
     pub look: StyleSettings,
+    /// `--section`, `--section-box`: read from the object's keys of the section schema's names
+    /// (the page's section slider sets `section`).
+    #[serde(skip)]
+    pub section: Section,
+    /// `--no-caps`, `--cap-*`, `--cut-outline-*`: the keys of the cut schema's names.
+    #[serde(skip)]
+    pub cut: CutSettings,
     /// `--technique`, by name.
     pub technique: String,
     /// The technique's own parameters by their names in its table (`{"step": 3}` for a `hybrid-*`
@@ -58,6 +66,8 @@ impl Default for ViewSettings {
         Self {
             orbit: Orbit::default(),
             look: StyleSettings::default(),
+            section: Section::default(),
+            cut: CutSettings::default(),
             technique: Technique::default().name().to_owned(),
             parameters: serde_json::Map::new(),
             classes: EdgeClasses::names().map(str::to_owned).collect(),
@@ -90,10 +100,14 @@ impl ViewSettings {
             serde_json::from_str(json).map_err(error)?;
         let camera = take_keys(&mut keys, Orbit::ENTRIES.iter().map(|e| e.name));
         let look = take_keys(&mut keys, StyleSettings::ENTRIES.iter().map(|e| e.name));
+        let section = take_keys(&mut keys, Section::ENTRIES.iter().map(|e| e.name));
+        let cut = take_keys(&mut keys, CutSettings::ENTRIES.iter().map(|e| e.name));
         let mut settings: Self =
             serde_json::from_value(serde_json::Value::Object(keys)).map_err(error)?;
         settings.orbit = serde_json::from_value(camera).map_err(error)?;
         settings.look = serde_json::from_value(look).map_err(error)?;
+        settings.section = serde_json::from_value(section).map_err(error)?;
+        settings.cut = serde_json::from_value(cut).map_err(error)?;
         settings.check()?;
         Ok(settings)
     }
@@ -101,6 +115,8 @@ impl ViewSettings {
     fn check(&self) -> Result<(), String> {
         self.orbit.check().map_err(|e| e.to_string())?;
         self.look.check().map_err(|e| e.to_string())?;
+        self.section.check().map_err(|e| e.to_string())?;
+        self.cut.check().map_err(|e| e.to_string())?;
         let unit = |c: &[f32; 4]| c.iter().all(|v| v.is_finite() && (0.0..=1.0).contains(v));
         if !unit(&self.background) || self.edge_color.as_ref().is_some_and(|c| !unit(c)) {
             return Err("colours are four numbers from 0 to 1".into());
@@ -191,6 +207,7 @@ impl ViewSettings {
             highlight: self
                 .shading()
                 .map(|shading| self.look.highlight(LIGHT, shading)),
+            section: self.clip_planes(),
             ..EdgeStyle::default()
         });
         if let Some(color) = self.edge_color {
@@ -202,10 +219,25 @@ impl ViewSettings {
     /// The mesh pass's style: the runtime's default, or with a highlight the highlight's own model
     /// (as `chamfer render --style chamfer`), so strips and faces are lit alike.
     pub fn mesh_style(&self) -> MeshStyle {
-        match self.shading() {
+        let style = match self.shading() {
             None => MeshStyle::default(),
             Some(shading) => self.look.mesh_style(&self.look.highlight(LIGHT, shading)),
+        };
+        MeshStyle {
+            section: self.clip_planes(),
+            ..style
         }
+    }
+
+    /// The section's planes (checked when the settings were read), as `chamfer render --section`
+    /// makes them.
+    pub fn clip_planes(&self) -> ClipPlanes {
+        ClipPlanes::from_section(&self.section).unwrap_or_default()
+    }
+
+    /// The cut faces' and outline's style, as `chamfer render` makes it from the same flags.
+    pub fn cut_style(&self) -> chamfer_runtime::render::CutStyle {
+        chamfer_runtime::render::CutStyle::from_settings(self.clip_planes(), &self.cut)
     }
 
     fn shading(&self) -> Option<Shading> {
@@ -327,6 +359,48 @@ mod tests {
             entry.set_example(&mut orbit);
             assert_eq!(view.orbit, orbit, "{}", entry.name);
             assert_ne!(view.camera(bounds, [64, 48]), default, "{}", entry.name);
+        }
+    }
+
+    /// Every entry of the section and cut schemas set to its example in the page's JSON reaches
+    /// the section (the mesh's and the edges' planes) or the cut style, as `chamfer render`'s flags
+    /// of the same names set them; malformed ones are refused with the reason.
+    #[test]
+    fn every_section_and_cut_entry_sets_the_view() {
+        for entry in Section::ENTRIES {
+            let example = entry.example().expect("an example").to_json();
+            let json = serde_json::json!({ entry.name: example });
+            let view = ViewSettings::from_json(&json.to_string()).expect(entry.name);
+            let mut section = Section::default();
+            entry.set_example(&mut section);
+            assert_eq!(view.section, section, "{}", entry.name);
+            let planes = ClipPlanes::from_section(&section).expect("planes");
+            assert!(!planes.is_empty());
+            assert_eq!(view.edge_style().expect("style").section, planes);
+            assert_eq!(view.mesh_style().section, planes);
+            assert_eq!(view.cut_style().section, planes);
+        }
+        let base = serde_json::json!({ "section": [1, 0, 0, 0], "cap_hatch_spacing": 4 });
+        let default = ViewSettings::from_json(&base.to_string())
+            .expect("base")
+            .cut_style();
+        for entry in CutSettings::ENTRIES {
+            let mut json = base.clone();
+            json[entry.name] = entry.example().expect("an example").to_json();
+            let view = ViewSettings::from_json(&json.to_string()).expect(entry.name);
+            assert_ne!(view.cut_style(), default, "{}", entry.name);
+        }
+        for (json, expected) in [
+            (r#"{"section": [1, 0, 0]}"#, "section must be 1 to 6 planes"),
+            (r#"{"section": "1,0,0,0"}"#, "view settings"),
+            (
+                r#"{"cap_color": [1, 0]}"#,
+                "cap_color must be three numbers",
+            ),
+            (r#"{"cut_outline_width": -1}"#, "cut_outline_width must be"),
+        ] {
+            let message = ViewSettings::from_json(json).expect_err(json);
+            assert!(message.contains(expected), "{json}: {message}");
         }
     }
 

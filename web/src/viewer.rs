@@ -7,7 +7,8 @@ use std::sync::{Arc, Mutex};
 
 use chamfer_runtime::asset::Asset;
 use chamfer_runtime::render::{
-    GpuAsset, Instance, MeshRenderer, OffscreenTarget, Pipelines, SceneRenderer, Target,
+    CutRenderer, GpuAsset, Instance, MeshRenderer, OffscreenTarget, Pipelines, SceneRenderer,
+    Target,
 };
 use wasm_bindgen::prelude::*;
 
@@ -35,6 +36,7 @@ struct Frame {
     size: [u32; 2],
     target: OffscreenTarget,
     mesh: MeshRenderer,
+    cut: CutRenderer,
     edges: SceneRenderer,
 }
 
@@ -142,6 +144,15 @@ impl Viewer {
         (camera.eye().truncate() - (lo + hi) * 0.5).length()
     }
 
+    /// The asset's bounds, `[xmin, ymin, zmin, xmax, ymax, zmax]` (the section slider's range);
+    /// empty when nothing is shown.
+    pub fn bounds(&self) -> Vec<f32> {
+        self.shown
+            .as_ref()
+            .map(|shown| shown.gpu.bounds().concat())
+            .unwrap_or_default()
+    }
+
     /// Draws a frame of `width` × `height` pixels (the canvas's size) and shows it.
     pub fn draw(&mut self, width: u32, height: u32) -> Result<(), JsError> {
         let size = [width.max(1), height.max(1)];
@@ -166,6 +177,11 @@ impl Viewer {
         frame
             .mesh
             .prepare_scene(&self.queue, &camera, &drawn, &self.view.mesh_style());
+        let cut = self.view.cut_style();
+        let cutting = !cut.section.is_empty();
+        if cutting {
+            frame.cut.prepare(&self.queue, &camera, &drawn, &cut);
+        }
         let style = self.view.edge_style().map_err(|e| JsError::new(&e))?;
         let mut encoder = self
             .device
@@ -180,6 +196,9 @@ impl Viewer {
             let background = self.view.background.map(f64::from);
             let mut pass = frame.target.begin_pass(&mut encoder, background);
             frame.mesh.render(&mut pass);
+            if cutting {
+                frame.cut.render(&mut pass);
+            }
             prepared.render(&mut pass);
         }
         prepared
@@ -242,11 +261,14 @@ impl Viewer {
             .map_err(|e| fail("cannot build the pipelines", &e))?;
         let mesh = MeshRenderer::for_scenes(&pipelines)
             .map_err(|e| fail("cannot build the mesh renderer", &e))?;
+        let cut = CutRenderer::new(&pipelines)
+            .map_err(|e| fail("cannot build the cut-face renderer", &e))?;
         let edges = SceneRenderer::new(&pipelines);
         Ok(Frame {
             size,
             target,
             mesh,
+            cut,
             edges,
         })
     }

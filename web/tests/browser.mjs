@@ -14,7 +14,9 @@ import {
 
 const session = await start();
 let failures = 0;
+// CHECK=text runs only the checks whose names contain it (while working on one).
 async function check(name, body) {
+  if (process.env.CHECK && !name.includes(process.env.CHECK)) return;
   const started = Date.now();
   try {
     await body();
@@ -302,6 +304,78 @@ await check("every technique parameter is a control of its technique's panel", a
     }
   }
   console.log(`     ${set} parameters of ${Object.keys(visible).length} techniques set through their controls`);
+  await page.close();
+});
+
+// Issue 43: the section slider sets the view's `section` (the section schema's key) from the model's
+// bounds; the page then cuts the mesh and the edges, fills the cut and outlines it as chamfer render
+// --section does with the same plane; every cut schema entry is a control of the section panel.
+await check("the section slider cuts the model and fills the cut as chamfer render --section does", async () => {
+  const page = await openPage(session, "&azimuth=-50&elevation=30");
+  await settled(page);
+  const whole = await capture(page);
+  await page.evaluate(() => {
+    const axis = document.getElementById("section-axis");
+    // The camera looks from -x: cutting away that half shows the cut face.
+    axis.value = "-x";
+    axis.dispatchEvent(new Event("change"));
+  });
+  await settled(page);
+  const cut = await capture(page);
+  save(cut, "section-page.png");
+  const plane = await page.evaluate(() => window.chamfer.view.section);
+  expect(Array.isArray(plane) && plane.length === 4 && plane[0] === -1, `the slider's plane: ${plane}`);
+  // The cap's colour (the cut schema's default, 0.55, 0.2, 0.2) within a few levels.
+  const capColor = [0.55, 0.2, 0.2].map((c) => Math.round(c * 255));
+  const capOf = (png) => {
+    const mask = new Uint8Array(png.width * png.height);
+    for (let i = 0; i < mask.length; i++) {
+      mask[i] = capColor.every((c, k) => Math.abs(png.data[4 * i + k] - c) <= 6) ? 1 : 0;
+    }
+    return mask;
+  };
+  const cli = render([fandisk, ...CAMERA, "--section", plane.join(",")], "section-cli.png");
+  const [pageInCli, cliInPage] = overlap(capOf(cut), capOf(cli));
+  console.log(`     -x cut at ${(-plane[3]).toFixed(4)}: ${count(capOf(cut))} cap pixels in the page, ` +
+    `${count(capOf(cli))} from chamfer render; within 1 px ${pageInCli.toFixed(4)} / ${cliInPage.toFixed(4)}; ` +
+    `${count(differing(whole, cut))} pixels changed`);
+  expect(count(capOf(cut)) > 1000, `only ${count(capOf(cut))} cap pixels`);
+  expect(count(capOf(whole)) < 50, `the whole model shows ${count(capOf(whole))} cap pixels`);
+  expect(pageInCli >= 0.95 && cliInPage >= 0.95, "the page's cut and chamfer render's differ");
+  // Moving the slider moves the cut.
+  await page.evaluate(() => {
+    const at = document.getElementById("section-at");
+    at.value = "0.3";
+    at.dispatchEvent(new Event("input"));
+  });
+  const moved = await capture(page);
+  expect(count(differing(cut, moved)) > 1000, "the slider did not move the cut");
+  // The cut panel: a control per cut schema entry, each setting its key of the view.
+  const schema = await page.evaluate(() => window.chamfer.cutSchema);
+  const controls = await page.evaluate(() => [...document.querySelectorAll("#cut-options input")].map((i) => i.id));
+  expect(controls.length === schema.length && schema.every((e) => controls.includes(`cut-${e.name}`)),
+    `controls ${controls} for ${schema.map((e) => e.name)}`);
+  for (const entry of schema) {
+    const sent = await page.evaluate((entry) => {
+      const input = document.getElementById(`cut-${entry.name}`);
+      if (entry.kind === "flag") input.checked = entry.example;
+      else input.value = entry.kind === "numbers" ? entry.example.join(",") : String(entry.example);
+      input.dispatchEvent(new Event("change"));
+      return window.chamfer.view[entry.name];
+    }, entry);
+    expect(JSON.stringify(sent) === JSON.stringify(entry.example), `${entry.name}: the view holds ${sent}`);
+    const after = await capture(page);
+    expect(await page.evaluate(() => document.body.dataset.state !== "error"), `${entry.name}: the page shows an error`);
+    if (["no_caps", "cap_color", "cap_hatch_spacing", "cut_outline_width"].includes(entry.name)) {
+      const changed = count(differing(moved, after));
+      expect(changed > 100, `${entry.name}: only ${changed} pixels changed`);
+    }
+    await page.evaluate((entry) => {
+      const input = document.getElementById(`cut-${entry.name}`);
+      if (entry.kind === "flag") input.checked = entry.default; else input.value = "";
+      input.dispatchEvent(new Event("change"));
+    }, entry);
+  }
   await page.close();
 });
 

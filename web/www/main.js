@@ -1,8 +1,11 @@
 // The page: files in (picker, drop, ?url=, or the bundled fandisk), bakes in worker.js, the asset
 // drawn by the wasm Viewer on WebGPU, the controls, the downloads. Query parameters: url (a file to
 // load), any entry of the view and style schemas (azimuth, elevation, edge_width, ...), size (WxH
-// canvas pixels), technique and its parameters (hybrid_step, fin_thickness, ...).
-import init, { bakeSchema, createViewer, edgeClasses, styleSchema, techniques, viewSchema } from "./pkg/chamfer_web.js";
+// canvas pixels), technique and its parameters (hybrid_step, fin_thickness, ...), section_axis
+// (x, y, z, -x, -y, -z) and section_at (0 to 1) for the section slider, any entry of the cut schema.
+import init, {
+  bakeSchema, createViewer, cutSchema, edgeClasses, sectionSchema, styleSchema, techniques, viewSchema,
+} from "./pkg/chamfer_web.js";
 
 const $ = (id) => document.getElementById(id);
 const canvas = $("canvas");
@@ -22,6 +25,7 @@ const state = {
     highlight: "off",
     edge_color: null,
     background: [1, 1, 1, 1],
+    section: null,  // [nx, ny, nz, d] from the section slider (sectionPlane)
   },
   framesLeft: 0,
   framesDrawn: 0,
@@ -77,7 +81,8 @@ function setUpBakeOptions(schema) {
 }
 
 // One schema entry's control: a checkbox for a flag, a number field (within the entry's range)
-// for a number or a count, labelled with its name and titled with its help.
+// for a number or a count, a text field of comma-separated numbers for a list (a colour), labelled
+// with its name and titled with its help.
 function control(entry, id, placeholder) {
   const label = document.createElement("label");
   label.title = entry.help;
@@ -86,6 +91,11 @@ function control(entry, id, placeholder) {
   if (entry.kind === "flag") {
     input.type = "checkbox";
     label.append(input, ` ${entry.name}`);
+  } else if (entry.kind === "numbers") {
+    input.type = "text";
+    input.size = 12;
+    input.placeholder = entry.default?.join(",") ?? placeholder;
+    label.append(`${entry.name} `, input);
   } else {
     input.type = "number";
     input.step = entry.kind === "count" ? "1" : "any";
@@ -106,18 +116,26 @@ function setUpPanel(schema, container) {
   panels.push({ schema, prefix });
   for (const entry of schema) {
     const given = query.get(entry.name);
-    state.view[entry.name] = given === null ? entry.default : entry.kind === "flag" ? given === "true" : Number(given);
+    state.view[entry.name] = given === null ? entry.default : parseValue(entry, given);
     const { label, input } = control(entry, `${prefix}-${entry.name}`, "default");
     // Empty is the default (null: the camera's distance that frames the model, say).
     input.addEventListener("change", () => {
       state.view[entry.name] = entry.kind === "flag" ? input.checked
-        : input.value === "" ? entry.default : Number(input.value);
+        : input.value === "" ? entry.default : parseValue(entry, input.value);
       redraw();
     });
     $(container).append(label);
   }
   state[`${prefix}Schema`] = schema;
   showPanels();
+}
+
+// A control's or a query parameter's text as the entry's value: a flag from "true", a list from
+// comma-separated numbers, else a number.
+function parseValue(entry, text) {
+  if (entry.kind === "flag") return text === "true";
+  if (entry.kind === "numbers") return text.split(",").map(Number);
+  return Number(text);
 }
 
 // The panels show the view the page draws.
@@ -127,9 +145,35 @@ function showPanels() {
       const input = $(`${prefix}-${entry.name}`);
       const value = state.view[entry.name];
       if (entry.kind === "flag") input.checked = value;
+      else if (entry.kind === "numbers") input.value = value === null ? "" : value.join(",");
       else input.value = value === null ? "" : Number(value.toPrecision(6));
     }
   }
+}
+
+// The section slider's plane: across the chosen axis (its sign: which side is cut away), at the
+// slider's fraction of the model's bounds; null when off. The section schema's `section` value.
+function sectionPlane() {
+  const axis = $("section-axis").value;
+  const bounds = state.viewer?.bounds() ?? [];
+  if (axis === "off" || bounds.length !== 6) return null;
+  const k = "xyz".indexOf(axis.slice(-1));
+  const sign = axis.startsWith("-") ? -1 : 1;
+  const at = Number($("section-at").value);
+  const offset = bounds[k] + (bounds[k + 3] - bounds[k]) * (sign > 0 ? at : 1 - at);
+  const normal = [0, 0, 0];
+  normal[k] = sign;
+  return [...normal, sign * offset];
+}
+
+function setUpSection() {
+  const axis = query.get("section_axis");
+  if (axis) $("section-axis").value = axis;
+  const at = query.get("section_at");
+  if (at) $("section-at").value = at;
+  const update = () => { state.view.section = sectionPlane(); redraw(); };
+  $("section-axis").addEventListener("change", update);
+  $("section-at").addEventListener("input", update);
 }
 
 function bakeSettings() {
@@ -188,6 +232,7 @@ function show(name, bytes, report, from) {
   try {
     state.viewer.show(name, bytes);
     state.view.distance = null;
+    state.view.section = sectionPlane();
     const took = report.worker_ms ? ` in ${report.worker_ms.toFixed(0)} ms` : "";
     $("status").textContent = from ? `${from} baked${took}` : `${name}`;
     redraw();
@@ -406,6 +451,10 @@ async function start() {
   state.view.classes = [...CLASSES];
   setUpPanel(JSON.parse(viewSchema()), "view-options");
   setUpPanel(JSON.parse(styleSchema()), "style-options");
+  // The section's planes are the slider's (sectionSchema's `section` key); the cut look a panel.
+  state.sectionSchema = JSON.parse(sectionSchema());
+  setUpPanel(JSON.parse(cutSchema()), "cut-options");
+  setUpSection();
   setUpControls(JSON.parse(techniques()));
   setUpBakeOptions(JSON.parse(bakeSchema()));
   try {
