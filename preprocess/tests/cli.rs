@@ -1343,22 +1343,33 @@ fn stl_and_3mf_bake_from_the_command_line_and_inspect_reports_the_stitch() {
     );
 }
 
-/// The frame benchmark (`examples/bench_render.rs`, built by `cargo test`) runs: one frame of each
-/// configuration at 64 × 64 on a cube with chamfer radii, the highlight's row included.
+/// The frame benchmarks (`examples/bench_render.rs`, `bench_section.rs`, built by `cargo test`)
+/// run: one frame of each configuration at 64 × 64 on a cube (with chamfer radii for
+/// bench_render, the highlight's row included).
 #[test]
-fn the_frame_benchmark_runs_at_a_tiny_size() {
+fn the_frame_benchmarks_run_at_a_tiny_size() {
+    for (name, extra) in [
+        ("bench_render", &["--radius-rel", "0.02"][..]),
+        ("bench_section", &[][..]),
+    ] {
+        run_frame_bench(name, extra);
+    }
+}
+
+fn run_frame_bench(name: &str, extra: &[&str]) {
     let chamfer = Path::new(env!("CARGO_BIN_EXE_chamfer"));
     let bench = chamfer
         .parent()
         .expect("target folder")
         .join("examples")
-        .join(format!("bench_render{}", std::env::consts::EXE_SUFFIX));
+        .join(format!("{name}{}", std::env::consts::EXE_SUFFIX));
     assert!(bench.exists(), "{} is built by cargo test", bench.display());
     let run = Command::new(&bench)
-        .args(["--frames", "1", "--size", "64x64", "--radius-rel", "0.02"])
+        .args(["--frames", "1", "--size", "64x64"])
+        .args(extra)
         .arg(fixture("shapes/cube.obj"))
         .output()
-        .expect("run bench_render");
+        .unwrap_or_else(|e| panic!("run {name}: {e}"));
     let out = text(&run.stdout);
     assert!(run.status.success(), "{out}{}", text(&run.stderr));
     let row = out
