@@ -288,6 +288,7 @@ fn a_cube_cut_through_its_middle_has_its_cut_square_filled_solid_or_hatched() {
             color: YELLOW,
             width_px: 3.0,
         }),
+        caps: true,
     };
     let image = cut_picture(&cube, &camera, Some(&solid), &edges);
     check_half_cube(&image, &camera).expect("the cut still drops the half");
@@ -398,6 +399,7 @@ fn a_torus_cut_through_its_hole_shows_two_discs() {
             color: YELLOW,
             width_px: 3.0,
         }),
+        caps: true,
     };
     let image = cut_picture(
         &asset,
@@ -452,6 +454,7 @@ fn an_open_mesh_gets_no_cap() {
             color: YELLOW,
             width_px: 3.0,
         }),
+        caps: true,
     };
     let image = cut_picture(
         &open_box,

@@ -423,6 +423,7 @@ impl ApplicationHandler for Viewer {
                         specular: material.specular,
                         shininess: material.shininess,
                         pbr: (self.highlight == Lit::Pbr).then_some(pbr),
+                        ..MeshStyle::default()
                     };
                     (
                         EdgeStyle {
