@@ -20,7 +20,7 @@ fn hand_over_at(end: u32, clipped: u32, far: vec3<f32>) -> f32 {
 // section planes left them, as `edge_screen` did.
 fn quad_ends(p0: vec3<f32>, p1: vec3<f32>) -> array<vec3<f32>, 2> {
     let span = kept_span(p0, p1);
-    return array<vec3<f32>, 2>(mix(p0, p1, span.x), mix(p0, p1, span.y));
+    return array<vec3<f32>, 2>(span_point(p0, p1, span.x), span_point(p0, p1, span.y));
 }
 
 @compute @workgroup_size(WORKGROUP)

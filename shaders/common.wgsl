@@ -299,8 +299,8 @@ fn edge_screen(e: u32, word: u32) -> EdgeScreen {
     if !(span.x < span.y) {
         return out;
     }
-    let c0 = mvp * vec4<f32>(mix(p0, p1, span.x), 1.0);
-    let c1 = mvp * vec4<f32>(mix(p0, p1, span.y), 1.0);
+    let c0 = mvp * vec4<f32>(span_point(p0, p1, span.x), 1.0);
+    let c1 = mvp * vec4<f32>(span_point(p0, p1, span.y), 1.0);
     out.clipped = select(0u, 1u, span.x > 0.0) | select(0u, 2u, span.y < 1.0);
     out.s0 = to_pixels(c0);
     out.s1 = to_pixels(c1);

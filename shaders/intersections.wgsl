@@ -30,8 +30,8 @@ fn segment_vertex(@builtin(vertex_index) i: u32, @builtin(instance_index) s: u32
     if !(span.x < span.y) {
         return out;
     }
-    let c0 = frame.mvp * vec4<f32>(mix(p0, p1, span.x), 1.0);
-    let c1 = frame.mvp * vec4<f32>(mix(p0, p1, span.y), 1.0);
+    let c0 = frame.mvp * vec4<f32>(span_point(p0, p1, span.x), 1.0);
+    let c1 = frame.mvp * vec4<f32>(span_point(p0, p1, span.y), 1.0);
     // Segments are short: one that reaches behind the camera is not drawn.
     if in_front(c0) < 0.0 || in_front(c1) < 0.0 || c0.w <= 0.0 || c1.w <= 0.0 {
         return out;

@@ -15,6 +15,18 @@ fn section_cuts(p: vec3<f32>) -> bool {
     return false;
 }
 
+// The point at parameter t of the segment p0 -> p1, its ends exactly the vertices (a mix at t = 1
+// need not give p1 to the bit, and uncut edges must meet their neighbours' ends exactly).
+fn span_point(p0: vec3<f32>, p1: vec3<f32>, t: f32) -> vec3<f32> {
+    if t <= 0.0 {
+        return p0;
+    }
+    if t >= 1.0 {
+        return p1;
+    }
+    return mix(p0, p1, t);
+}
+
 // The part `span` (parameters along p0 -> p1, 0 at p0) keeps of the segment from p0 to p1 once
 // every plane has cut it: empty (x >= y) when nothing is left.
 fn section_span(p0: vec3<f32>, p1: vec3<f32>, span: vec2<f32>) -> vec2<f32> {

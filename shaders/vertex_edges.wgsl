@@ -60,8 +60,8 @@ fn vertex_edge(e: u32) -> VertexEdge {
     if !(span.x < span.y) {
         return out;
     }
-    let e0 = mix(v0, v1, span.x);
-    let e1 = mix(v0, v1, span.y);
+    let e0 = span_point(v0, v1, span.x);
+    let e1 = span_point(v0, v1, span.y);
     let c0 = mvp * vec4<f32>(e0, 1.0);
     let c1 = mvp * vec4<f32>(e1, 1.0);
     // Like the thesis, no near-plane clipping: an edge that reaches behind the camera is not drawn.
