@@ -94,10 +94,8 @@ fn cap_face_fragment(v: ParityVarying) -> @location(0) vec4<f32> {
         across = dot(v.position.xy, vec2<f32>(sin(angle), cos(angle)));
     }
     let per_pixel = max(length(vec2<f32>(dpdx(across), dpdy(across))), 1e-12);
-    for (var k = 0u; k < SECTION_PLANES; k++) {
-        if k != cut.plane && dot(cut.section[k], vec4<f32>(v.model_position, 1.0)) >= 0.0 {
-            discard;
-        }
+    if section_cuts_except(v.model_position, cut.plane) {
+        discard;
     }
     let spacing = cut.hatch.x;
     if spacing > 0.0 {
@@ -169,27 +167,12 @@ fn outline_vertex(@builtin(vertex_index) i: u32, @builtin(instance_index) t: u32
         return out;
     }
     // The part the other planes keep.
-    var span = vec2<f32>(0.0, 1.0);
-    for (var k = 0u; k < SECTION_PLANES; k++) {
-        if k == cut.plane {
-            continue;
-        }
-        let a = dot(cut.section[k], vec4<f32>(ends[0], 1.0));
-        let b = dot(cut.section[k], vec4<f32>(ends[1], 1.0));
-        if a >= 0.0 && b >= 0.0 {
-            return out;
-        }
-        if a >= 0.0 {
-            span.x = max(span.x, a / (a - b));
-        } else if b >= 0.0 {
-            span.y = min(span.y, a / (a - b));
-        }
-    }
+    let span = section_span_except(ends[0], ends[1], vec2<f32>(0.0, 1.0), cut.plane);
     if !(span.x < span.y) {
         return out;
     }
-    let c0 = cut.mvp * vec4<f32>(mix(ends[0], ends[1], span.x), 1.0);
-    let c1 = cut.mvp * vec4<f32>(mix(ends[0], ends[1], span.y), 1.0);
+    let c0 = cut.mvp * vec4<f32>(span_point(ends[0], ends[1], span.x), 1.0);
+    let c1 = cut.mvp * vec4<f32>(span_point(ends[0], ends[1], span.y), 1.0);
     // Short segments: one reaching behind the camera is not drawn.
     if c0.w <= 0.0 || c1.w <= 0.0 {
         return out;

@@ -7,8 +7,13 @@
 
 // True if model-space point `p` is cut away by any plane.
 fn section_cuts(p: vec3<f32>) -> bool {
+    return section_cuts_except(p, SECTION_PLANES);
+}
+
+// True if `p` is cut away by a plane other than `skip` (a cut face lies on its own plane).
+fn section_cuts_except(p: vec3<f32>, skip: u32) -> bool {
     for (var k = 0u; k < SECTION_PLANES; k++) {
-        if dot(view_section(k), vec4<f32>(p, 1.0)) >= 0.0 {
+        if k != skip && dot(view_section(k), vec4<f32>(p, 1.0)) >= 0.0 {
             return true;
         }
     }
@@ -30,8 +35,16 @@ fn span_point(p0: vec3<f32>, p1: vec3<f32>, t: f32) -> vec3<f32> {
 // The part `span` (parameters along p0 -> p1, 0 at p0) keeps of the segment from p0 to p1 once
 // every plane has cut it: empty (x >= y) when nothing is left.
 fn section_span(p0: vec3<f32>, p1: vec3<f32>, span: vec2<f32>) -> vec2<f32> {
+    return section_span_except(p0, p1, span, SECTION_PLANES);
+}
+
+// `section_span` by the planes other than `skip` (a cut outline lies on its own plane).
+fn section_span_except(p0: vec3<f32>, p1: vec3<f32>, span: vec2<f32>, skip: u32) -> vec2<f32> {
     var kept = span;
     for (var k = 0u; k < SECTION_PLANES; k++) {
+        if k == skip {
+            continue;
+        }
         let plane = view_section(k);
         let a = dot(plane, vec4<f32>(p0, 1.0));
         let b = dot(plane, vec4<f32>(p1, 1.0));

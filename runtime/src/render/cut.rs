@@ -143,7 +143,7 @@ const OUTLINE: Bindings = Bindings::draw(
 pub(crate) fn shader() -> Shader {
     Shader::new(
         "cut.wgsl",
-        &[chamfer_shaders::CUT],
+        &[chamfer_shaders::SECTION, chamfer_shaders::CUT],
         vec![
             Program::draw("parity_vertex", "parity_fragment", &CUT),
             Program::draw("cap_face_vertex", "cap_face_fragment", &CUT),
