@@ -61,13 +61,6 @@ fn parity_fragment(v: ParityVarying) {
     }
 }
 
-// Two unit vectors spanning the plane with unit normal `n`.
-fn plane_axes(n: vec3<f32>) -> array<vec3<f32>, 2> {
-    let helper = select(vec3<f32>(0.0, 0.0, 1.0), vec3<f32>(1.0, 0.0, 0.0), abs(n.z) > 0.9);
-    let u = normalize(cross(helper, n));
-    return array<vec3<f32>, 2>(u, cross(n, u));
-}
-
 // The cap quad: the square on the plane around the box centre's foot, as wide as the box's diagonal,
 // so it covers every point of the plane inside the box.
 @vertex
@@ -83,28 +76,14 @@ fn cap_face_vertex(@builtin(vertex_index) i: u32) -> ParityVarying {
 
 @fragment
 fn cap_face_fragment(v: ParityVarying) -> @location(0) vec4<f32> {
-    // The hatch coordinate across its lines, and its change per pixel, before any discard.
-    let angle = cut.hatch.y;
-    var across: f32;
-    if cut.hatch_in_model != 0u {
-        let axes = plane_axes(cut.section[cut.plane].xyz);
-        across = dot(v.model_position, -sin(angle) * axes[0] + cos(angle) * axes[1]);
-    } else {
-        // Screen y points down: the angle turns counter-clockwise as the viewer sees it.
-        across = dot(v.position.xy, vec2<f32>(sin(angle), cos(angle)));
-    }
+    // The hatch coordinate and its change per pixel, before any discard.
+    let plane = cut.section[cut.plane].xyz;
+    let across = cap_hatch_across(v.model_position, v.position.xy, plane, cut.hatch.y, cut.hatch_in_model != 0u);
     let per_pixel = max(length(vec2<f32>(dpdx(across), dpdy(across))), 1e-12);
     if section_cuts_except(v.model_position, cut.plane) {
         discard;
     }
-    let spacing = cut.hatch.x;
-    if spacing > 0.0 {
-        let off_line = abs(fract(across / spacing + 0.5) - 0.5) * spacing;
-        if off_line < 0.5 * cut.hatch.z * per_pixel {
-            return cut.hatch_color;
-        }
-    }
-    return cut.color;
+    return cap_fill(across, per_pixel, cut.hatch, cut.color, cut.hatch_color);
 }
 
 fn cut_mesh_index(i: u32) -> u32 {

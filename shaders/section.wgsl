@@ -59,3 +59,38 @@ fn section_span_except(p0: vec3<f32>, p1: vec3<f32>, span: vec2<f32>, skip: u32)
     }
     return kept;
 }
+
+// Cut faces (caps): how a point of a cut face is filled, shared by the runtime's stencil caps
+// (cut.wgsl) and the Bevy crate's section material.
+
+// Two unit vectors spanning the plane with unit normal `n`.
+fn plane_axes(n: vec3<f32>) -> array<vec3<f32>, 2> {
+    let helper = select(vec3<f32>(0.0, 0.0, 1.0), vec3<f32>(1.0, 0.0, 0.0), abs(n.z) > 0.9);
+    let u = normalize(cross(helper, n));
+    return array<vec3<f32>, 2>(u, cross(n, u));
+}
+
+// The hatch coordinate across its lines at a cap point: model-space point `p` on the plane of unit
+// normal `n`, pixel `pixel` (origin top left, y down), lines at `angle` radians, on the model or
+// on the screen. Take its derivatives before any discard.
+fn cap_hatch_across(p: vec3<f32>, pixel: vec2<f32>, n: vec3<f32>, angle: f32, in_model: bool) -> f32 {
+    if in_model {
+        let axes = plane_axes(n);
+        return dot(p, -sin(angle) * axes[0] + cos(angle) * axes[1]);
+    }
+    // Screen y points down: the angle turns counter-clockwise as the viewer sees it.
+    return dot(pixel, vec2<f32>(sin(angle), cos(angle)));
+}
+
+// A cap's colour where the hatch coordinate is `across` (changing by `per_pixel` per pixel):
+// `hatch` is the spacing (0 = solid fill), angle and line width (pixels), as in `CutFrame`.
+fn cap_fill(across: f32, per_pixel: f32, hatch: vec4<f32>, color: vec4<f32>, hatch_color: vec4<f32>) -> vec4<f32> {
+    let spacing = hatch.x;
+    if spacing > 0.0 {
+        let off_line = abs(fract(across / spacing + 0.5) - 0.5) * spacing;
+        if off_line < 0.5 * hatch.z * per_pixel {
+            return hatch_color;
+        }
+    }
+    return color;
+}

@@ -19,6 +19,7 @@
 mod asset;
 mod bake;
 mod render;
+mod section;
 
 use bevy::prelude::*;
 
@@ -26,11 +27,14 @@ pub use asset::{ChamferAsset, ChamferLoadError, ChamferLoader, render_mesh};
 pub use bake::{BakeError, ChamferBake, bake_to_asset};
 pub use chamfer_preprocess::schema::BakeSettings;
 pub use chamfer_runtime::highlight::ggx::PbrMaterial;
+pub use chamfer_runtime::render::{CapHatch, CapStyle, CutOutline, CutStyle};
 pub use chamfer_runtime::render::{
     EdgeClasses, EdgeStyle, FinSettings, Highlight, HybridDepth, Light, Parameters, Shading,
     SurfaceAngleSettings, Technique,
 };
+pub use chamfer_runtime::section::{ClipPlanes, CutSettings, Plane, Section};
 pub use render::{ChamferEdges, ChamferTimings};
+pub use section::{ChamferSection, SectionExtension, SectionMaterial, SectionUniform};
 
 /// Loads `.chamfer` assets, bakes mesh files in the asset processor ([`ChamferBake`]) and draws
 /// [`ChamferEdges`] in every 3D camera.
@@ -47,5 +51,6 @@ impl Plugin for ChamferPlugin {
             .init_asset_loader::<ChamferLoader>()
             .register_asset_processor(ChamferBake::new(processor));
         render::build(app);
+        section::build(app);
     }
 }

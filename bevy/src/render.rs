@@ -21,11 +21,13 @@ use bevy::render::view::{
 use bevy::render::{Extract, ExtractSchedule, Render, RenderApp, RenderSystems};
 use chamfer_runtime::asset::Asset as EdgeAsset;
 use chamfer_runtime::render::{
-    Camera as EdgeCamera, EdgeStyle, FrameViews, GpuAsset, Instance, Light, Pipelines,
-    SceneRenderer, Shading, Target,
+    Camera as EdgeCamera, CutRenderer, CutStyle, EdgeStyle, FrameViews, GpuAsset, Instance, Light,
+    Pipelines, SceneRenderer, Shading, Target,
 };
+use chamfer_runtime::section::ClipPlanes;
 
 use crate::asset::ChamferAsset;
+use crate::section::ChamferSection;
 
 /// Draws an entity's baked edges in every 3D camera, placed by its `GlobalTransform`. Hidden
 /// entities (Bevy's `Visibility`) draw nothing.
@@ -116,6 +118,8 @@ struct Drawn {
     transform: glam::Mat4,
     style: EdgeStyle,
     scene_light: bool,
+    /// Its section, if it has one (planes in world space).
+    cut: Option<CutStyle>,
 }
 
 /// A visible light of the scene, in world space.
@@ -172,7 +176,14 @@ struct Extracted {
 
 fn extract(
     mut extracted: ResMut<Extracted>,
-    entities: Extract<Query<(&ChamferEdges, &GlobalTransform, &ViewVisibility)>>,
+    entities: Extract<
+        Query<(
+            &ChamferEdges,
+            &GlobalTransform,
+            &ViewVisibility,
+            Option<&ChamferSection>,
+        )>,
+    >,
     suns: Extract<Query<(&DirectionalLight, &GlobalTransform, &InheritedVisibility)>>,
     points: Extract<Query<(&PointLight, &GlobalTransform, &InheritedVisibility)>>,
     spots: Extract<Query<(&SpotLight, &GlobalTransform, &InheritedVisibility)>>,
@@ -224,7 +235,7 @@ fn extract(
             strength: linear(light.color) * light.intensity * candela,
         }));
     extracted.drawn.clear();
-    for (edges, transform, visibility) in &entities {
+    for (edges, transform, visibility, section) in &entities {
         if !visibility.get() {
             continue;
         }
@@ -241,6 +252,7 @@ fn extract(
             transform: to_glam(transform.to_matrix()),
             style: edges.style,
             scene_light: edges.scene_light,
+            cut: section.map(|s| s.cut),
         });
     }
     *timings = ChamferTimings {
@@ -313,11 +325,13 @@ fn forget_views(mut renderers: ResMut<ViewRenderers>, views: Query<&ExtractedVie
     renderers.0.retain(|view, _| live.contains(view));
 }
 
-/// A camera's renderer: pipelines for its target, a scene renderer per style drawn.
+/// A camera's renderer: pipelines for its target, a scene renderer per style drawn, a cut
+/// renderer per outline style of the sectioned entities.
 struct ViewRenderer {
     target: Target,
     pipelines: Pipelines,
     scenes: Vec<SceneRenderer>,
+    cuts: Vec<CutRenderer>,
 }
 
 fn draw(
@@ -357,6 +371,7 @@ fn draw(
                     target: formats,
                     pipelines,
                     scenes: Vec::new(),
+                    cuts: Vec::new(),
                 })
                 .into_mut(),
             Err(e) => {
@@ -374,6 +389,7 @@ fn draw(
     // One draw per distinct style, in the order styles first appear; the scene's light reaches each
     // entity in its own model space.
     let mut groups: Vec<(EdgeStyle, Vec<Instance<'_>>)> = Vec::new();
+    let mut cut_groups: Vec<(CutStyle, Vec<Instance<'_>>)> = Vec::new();
     for drawn in &extracted.drawn {
         let Some(gpu) = uploaded.assets.get(&drawn.asset) else {
             continue;
@@ -388,11 +404,35 @@ fn draw(
         if let Some(light) = light {
             instance = instance.with_light(light);
         }
+        if let Some(cut) = drawn.cut {
+            instance = instance.with_section(cut.section).with_cap(cut.cap);
+            // Grouped by the rest of the style: the planes and caps go with each instance.
+            let rest = CutStyle {
+                section: ClipPlanes::NONE,
+                cap: Default::default(),
+                ..cut
+            };
+            match cut_groups.iter_mut().find(|(s, _)| *s == rest) {
+                Some((_, instances)) => instances.push(instance),
+                None => cut_groups.push((rest, vec![instance])),
+            }
+        }
         match groups.iter_mut().find(|(s, _)| *s == style) {
             Some((_, instances)) => instances.push(instance),
             None => groups.push((style, vec![instance])),
         }
     }
+    let encoder = ctx.command_encoder();
+    draw_cuts(
+        renderer,
+        &queue,
+        encoder,
+        &edge_camera,
+        &cut_groups,
+        camera,
+        target,
+        depth,
+    );
     // Scene renderers are kept by position, so a style changed at run time keeps its state.
     renderer.scenes.truncate(groups.len());
     while renderer.scenes.len() < groups.len() {
@@ -400,7 +440,6 @@ fn draw(
             .scenes
             .push(SceneRenderer::new(&renderer.pipelines));
     }
-    let encoder = ctx.command_encoder();
     for ((style, instances), scene) in groups.iter().zip(&mut renderer.scenes) {
         let prepared = match scene.prepare(&queue, encoder, &edge_camera, instances, style) {
             Ok(prepared) => prepared,
@@ -418,11 +457,7 @@ fn draw(
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            if let Some(viewport) = camera.viewport.as_ref() {
-                let [x, y] = viewport.physical_position.to_array().map(|v| v as f32);
-                let [w, h] = viewport.physical_size.to_array().map(|v| v as f32);
-                pass.set_viewport(x, y, w, h, 0.0, 1.0);
-            }
+            set_viewport(&mut pass, camera);
             prepared.render(&mut pass);
         }
         let views = FrameViews {
@@ -432,6 +467,54 @@ fn draw(
         if let Err(e) = prepared.finish(encoder, &views) {
             error!("chamfer: cannot finish the edges: {e}");
         }
+    }
+}
+
+/// The cut outlines of the sectioned entities, before the edges (which they hide where they
+/// cross). Bevy's depth has no stencil aspect: the caps are the section material's.
+#[allow(clippy::too_many_arguments)]
+fn draw_cuts(
+    renderer: &mut ViewRenderer,
+    queue: &RenderQueue,
+    encoder: &mut wgpu::CommandEncoder,
+    edge_camera: &EdgeCamera,
+    groups: &[(CutStyle, Vec<Instance<'_>>)],
+    camera: &ExtractedCamera,
+    target: &ViewTarget,
+    depth: &ViewDepthStencilTexture,
+) {
+    let outlined: Vec<_> = groups.iter().filter(|(s, _)| s.outline.is_some()).collect();
+    renderer.cuts.truncate(outlined.len());
+    while renderer.cuts.len() < outlined.len() {
+        match CutRenderer::new(&renderer.pipelines) {
+            Ok(cut) => renderer.cuts.push(cut),
+            Err(e) => {
+                error!("chamfer: cannot build the cut outline pass: {e}");
+                return;
+            }
+        }
+    }
+    for ((style, instances), cut) in outlined.into_iter().zip(&mut renderer.cuts) {
+        cut.prepare(queue, edge_camera, instances, style);
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("chamfer cut outlines"),
+            color_attachments: &[Some(target.get_color_attachment())],
+            depth_stencil_attachment: Some(depth.get_attachment(wgpu::StoreOp::Store)),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        set_viewport(&mut pass, camera);
+        cut.render(&mut pass);
+    }
+}
+
+/// The camera's viewport, if it has one, on `pass`.
+fn set_viewport(pass: &mut wgpu::RenderPass<'_>, camera: &ExtractedCamera) {
+    if let Some(viewport) = camera.viewport.as_ref() {
+        let [x, y] = viewport.physical_position.to_array().map(|v| v as f32);
+        let [w, h] = viewport.physical_size.to_array().map(|v| v as f32);
+        pass.set_viewport(x, y, w, h, 0.0, 1.0);
     }
 }
 

@@ -784,3 +784,210 @@ fn edges_material(world: &World, part: Entity) -> Handle<StandardMaterial> {
         .0
         .clone()
 }
+
+/// Saves `frame` as `name`.png where `CHAMFER_TEST_IMAGES` names a folder (to look at what a test
+/// saw).
+fn keep(frame: &[u8], name: &str) {
+    if let Ok(dir) = std::env::var("CHAMFER_TEST_IMAGES") {
+        let image = chamfer_runtime::render::Image {
+            width: SIZE[0],
+            height: SIZE[1],
+            rgba: frame.to_vec(),
+        };
+        chamfer_tests::save_png(&image, &Path::new(&dir).join(format!("bevy-{name}.png")));
+    }
+}
+
+/// A pixel within `tolerance` of `color` (RGB, 0–255).
+fn near(p: &[u8], color: [u8; 3], tolerance: u8) -> bool {
+    (0..3).all(|c| p[c].abs_diff(color[c]) <= tolerance)
+}
+
+/// The plane through the centre of `bounds` across the axis that points most at `eye`, its normal
+/// towards the eye: the half nearer the camera is cut away and the cut face looks at it.
+fn plane_facing(bounds: [[f32; 3]; 2], eye: Vec3) -> chamfer_bevy::ClipPlanes {
+    let center = (Vec3::from(bounds[0]) + Vec3::from(bounds[1])) * 0.5;
+    let to_eye = eye - center;
+    let axis = (0..3)
+        .max_by(|&a, &b| to_eye[a].abs().total_cmp(&to_eye[b].abs()))
+        .expect("three axes");
+    let mut normal = [0.0f64; 3];
+    normal[axis] = f64::from(to_eye[axis].signum());
+    let offset = normal[axis] * f64::from(center[axis]);
+    chamfer_bevy::ClipPlanes::new(&[chamfer_bevy::Plane { normal, offset }])
+}
+
+const CAP_BLUE: [u8; 3] = [0, 0, 255];
+const OUTLINE_RED: [u8; 3] = [255, 0, 0];
+const HATCH_GREEN: [u8; 3] = [0, 255, 0];
+
+fn section_in(planes: chamfer_bevy::ClipPlanes, hatch: bool) -> chamfer_bevy::ChamferSection {
+    use chamfer_bevy::{CapHatch, CapStyle, CutOutline, CutStyle};
+    chamfer_bevy::ChamferSection {
+        cut: CutStyle {
+            section: planes,
+            cap: CapStyle {
+                color: [0.0, 0.0, 1.0, 1.0],
+                hatch: hatch.then_some(CapHatch {
+                    color: [0.0, 1.0, 0.0, 1.0],
+                    spacing: 8.0,
+                    angle_deg: 45.0,
+                    width_px: 2.0,
+                    in_model: false,
+                }),
+            },
+            outline: Some(CutOutline {
+                color: [1.0, 0.0, 0.0, 1.0],
+                width_px: 3.0,
+            }),
+            caps: true,
+        },
+    }
+}
+
+/// Counts of a frame's pixels: not the background, the cap's blue, the outline's red, the hatch's
+/// green.
+fn tally(frame: &[u8]) -> (usize, usize, usize, usize) {
+    let background = [frame[0], frame[1], frame[2]];
+    let count = |f: &dyn Fn(&[u8]) -> bool| frame.chunks(4).filter(|p| f(p)).count();
+    (
+        count(&|p| !near(p, background, 8)),
+        count(&|p| near(p, CAP_BLUE, 40)),
+        count(&|p| near(p, OUTLINE_RED, 60)),
+        count(&|p| near(p, HATCH_GREEN, 60)),
+    )
+}
+
+#[test]
+fn a_section_component_cuts_the_cube_caps_the_cut_and_outlines_it() {
+    let folder = assets(&[("cube", "shapes/cube.obj"), ("open", "shapes/open-box.obj")]);
+    let (bounds, view, _) = cube_view();
+    let planes = plane_facing(bounds, view.0.translation);
+    // A clear colour no face is shaded in (the default is as dark as the cube's shaded side).
+    let clear = ClearColor(Color::srgb(1.0, 0.0, 1.0));
+    let mut scene = Scene::new(folder.path(), "cube", view.clone(), Msaa::Off, false);
+    scene.app.insert_resource(clear.clone());
+    let whole = render(&mut scene.app, &scene.image);
+    let background = [whole[0], whole[1], whole[2]];
+    let (mesh, blue, ..) = tally(&whole);
+    assert!(mesh > 5000 && blue == 0, "the whole cube: {mesh} pixels");
+    let own_material = edges_material(scene.app.world(), scene.part);
+
+    scene
+        .app
+        .world_mut()
+        .entity_mut(scene.part)
+        .insert(section_in(planes, false));
+    let cut = render(&mut scene.app, &scene.image);
+    keep(&whole, "section-whole");
+    keep(&cut, "section-cut");
+    let (cut_mesh, cap, outline, _) = tally(&cut);
+    eprintln!("whole {mesh}, cut {cut_mesh}: cap {cap}, outline {outline}");
+    // The near half is gone: what it covered alone is background now, and nothing is drawn where
+    // the whole cube was not (the outline's half width aside).
+    let gone = whole
+        .chunks(4)
+        .zip(cut.chunks(4))
+        .filter(|(w, c)| !near(w, background, 8) && near(c, background, 8))
+        .count();
+    let grown = whole
+        .chunks(4)
+        .zip(cut.chunks(4))
+        .filter(|(w, c)| {
+            near(w, background, 8) && !near(c, background, 8) && !near(c, OUTLINE_RED, 60)
+        })
+        .count();
+    assert!(
+        gone * 10 > mesh,
+        "the cut half's pixels go: {gone} of {mesh}"
+    );
+    assert!(grown * 200 < mesh, "nothing beyond the cube: {grown}");
+    // The cut face fills in the cap's colour, outlined around.
+    assert!(
+        cap * 6 > mesh,
+        "the cap fills the cut square: {cap} of {mesh}"
+    );
+    assert!(outline > 200, "the cut outline is drawn: {outline}");
+    let mesh_view = scene
+        .app
+        .world()
+        .entity(scene.part)
+        .get::<MeshMaterial3d<chamfer_bevy::SectionMaterial>>()
+        .is_some();
+    assert!(mesh_view, "the section material is swapped in");
+
+    // Hatched: lines of the hatch colour over the fill.
+    scene
+        .app
+        .world_mut()
+        .entity_mut(scene.part)
+        .insert(section_in(planes, true));
+    let hatched = render(&mut scene.app, &scene.image);
+    keep(&hatched, "section-hatched");
+    let (_, fill, _, lines) = tally(&hatched);
+    assert!(
+        lines > 100 && fill > lines,
+        "hatched: {lines} line pixels over {fill}"
+    );
+
+    // The section goes: the cube is whole again, with its own material.
+    scene
+        .app
+        .world_mut()
+        .entity_mut(scene.part)
+        .remove::<chamfer_bevy::ChamferSection>();
+    let again = render(&mut scene.app, &scene.image);
+    assert!(differing(&again, &whole).iter().all(|&d| !d), "whole again");
+    assert_eq!(edges_material(scene.app.world(), scene.part), own_material);
+
+    // An open box cut the same way shows into it: no cap, the outline kept.
+    let mut open = Scene::new(folder.path(), "open", view, Msaa::Off, false);
+    open.app.insert_resource(clear);
+    open.app
+        .world_mut()
+        .entity_mut(open.part)
+        .insert(section_in(planes, false));
+    let (open_mesh, open_cap, open_outline, _) = tally(&render(&mut open.app, &open.image));
+    assert!(open_mesh > 3000, "the open box is drawn: {open_mesh}");
+    assert_eq!(open_cap, 0, "an open mesh is not capped");
+    assert!(open_outline > 100, "its outline is drawn: {open_outline}");
+}
+
+#[test]
+fn every_section_and_cut_entry_reaches_the_section_component() {
+    use chamfer_bevy::{ChamferSection, CutSettings, Section};
+    use chamfer_runtime::schema::{Schema, Value};
+    let mut section = Section::default();
+    Section::entry("section")
+        .expect("section")
+        .set_example(&mut section);
+    // Hatched (at a spacing other than the example's), so the hatch entries tell.
+    let base_cut = CutSettings {
+        cap_hatch_spacing: 3.0,
+        ..CutSettings::default()
+    };
+    let base = ChamferSection::from_settings(&section, &base_cut).expect("valid");
+    assert!(!base.cut.section.is_empty());
+    for entry in Section::ENTRIES {
+        let mut other = Section::default();
+        entry.set_example(&mut other);
+        let made = ChamferSection::from_settings(&other, &base_cut).expect(entry.name);
+        assert!(!made.cut.section.is_empty(), "{}", entry.name);
+    }
+    for entry in CutSettings::ENTRIES {
+        let mut cut = base_cut;
+        entry.set_example(&mut cut);
+        let made = ChamferSection::from_settings(&section, &cut).expect(entry.name);
+        assert_ne!(made, base, "{}", entry.name);
+    }
+    let mut negative = CutSettings::default();
+    CutSettings::entry("cut_outline_width")
+        .expect("width")
+        .set(&mut negative, Value::Number(-1.0))
+        .expect("set");
+    let refused = ChamferSection::from_settings(&section, &negative).expect_err("refused");
+    assert!(
+        refused.to_string().contains("cut_outline_width"),
+        "{refused}"
+    );
+}

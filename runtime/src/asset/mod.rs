@@ -624,6 +624,14 @@ impl Asset {
         attribute_flags(self.edge_attributes[e])
     }
 
+    /// True if the mesh is closed: no edge is a boundary (every edge has two faces or more), so a
+    /// section's cut faces can be filled. A non-manifold edge (CAD exports have a few slivers with
+    /// three faces) still counts as closed: a cap's parity is then wrong only where the extra face
+    /// is seen edge-on. One pass over the edges.
+    pub fn is_closed(&self) -> bool {
+        (0..self.edge_count()).all(|e| !self.edge_flags(e).contains(EdgeFlags::BOUNDARY))
+    }
+
     /// The chamfer radius of edge `e`, in mesh units (0 if it has none).
     pub fn edge_radius(&self, e: usize) -> f32 {
         attribute_radius(self.edge_attributes[e], self.header.radius_scale)

@@ -6,7 +6,8 @@
 //! decides what lies inside, so the caps follow moving planes and posed meshes with no CPU pass
 //! and no per-frame geometry, and are exact to the pixel where the mesh is closed. It costs two
 //! extra draws of the instance's mesh and one quad per plane that crosses the instance (instances a
-//! plane misses skip it), and needs a stencil aspect in the target (one bit). The cut polygons
+//! plane misses skip it), and needs a stencil aspect in the target (one bit; on a target without
+//! one only the outlines are drawn, and the Bevy crate fills the caps in its material). The cut polygons
 //! would need the cut segments chained and triangulated every frame. **Open meshes** (any boundary
 //! edge) get no cap: their parity means nothing, so a cut shows into them, their
 //! back faces lit as the mesh pass lights both sides (what the section drawings do too); they keep
@@ -139,6 +140,17 @@ const OUTLINE: Bindings = Bindings::draw(
     ],
 );
 
+/// Section.wgsl for a host outside the runtime (the Bevy crate's section material): the section
+/// tests and the cap fill, after the `SECTION_PLANES` constant. The host defines
+/// `view_section(k)`, plane k in the space of the points it tests.
+pub fn section_wgsl() -> String {
+    format!(
+        "const SECTION_PLANES: u32 = {}u;\n{}",
+        crate::section::MAX_PLANES,
+        chamfer_shaders::SECTION
+    )
+}
+
 /// The cut faces' module.
 pub(crate) fn shader() -> Shader {
     Shader::new(
@@ -158,22 +170,33 @@ const PARITY_BIT: u32 = 1;
 /// The parity and cap pipelines, per device and target.
 #[derive(Debug)]
 pub(crate) struct CutPipelines {
+    /// The parity draw and the cap quad: only on targets with a stencil aspect.
+    caps: Option<CapPipelines>,
+    outline: wgpu::RenderPipeline,
+}
+
+#[derive(Debug)]
+struct CapPipelines {
     parity: wgpu::RenderPipeline,
     cap: wgpu::RenderPipeline,
-    outline: wgpu::RenderPipeline,
 }
 
 impl PipelineSet for CutPipelines {
     fn new(cache: &Pipelines) -> Result<Self, RenderError> {
         let target = cache.target();
-        if !target.has_stencil() {
-            return Err(RenderError::TargetLacks {
-                technique: "cut faces",
-                needs: "a depth format with a stencil aspect",
-            });
-        }
         let shader = shader();
         let compiled = cache.compile(&shader)?;
+        let outline = compiled.render(
+            "outline_vertex",
+            Some("outline_fragment"),
+            Raster::over_mesh(target),
+        )?;
+        if !target.has_stencil() {
+            return Ok(Self {
+                caps: None,
+                outline,
+            });
+        }
         let flip = wgpu::StencilFaceState {
             compare: wgpu::CompareFunction::Always,
             fail_op: wgpu::StencilOperation::Keep,
@@ -229,14 +252,8 @@ impl PipelineSet for CutPipelines {
                 color: Some(target.blended_color()),
             },
         )?;
-        let outline = compiled.render(
-            "outline_vertex",
-            Some("outline_fragment"),
-            Raster::over_mesh(target),
-        )?;
         Ok(Self {
-            parity,
-            cap,
+            caps: Some(CapPipelines { parity, cap }),
             outline,
         })
     }
@@ -258,7 +275,9 @@ pub struct CutRenderer {
 }
 
 impl CutRenderer {
-    /// A cut-face pass for `pipelines`' target, which must have a stencil aspect.
+    /// A cut-face pass for `pipelines`' target. Cut faces need a stencil aspect in its depth
+    /// format: without one (Bevy's cameras have none) only the outlines are drawn, and
+    /// [`CutRenderer::fills_caps`] is false.
     pub fn new(pipelines: &Pipelines) -> Result<Self, RenderError> {
         Ok(Self {
             pipelines: pipelines.get::<CutPipelines>()?,
@@ -269,6 +288,11 @@ impl CutRenderer {
             draws: Vec::new(),
             outlined: false,
         })
+    }
+
+    /// True if this pass fills cut faces: its target has a stencil aspect.
+    pub fn fills_caps(&self) -> bool {
+        self.pipelines.caps.is_some()
     }
 
     /// Sets this frame's camera, instances and style.
@@ -354,24 +378,27 @@ impl CutRenderer {
             .collect();
     }
 
-    /// Fills the cut faces into `pass` (whose depth attachment has the stencil aspect, cleared to 0
-    /// or left at 0 by earlier cut passes).
+    /// Fills the cut faces into `pass` (whose depth attachment's stencil aspect, if the target has
+    /// one, is cleared to 0 or left at 0 by earlier cut passes) and draws the outlines.
     pub fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
         let Some(group) = &self.group else {
             return;
         };
-        pass.set_stencil_reference(0);
+        let caps = self.pipelines.caps.as_ref();
+        if caps.is_some() {
+            pass.set_stencil_reference(0);
+        }
         for (offset, asset, capped) in &self.draws {
-            if *capped {
+            if let (true, Some(caps)) = (*capped, caps) {
                 pass.set_bind_group(0, group, &[*offset]);
                 pass.set_vertex_buffer(0, asset.render_positions.slice(..));
                 pass.set_index_buffer(asset.mesh_indices.slice(..), asset.index_format);
-                pass.set_pipeline(&self.pipelines.parity);
+                pass.set_pipeline(&caps.parity);
                 pass.draw_indexed(0..asset.index_count, 0, 0..1);
-                pass.set_pipeline(&self.pipelines.cap);
+                pass.set_pipeline(&caps.cap);
                 pass.draw(0..6, 0..1);
                 // Flips the bits back: the next plane or instance starts from zero.
-                pass.set_pipeline(&self.pipelines.parity);
+                pass.set_pipeline(&caps.parity);
                 pass.draw_indexed(0..asset.index_count, 0, 0..1);
             }
             let outline = self

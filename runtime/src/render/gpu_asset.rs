@@ -15,7 +15,7 @@ use super::RenderError;
 use super::bindings::{self, Binding};
 use super::derived::{self, AssetExtras};
 use super::target::checked;
-use crate::asset::{Asset, EdgeFlags, IndexWidth, SectionKind};
+use crate::asset::{Asset, IndexWidth, SectionKind};
 
 /// A validated asset on the GPU. Create it once; any number of renderers can draw from it (it is a
 /// set of shared buffer handles, cheap to clone).
@@ -248,8 +248,7 @@ impl GpuAsset {
             has_rings: !asset.next_ends.is_empty(),
             has_chamfers,
             bounds: [asset.header.bounds_min, asset.header.bounds_max],
-            closed: (0..asset.edge_count())
-                .all(|e| !asset.edge_flags(e).contains(EdgeFlags::BOUNDARY)),
+            closed: asset.is_closed(),
             radius_scale: asset.header.radius_scale,
             extras: AssetExtras::NONE,
             key: std::sync::Arc::new(()),
@@ -298,10 +297,8 @@ impl GpuAsset {
         self.bounds
     }
 
-    /// True if the mesh is closed (no boundary edge: every edge has two faces or more), so a
-    /// section's cut faces are filled ([`CutRenderer`](super::CutRenderer)). A non-manifold edge
-    /// (CAD exports have a few slivers with three faces) still counts as closed: the cap's parity
-    /// is then wrong only where the extra face is seen edge-on.
+    /// True if the mesh is closed ([`Asset::is_closed`](crate::asset::Asset::is_closed)), so a
+    /// section's cut faces are filled ([`CutRenderer`](super::CutRenderer)).
     pub fn is_closed(&self) -> bool {
         self.closed
     }

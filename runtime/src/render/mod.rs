@@ -64,7 +64,7 @@ mod technique;
 mod techniques;
 
 pub use crate::camera::{Camera, Orbit};
-pub use cut::{CapHatch, CapStyle, CutOutline, CutRenderer, CutStyle};
+pub use cut::{CapHatch, CapStyle, CutOutline, CutRenderer, CutStyle, section_wgsl};
 pub use derived::AssetExtras;
 pub use error::RenderError;
 pub use gpu_asset::GpuAsset;
