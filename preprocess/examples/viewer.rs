@@ -5,7 +5,9 @@
 //! (toggle each class); + / - edge width; C cycles the cap method; D depth-scaled width; E edges on
 //! or off; O orthographic; T cycles the edge technique (its name is in the title); H cycles the chamfer
 //! highlight under a light circling the model: off, seed 000's Blinn model, glTF's metallic-roughness; X explodes a scene (each instance moved
-//! away from the centre, every frame's transforms given anew); Esc quits. Meshes are baked with a chamfer radius of 0.4 % of their diagonal on ridges. It is also the smallest example of hosting the renderers in an
+//! away from the centre, every frame's transforms given anew); S cycles a section plane across x,
+//! y, z or none, and a right-button drag moves it along its axis (the cut capped and outlined);
+//! Esc quits. Meshes are baked with a chamfer radius of 0.4 % of their diagonal on ridges. It is also the smallest example of hosting the renderers in an
 //! application's own wgpu setup: the window, device and frame belong to this file.
 
 use std::path::PathBuf;
@@ -16,10 +18,11 @@ use chamfer_runtime::asset::Asset;
 use chamfer_runtime::highlight::ggx::PbrMaterial;
 use chamfer_runtime::highlight::strip::Material;
 use chamfer_runtime::render::{
-    Camera, CapMethod, EdgeClasses, EdgeStyle, FrameViews, GpuAsset, Highlight, Instance, Light,
-    MeshLight, MeshRenderer, MeshStyle, Orbit, Pipelines, SceneRenderer, Shading, Target,
-    Technique,
+    Camera, CapMethod, CutRenderer, CutStyle, EdgeClasses, EdgeStyle, FrameViews, GpuAsset,
+    Highlight, Instance, Light, MeshLight, MeshRenderer, MeshStyle, Orbit, Pipelines,
+    SceneRenderer, Shading, Target, Technique,
 };
+use chamfer_runtime::section::{ClipPlanes, Plane};
 use glam::{Mat4, Vec3};
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
@@ -65,6 +68,8 @@ fn main() -> anyhow::Result<()> {
         highlight: Lit::Off,
         started: std::time::Instant::now(),
         dragging: false,
+        section: None,
+        moving_section: false,
         cursor: None,
         error: None,
     };
@@ -93,6 +98,9 @@ struct Viewer {
     highlight: Lit,
     started: std::time::Instant,
     dragging: bool,
+    /// The section plane: across which axis, and where along the scene's box (0 to 1).
+    section: Option<(usize, f32)>,
+    moving_section: bool,
     cursor: Option<(f64, f64)>,
     error: Option<anyhow::Error>,
 }
@@ -109,6 +117,7 @@ struct Gpu {
     assets: Vec<GpuAsset>,
     mesh: MeshRenderer,
     edges: SceneRenderer,
+    cut: CutRenderer,
 }
 
 impl Gpu {
@@ -151,6 +160,7 @@ impl Gpu {
             .collect::<Result<Vec<_>, _>>()?;
         let mesh = MeshRenderer::for_scenes(&pipelines)?;
         let edges = SceneRenderer::new(&pipelines);
+        let cut = CutRenderer::new(&pipelines)?;
         let (depth, depth_sampled) = depth_views(&device, &config);
         Ok(Self {
             window,
@@ -163,6 +173,7 @@ impl Gpu {
             assets: uploaded,
             mesh,
             edges,
+            cut,
         })
     }
 
@@ -186,6 +197,7 @@ impl Gpu {
         style: &EdgeStyle,
         mesh_style: &MeshStyle,
         draw_edges: bool,
+        section: Option<(usize, f32)>,
     ) -> anyhow::Result<()> {
         let frame = match self.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(frame)
@@ -205,8 +217,21 @@ impl Gpu {
         );
         let mut encoder = self.device.create_command_encoder(&Default::default());
         let instances = instances(&self.assets, placed, explode);
+        let cut = CutStyle {
+            section: section_plane(self.bounds(placed), section),
+            ..CutStyle::default()
+        };
+        let style = &EdgeStyle {
+            section: cut.section,
+            ..*style
+        };
+        let mesh_style = &MeshStyle {
+            section: cut.section,
+            ..*mesh_style
+        };
         self.mesh
             .prepare_scene(&self.queue, &camera, &instances, mesh_style);
+        self.cut.prepare(&self.queue, &camera, &instances, &cut);
         let prepared = if draw_edges {
             Some(
                 self.edges
@@ -243,6 +268,7 @@ impl Gpu {
                 multiview_mask: None,
             });
             self.mesh.render(&mut pass);
+            self.cut.render(&mut pass);
             if let Some(prepared) = &prepared {
                 prepared.render(&mut pass);
             }
@@ -259,6 +285,19 @@ impl Gpu {
         self.queue.present(frame);
         Ok(())
     }
+}
+
+/// The section plane across `axis` at `at` (0 to 1) of `bounds`, its normal along the axis (the
+/// part beyond it is cut away); none without a section.
+fn section_plane(bounds: [[f32; 3]; 2], section: Option<(usize, f32)>) -> ClipPlanes {
+    let Some((axis, at)) = section else {
+        return ClipPlanes::NONE;
+    };
+    let [lo, hi] = bounds;
+    let mut normal = [0.0; 3];
+    normal[axis] = 1.0;
+    let offset = f64::from(lo[axis] + at * (hi[axis] - lo[axis]));
+    ClipPlanes::new(&[Plane { normal, offset }])
 }
 
 /// The instances to draw this frame; exploded: each moved away from the scene's centre to twice
@@ -442,6 +481,7 @@ impl ApplicationHandler for Viewer {
                     &style,
                     &mesh_style,
                     self.draw_edges,
+                    self.section,
                 ) {
                     self.error = Some(e);
                     event_loop.exit();
@@ -463,6 +503,25 @@ impl ApplicationHandler for Viewer {
             } => {
                 self.dragging = state == ElementState::Pressed;
                 false
+            }
+            WindowEvent::MouseInput {
+                state,
+                button: MouseButton::Right,
+                ..
+            } => {
+                self.moving_section = state == ElementState::Pressed;
+                false
+            }
+            WindowEvent::CursorMoved { position, .. }
+                if self.moving_section && self.section.is_some() =>
+            {
+                let dy = self.cursor.map_or(0.0, |(_, y)| position.y - y);
+                self.cursor = Some((position.x, position.y));
+                if let Some((_, at)) = &mut self.section {
+                    // Up moves the plane towards the axis' end: a window's height is the box.
+                    *at = (*at - dy as f32 / gpu.config.height.max(1) as f32).clamp(0.0, 1.0);
+                }
+                true
             }
             WindowEvent::CursorMoved { position, .. } => {
                 let moved = self
@@ -505,6 +564,13 @@ impl ApplicationHandler for Viewer {
                     true
                 } else if event.logical_key == Key::Character("x".into()) {
                     self.explode = !self.explode;
+                    true
+                } else if event.logical_key == Key::Character("s".into()) {
+                    self.section = match self.section {
+                        None => Some((0, 0.5)),
+                        Some((axis, at)) if axis < 2 => Some((axis + 1, at)),
+                        Some(_) => None,
+                    };
                     true
                 } else {
                     apply_key(
