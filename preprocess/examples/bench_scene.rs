@@ -19,20 +19,9 @@ use chamfer_runtime::render::{
     Camera, EdgeStyle, GpuAsset, Instance, MeshRenderer, MeshStyle, Offscreen, Orbit, Pipelines,
     SceneRenderer, Technique,
 };
-use glam::{Mat4, Quat, Vec3};
 
-const ASSETS: [&str; 10] = [
-    "shapes/cube.obj",
-    "shapes/cylinder-16.obj",
-    "shapes/cone-16.obj",
-    "shapes/sphere-16x32.obj",
-    "shapes/step.obj",
-    "meshes/suzanne.obj",
-    "meshes/spot.obj",
-    "meshes/teapot.obj",
-    "meshes/fandisk.obj",
-    "meshes/cow.obj",
-];
+#[path = "common/lattice.rs"]
+mod lattice;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut frames = 7;
@@ -64,30 +53,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let gpu = Offscreen::new()?;
     let target = gpu.target(size[0], size[1], 1)?;
     let pipelines = Pipelines::new(&gpu.device, &target.formats())?;
-    let mut uploaded = Vec::new();
-    let mut fits = Vec::new();
-    for name in ASSETS {
-        let asset = chamfer_preprocess::bake_file(&root.join(name), &Default::default())?.asset;
-        let [lo, hi] = [asset.header.bounds_min, asset.header.bounds_max].map(Vec3::from);
-        // Into a cell of side 0.8 around the origin.
-        fits.push(
-            Mat4::from_scale(Vec3::splat(0.8 / (hi - lo).max_element().max(1e-6)))
-                * Mat4::from_translation(-(lo + hi) * 0.5),
-        );
-        uploaded.push(GpuAsset::for_techniques(&gpu.device, &asset, &[technique])?);
-    }
-    let mut instances = Vec::new();
-    for i in 0..grid * grid * grid {
-        let (x, y, z) = (i % grid, (i / grid) % grid, i / (grid * grid));
-        let a = i % ASSETS.len();
-        let turn = Quat::from_rotation_y(i as f32 * 0.7) * Quat::from_rotation_x(i as f32 * 0.3);
-        let transform = Mat4::from_translation(Vec3::new(x as f32, y as f32, z as f32))
-            * Mat4::from_quat(turn)
-            * fits[a];
-        instances.push(Instance::new(&uploaded[a]).with_transform(transform));
-    }
-    let extent = grid as f32 - 1.0;
-    let bounds = [[-0.5; 3], [extent + 0.5; 3]];
+    let lattice = lattice::lattice(&gpu.device, &root, grid, &[technique])?;
+    let instances: Vec<Instance<'_>> = lattice
+        .placed
+        .iter()
+        .map(|&(a, transform)| Instance::new(&lattice.assets[a]).with_transform(transform))
+        .collect();
+    let bounds = lattice.bounds;
     let camera = Camera::orbit(bounds, &Orbit::default(), size);
     let triangles: u64 = instances
         .iter()
@@ -104,7 +76,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         size[0],
         size[1],
         instances.len(),
-        ASSETS.len(),
+        lattice::ASSETS.len(),
         technique.name()
     );
     let mut mesh = MeshRenderer::for_scenes(&pipelines)?;
@@ -181,7 +153,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .unwrap_or_default();
     let prepare_ms = median(prepare_times);
     let separate_bytes: u64 = separate.iter().map(SceneRenderer::gpu_bytes).sum();
-    let asset_bytes: u64 = uploaded.iter().map(GpuAsset::gpu_bytes).sum();
+    let asset_bytes: u64 = lattice.assets.iter().map(GpuAsset::gpu_bytes).sum();
     println!("| configuration | frame ms | over mesh-only | per-frame GPU MB | drawn edges |");
     println!("|---|---:|---:|---:|---:|");
     println!("| mesh only (instanced mesh pass) | {m:.1} | | | |");

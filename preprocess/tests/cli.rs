@@ -1343,20 +1343,35 @@ fn stl_and_3mf_bake_from_the_command_line_and_inspect_reports_the_stitch() {
     );
 }
 
-/// The frame benchmarks (`examples/bench_render.rs`, `bench_section.rs`, built by `cargo test`)
-/// run: one frame of each configuration at 64 × 64 on a cube (with chamfer radii for
-/// bench_render, the highlight's row included).
+/// The frame benchmarks (`examples/bench_render.rs`, `bench_section.rs`, `bench_scene.rs`, built
+/// by `cargo test`) run: one frame of each configuration at 64 × 64 on a cube (with chamfer radii
+/// for bench_render, the highlight's row included; the scenes of 2³ instances).
 #[test]
 fn the_frame_benchmarks_run_at_a_tiny_size() {
-    for (name, extra) in [
-        ("bench_render", &["--radius-rel", "0.02"][..]),
-        ("bench_section", &[][..]),
+    let cube = fixture("shapes/cube.obj");
+    let cube = cube.to_str().expect("a UTF-8 path");
+    for (name, extra, rows) in [
+        (
+            "bench_render",
+            &["--radius-rel", "0.02", cube][..],
+            &["| cube.obj"][..],
+        ),
+        (
+            "bench_section",
+            &["--grid", "2", cube][..],
+            &["| cube.obj", "| 8 instances (scene)"][..],
+        ),
+        (
+            "bench_scene",
+            &["--grid", "2", "--no-separate", "--large", cube][..],
+            &["| + one SceneRenderer"][..],
+        ),
     ] {
-        run_frame_bench(name, extra);
+        run_frame_bench(name, extra, rows);
     }
 }
 
-fn run_frame_bench(name: &str, extra: &[&str]) {
+fn run_frame_bench(name: &str, args: &[&str], rows: &[&str]) {
     let chamfer = Path::new(env!("CARGO_BIN_EXE_chamfer"));
     let bench = chamfer
         .parent()
@@ -1366,17 +1381,18 @@ fn run_frame_bench(name: &str, extra: &[&str]) {
     assert!(bench.exists(), "{} is built by cargo test", bench.display());
     let run = Command::new(&bench)
         .args(["--frames", "1", "--size", "64x64"])
-        .args(extra)
-        .arg(fixture("shapes/cube.obj"))
+        .args(args)
         .output()
         .unwrap_or_else(|e| panic!("run {name}: {e}"));
     let out = text(&run.stdout);
     assert!(run.status.success(), "{out}{}", text(&run.stderr));
-    let row = out
-        .lines()
-        .find(|l| l.starts_with("| cube.obj"))
-        .expect("the cube's row");
-    assert!(!row.contains("NaN") && !row.contains("inf"), "{row}");
+    for start in rows {
+        let row = out
+            .lines()
+            .find(|l| l.starts_with(start))
+            .unwrap_or_else(|| panic!("{name}: no row {start}: {out}"));
+        assert!(!row.contains("NaN") && !row.contains("inf"), "{row}");
+    }
 }
 
 /// Issue 40: every entry of the bake's schema is a flag of `chamfer bake`, and its example value
