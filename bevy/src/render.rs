@@ -449,15 +449,7 @@ fn draw(
             }
         };
         {
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("chamfer edges"),
-                color_attachments: &[Some(target.get_color_attachment())],
-                depth_stencil_attachment: Some(depth.get_attachment(wgpu::StoreOp::Store)),
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            set_viewport(&mut pass, camera);
+            let mut pass = camera_pass(encoder, "chamfer edges", camera, target, depth);
             prepared.render(&mut pass);
         }
         let views = FrameViews {
@@ -496,26 +488,33 @@ fn draw_cuts(
     }
     for ((style, instances), cut) in outlined.into_iter().zip(&mut renderer.cuts) {
         cut.prepare(queue, edge_camera, instances, style);
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("chamfer cut outlines"),
-            color_attachments: &[Some(target.get_color_attachment())],
-            depth_stencil_attachment: Some(depth.get_attachment(wgpu::StoreOp::Store)),
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        set_viewport(&mut pass, camera);
+        let mut pass = camera_pass(encoder, "chamfer cut outlines", camera, target, depth);
         cut.render(&mut pass);
     }
 }
 
-/// The camera's viewport, if it has one, on `pass`.
-fn set_viewport(pass: &mut wgpu::RenderPass<'_>, camera: &ExtractedCamera) {
+/// A pass into the camera's colour and depth (kept), on its viewport if it has one.
+fn camera_pass<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    label: &str,
+    camera: &ExtractedCamera,
+    target: &ViewTarget,
+    depth: &ViewDepthStencilTexture,
+) -> wgpu::RenderPass<'e> {
+    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some(label),
+        color_attachments: &[Some(target.get_color_attachment())],
+        depth_stencil_attachment: Some(depth.get_attachment(wgpu::StoreOp::Store)),
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    });
     if let Some(viewport) = camera.viewport.as_ref() {
         let [x, y] = viewport.physical_position.to_array().map(|v| v as f32);
         let [w, h] = viewport.physical_size.to_array().map(|v| v as f32);
         pass.set_viewport(x, y, w, h, 0.0, 1.0);
     }
+    pass
 }
 
 /// Of `lights`, the one that lights the origin of an entity placed by `transform` most (by the sum

@@ -210,15 +210,12 @@ impl Gpu {
         };
         let view = frame.texture.create_view(&Default::default());
         // The camera frames the scene as placed, so it stays put while the scene explodes.
-        let camera = Camera::orbit(
-            self.bounds(placed),
-            orbit,
-            [self.config.width, self.config.height],
-        );
+        let bounds = self.bounds(placed);
+        let camera = Camera::orbit(bounds, orbit, [self.config.width, self.config.height]);
         let mut encoder = self.device.create_command_encoder(&Default::default());
         let instances = instances(&self.assets, placed, explode);
         let cut = CutStyle {
-            section: section_plane(self.bounds(placed), section),
+            section: section_plane(bounds, section),
             ..CutStyle::default()
         };
         let style = &EdgeStyle {
