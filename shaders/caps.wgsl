@@ -1,4 +1,5 @@
-// Draws the round joins the join pass emitted: a square around the vertex, cut to the cap's sector.
+// Draws the round joins the join pass emitted: a square around the vertex, cut to the cap's sector,
+// in the hidden style too when compiled with HIDDEN (display.wgsl).
 
 struct CapVarying {
     @builtin(position) position: vec4<f32>,
@@ -7,6 +8,9 @@ struct CapVarying {
     @location(1) @interpolate(flat) center: vec3<f32>,
     // Sector bounds: from (xy) counter-clockwise to (zw).
     @location(2) @interpolate(flat) sector: vec4<f32>,
+    // Pixels along the edge from its start to this end (the pattern's phase here), and how far
+    // into the distance fade the vertex is.
+    @location(3) @interpolate(flat) along_fade: vec2<f32>,
 }
 
 @vertex
@@ -33,16 +37,21 @@ fn cap_vertex_main(
     v.color = drawn_color(cap.color);
     v.center = vec3<f32>(end.p, cap.radius);
     v.sector = vec4<f32>(unpack2x16snorm(cap.from_dir), unpack2x16snorm(cap.to_dir));
+    v.along_fade = vec2<f32>(
+        select(0.0, distance(s.s0, s.s1), (cap.end & 1u) == 1u),
+        fade_at(from_pixels(end.p, end.depth, end.w)),
+    );
     return v;
 }
 
 @fragment
 fn cap_fragment(v: CapVarying) -> @location(0) vec4<f32> {
     let q = v.position.xy - v.center.xy;
-    if dot(q, q) > v.center.z * v.center.z
+    let r = display_reach(vec2<f32>(v.center.z), v.along_fade.y).x;
+    if dot(q, q) > r * r
         || cross2(v.sector.xy, q) <= 0.0
         || cross2(q, v.sector.zw) <= 0.0 {
         discard;
     }
-    return v.color;
+    return display_color(v.color, v.along_fade.x, v.along_fade.y);
 }

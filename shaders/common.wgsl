@@ -60,6 +60,26 @@ struct Frame {
     survivor_capacity: u32,
     // The section planes in this instance's model space (section.wgsl).
     section: array<vec4<f32>, SECTION_PLANES>,
+    // The hidden edges' style and the distance fade (display.wgsl).
+    display: Display,
+}
+
+// How hidden and far edges look (display.wgsl; runtime/src/render/display.rs).
+struct Display {
+    // The hidden edges' colour (DISPLAY_HIDDEN_COLOR; else the class colour).
+    hidden_color: vec4<f32>,
+    // Opacity, width in pixels, the dash period in pixels, the dash lengths' count.
+    hidden: vec4<f32>,
+    // Dash, gap, dash, ... lengths in pixels.
+    dashes: array<vec4<f32>, 4>,
+    // Start and end of the fade (clip w, or clip z with DISPLAY_FADE_ORTHO), the opacity and width
+    // multiples at its end.
+    fade: vec4<f32>,
+    flags: u32,
+    // DISPLAY_PIXELS: bit i draws pixel i of each 32.
+    pixels: u32,
+    _pad0: u32,
+    _pad1: u32,
 }
 
 // One instance's camera in its model space (the joined technique, batch.wgsl), written by the host

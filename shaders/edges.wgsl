@@ -2,6 +2,8 @@
 // the compact list. The fragment shader cuts the quad where it meets its neighbours (see joins.wgsl).
 // Highlighted chamfer edges are drawn by a second pipeline over the same list (strip_vertex,
 // strip_fragment): the lit rounded strips of seed 000 (highlight.wgsl), at their faces' depth.
+// Compiled with HIDDEN (display.wgsl), edge_vertex_main and edge_fragment draw the hidden part of
+// every drawn edge, highlighted ones too, as lines in the hidden style.
 
 struct EdgeVarying {
     @builtin(position) position: vec4<f32>,
@@ -12,6 +14,10 @@ struct EdgeVarying {
     @location(2) @interpolate(flat) splits: vec4<u32>,
     // Slot and drawn word.
     @location(3) @interpolate(flat) item: vec2<u32>,
+    // The quad's reach left and right of the centre line here, pixels.
+    @location(4) @interpolate(linear) reach: vec2<f32>,
+    // How far into the distance fade (fade_at).
+    @location(5) @interpolate(linear) fade: f32,
 }
 
 // The quad of slot `slot` if its edge is drawn as a highlight strip (`strips`) or as a line (not).
@@ -19,11 +25,15 @@ fn edge_varying(vertex: u32, slot: u32, strips: bool) -> EdgeVarying {
     var v: EdgeVarying;
     let item = drawn[slot];
     let s = from_record(screen[slot], item.y);
-    if !s.visible || ((item.y & DRAWN_HIGHLIGHT) != 0u) != strips {
+    let as_strip = (item.y & DRAWN_HIGHLIGHT) != 0u && !HIDDEN;
+    if !s.visible || as_strip != strips {
         v.position = NOWHERE;
         return v;
     }
     v.position = quad_vertex(s, vertex);
+    let at_end_1 = ((0x16u >> vertex) & 1u) == 1u;
+    v.reach = select(vec2<f32>(s.left.x, s.right.x), vec2<f32>(s.left.y, s.right.y), at_end_1);
+    v.fade = fade_at(v.position);
     v.color = drawn_color(item.y);
     v.ends = vec4<f32>(s.s0, s.s1);
     let j0 = joins[2u * slot];
@@ -65,7 +75,11 @@ fn edge_fragment(v: EdgeVarying) -> @location(0) vec4<f32> {
         || !on_own_side(pixel - v.ends.zw, -d, v.splits.z, v.splits.w) {
         discard;
     }
-    return v.color;
+    let q = pixel - v.ends.xy;
+    if display_trims(dot(q, perp(d)), v.reach, v.fade) {
+        discard;
+    }
+    return display_color(v.color, dot(q, d), v.fade);
 }
 
 struct StripPixel {

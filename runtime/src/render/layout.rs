@@ -100,6 +100,11 @@ pub(crate) fn constants() -> Vec<(&'static str, u32)> {
         ("SECTION_PLANES", crate::section::MAX_PLANES as u32),
         ("SHADE_ENVIRONMENT", SHADE_ENVIRONMENT),
         ("CORNER_WORDS", crate::highlight::corners::CORNER_WORDS),
+        ("DISPLAY_HIDDEN", DISPLAY_HIDDEN),
+        ("DISPLAY_HIDDEN_COLOR", DISPLAY_HIDDEN_COLOR),
+        ("DISPLAY_PIXELS", DISPLAY_PIXELS),
+        ("DISPLAY_FADE", DISPLAY_FADE),
+        ("DISPLAY_FADE_ORTHO", DISPLAY_FADE_ORTHO),
     ]
 }
 
@@ -107,6 +112,17 @@ pub(crate) fn constants() -> Vec<(&'static str, u32)> {
 pub(crate) const SHADE_PBR: u32 = 1;
 /// ... and add the image-based light of the `environment` binding.
 pub(crate) const SHADE_ENVIRONMENT: u32 = 2;
+
+/// Bits of `Display::flags` (display.rs, display.wgsl): hidden edges are drawn.
+pub(crate) const DISPLAY_HIDDEN: u32 = 1;
+/// ... in the hidden colour, not their class colour.
+pub(crate) const DISPLAY_HIDDEN_COLOR: u32 = 2;
+/// ... broken by the 32-pixel pattern, not by dashes.
+pub(crate) const DISPLAY_PIXELS: u32 = 4;
+/// Edges fade with distance.
+pub(crate) const DISPLAY_FADE: u32 = 8;
+/// ... over clip z (orthographic cameras), not clip w.
+pub(crate) const DISPLAY_FADE_ORTHO: u32 = 16;
 
 /// The WGSL declarations of [`constants`], put in front of every shader module.
 pub(crate) fn wgsl_constants() -> String {
@@ -170,6 +186,23 @@ pub(crate) struct Frame {
     pub(crate) survivor_capacity: u32,
     /// The section planes in the instance's model space (`ClipPlanes::rows`).
     pub(crate) section: [[f32; 4]; crate::section::MAX_PLANES],
+    /// The hidden edges' style and the distance fade.
+    pub(crate) display: DisplayFrame,
+}
+
+/// `Display` in `shaders/common.wgsl` (read by `shaders/display.wgsl`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct DisplayFrame {
+    pub(crate) hidden_color: [f32; 4],
+    /// Opacity, width, dash period, dash count.
+    pub(crate) hidden: [f32; 4],
+    pub(crate) dashes: [[f32; 4]; 4],
+    /// Start, end, opacity and width multiples.
+    pub(crate) fade: [f32; 4],
+    pub(crate) flags: u32,
+    pub(crate) pixels: u32,
+    pub(crate) _pad: [u32; 2],
 }
 
 /// `InstanceFrame` in `shaders/common.wgsl`: one instance's camera in its model space, for the

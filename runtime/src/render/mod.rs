@@ -47,6 +47,7 @@
 mod bindings;
 mod cut;
 mod derived;
+mod display;
 mod environment;
 mod error;
 mod gpu_asset;
@@ -66,6 +67,9 @@ mod techniques;
 pub use crate::camera::{Camera, Orbit};
 pub use cut::{CapHatch, CapStyle, CutOutline, CutRenderer, CutStyle, section_wgsl};
 pub use derived::AssetExtras;
+pub use display::{
+    Display, DisplaySettings, DistanceFade, FaceMode, HiddenStyle, LinePattern, MAX_DASHES,
+};
 pub use error::RenderError;
 pub use gpu_asset::GpuAsset;
 pub use lighting::{DEFAULT_LIGHT_DIRECTION, Highlight, Light, Shading};

@@ -219,6 +219,33 @@ impl Compiled<'_> {
         fragment: Option<&str>,
         raster: Raster<'_>,
     ) -> Result<wgpu::RenderPipeline, RenderError> {
+        self.render_with(vertex, fragment, raster, &[])
+    }
+
+    /// The hidden pass's pipeline of `vertex` + `fragment` (a module with `display.wgsl`): drawn as
+    /// `raster` says but only where the target's depth is nearer (the depth test reversed), the
+    /// shaders compiled with `HIDDEN`. `None` on a target without depth, where nothing hides.
+    pub(crate) fn render_hidden(
+        &self,
+        vertex: &str,
+        fragment: Option<&str>,
+        mut raster: Raster<'_>,
+    ) -> Result<Option<wgpu::RenderPipeline>, RenderError> {
+        let Some(depth) = raster.depth_stencil.as_mut() else {
+            return Ok(None);
+        };
+        depth.depth_compare = Some(self.cache.target().nearer(wgpu::CompareFunction::Greater));
+        self.render_with(vertex, fragment, raster, &[("HIDDEN", 1.0)])
+            .map(Some)
+    }
+
+    fn render_with(
+        &self,
+        vertex: &str,
+        fragment: Option<&str>,
+        raster: Raster<'_>,
+        constants: &[(&str, f64)],
+    ) -> Result<wgpu::RenderPipeline, RenderError> {
         let program = self.program(vertex, fragment)?;
         let device = self.cache.device();
         let targets: Vec<Option<wgpu::ColorTargetState>> =
@@ -230,7 +257,10 @@ impl Compiled<'_> {
                 vertex: wgpu::VertexState {
                     module: &self.module,
                     entry_point: Some(vertex),
-                    compilation_options: Default::default(),
+                    compilation_options: wgpu::PipelineCompilationOptions {
+                        constants,
+                        ..Default::default()
+                    },
                     buffers: raster.buffers,
                 },
                 primitive: raster.primitive,
@@ -239,7 +269,10 @@ impl Compiled<'_> {
                 fragment: fragment.map(|entry| wgpu::FragmentState {
                     module: &self.module,
                     entry_point: Some(entry),
-                    compilation_options: Default::default(),
+                    compilation_options: wgpu::PipelineCompilationOptions {
+                        constants,
+                        ..Default::default()
+                    },
                     targets: &targets,
                 }),
                 multiview_mask: None,

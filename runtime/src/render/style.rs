@@ -2,6 +2,7 @@
 
 use crate::asset::EdgeFlags;
 
+use super::display::Display;
 use super::layout::{CONTOUR_CLASS, INTERSECTION_CLASS, drawn::COLOR_COUNT};
 use super::lighting::Highlight;
 use super::technique::Technique;
@@ -189,6 +190,9 @@ pub struct EdgeStyle {
     /// Section planes in world space (issue 43): every technique clips its edges to what they keep.
     /// An [`Instance`](super::Instance) may have its own.
     pub section: ClipPlanes,
+    /// The hidden part of each drawn edge in a style of its own, and edges fading with distance
+    /// (issue 42; [`Technique::Joined`], [`Technique::McGuireHughes`] and [`Technique::Fins`]).
+    pub display: Display,
 }
 
 impl Default for EdgeStyle {
@@ -207,6 +211,7 @@ impl Default for EdgeStyle {
             highlight: None,
             cluster_culling: true,
             section: ClipPlanes::NONE,
+            display: Display::default(),
         }
     }
 }

@@ -300,6 +300,12 @@ impl Technique {
         techniques::module(self).is_post_process()
     }
 
+    /// True if the technique draws hidden edges in their own style
+    /// ([`EdgeStyle::display`](super::EdgeStyle::display)); the others ignore it.
+    pub fn draws_hidden_edges(&self) -> bool {
+        techniques::module(self).draws_hidden()
+    }
+
     /// True if the technique needs a stencil aspect in the target's depth format.
     pub fn needs_stencil(&self) -> bool {
         techniques::module(self).needs_stencil(self)

@@ -5,7 +5,7 @@
 use chamfer_preprocess::BakeSettings;
 use chamfer_preprocess::draw::style::DrawingStyle;
 use chamfer_runtime::camera::Orbit;
-use chamfer_runtime::render::{StyleSettings, Technique};
+use chamfer_runtime::render::{DisplaySettings, StyleSettings, Technique};
 use chamfer_runtime::schema::{Entry, Kind, Numbers, Schema, Value, flag};
 use chamfer_runtime::section::{CutSettings, Section};
 use clap::error::ErrorKind;
@@ -159,6 +159,11 @@ group_flags!(
     /// How a render shows the section's cut faces and outline (`chamfer render`).
     CutFlags(CutSettings),
     "section"
+);
+group_flags!(
+    /// Display modes: faces, hidden edges, distance fade (`chamfer render`).
+    DisplayFlags(DisplaySettings),
+    "display"
 );
 group_flags!(
     /// The line roles' styles and the hatch as flags (`chamfer draw`).

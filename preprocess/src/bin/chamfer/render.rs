@@ -19,7 +19,9 @@ use glam::Mat4;
 use chamfer_runtime::schema::flag;
 use chamfer_runtime::section::ClipPlanes;
 
-use crate::flags::{BakeFlags, CutFlags, SectionFlags, StyleFlags, TechniqueFlags, ViewFlags};
+use crate::flags::{
+    BakeFlags, CutFlags, DisplayFlags, SectionFlags, StyleFlags, TechniqueFlags, ViewFlags,
+};
 
 /// Render an asset (`.chamfer`) or a mesh (baked on the fly with the bake flags) to a PNG.
 #[derive(Args)]
@@ -94,6 +96,10 @@ pub struct ViewArgs {
     section: SectionFlags,
     #[command(flatten)]
     cut: CutFlags,
+    /// Display modes (hidden-line, X-ray, wireframe), hidden edges in their own style, edges
+    /// fading with distance.
+    #[command(flatten)]
+    display: DisplayFlags,
     /// Which technique draws the edges (`--style edges`).
     #[arg(long, default_value = "joined", value_parser = technique_names(),
           long_help = technique_help())]
@@ -211,6 +217,7 @@ impl ViewArgs {
             .0
             .check()
             .and_then(|()| self.cut.0.check())
+            .and_then(|()| self.display.0.check())
             .map_err(|e| anyhow::anyhow!(e.spelled(flag)))?;
         if self.env.is_some() && (self.style != Style::Chamfer || self.shading != Shading::Pbr) {
             bail!("--env needs --style chamfer --shading pbr");
@@ -240,7 +247,23 @@ impl ViewArgs {
         {
             bail!("--light-dir / --light-pos need three finite numbers (a direction not 0,0,0)");
         }
-        self.technique()?;
+        let technique = self.technique()?;
+        let display = &self.display.0;
+        if display.hidden().is_some() {
+            if !technique.draws_hidden_edges() {
+                bail!(
+                    "--technique {} draws no hidden edges (joined does)",
+                    self.technique
+                );
+            }
+            if display.hidden_width > self.look.0.edge_width {
+                bail!(
+                    "--hidden-width {} must be at most --edge-width {} (a hidden line is drawn inside the visible line's quad)",
+                    display.hidden_width,
+                    self.look.0.edge_width
+                );
+            }
+        }
         Ok(())
     }
 
@@ -259,6 +282,7 @@ impl ViewArgs {
                 Caps::None => CapMethod::None,
             },
             section: self.clip_planes(),
+            display: self.display.0.display(),
             ..EdgeStyle::default()
         })
     }
@@ -351,6 +375,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     ))
 }
 
+/// The picture's background, straight RGBA (hidden-line faces take its colour).
+const BACKGROUND: [f32; 4] = [1.0; 4];
+
 /// Renders `asset` as `view` says; returns the image and the adapter's name.
 pub fn render(asset: &Asset, view: &ViewArgs) -> anyhow::Result<(Image, String)> {
     render_scene(std::slice::from_ref(asset), &[(0, Mat4::IDENTITY)], view)
@@ -388,9 +415,16 @@ pub fn render_scene(
     let camera = view
         .camera
         .camera(Instance::scene_bounds(&drawn).unwrap_or([[0.0; 3], [1.0; 3]]));
+    let mesh_style = view
+        .display
+        .0
+        .faces()
+        .mesh_style(view.mesh_style(), BACKGROUND);
     let mut mesh = MeshRenderer::for_scenes(&pipelines)?;
     mesh.set_environment(environment.clone());
-    mesh.prepare_scene(&gpu.queue, &camera, &drawn, &view.mesh_style());
+    if let Some(style) = &mesh_style {
+        mesh.prepare_scene(&gpu.queue, &camera, &drawn, style);
+    }
     let section = view.clip_planes();
     let cut = match section.is_empty() {
         true => None,
@@ -415,8 +449,10 @@ pub fn render_scene(
         )?),
     };
     {
-        let mut pass = target.begin_pass(&mut encoder, [1.0, 1.0, 1.0, 1.0]);
-        mesh.render(&mut pass);
+        let mut pass = target.begin_pass(&mut encoder, BACKGROUND.map(f64::from));
+        if mesh_style.is_some() {
+            mesh.render(&mut pass);
+        }
         if let Some(cut) = &cut {
             cut.render(&mut pass);
         }

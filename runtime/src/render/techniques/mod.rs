@@ -118,6 +118,12 @@ pub(crate) trait Module: Sync + 'static {
         false
     }
 
+    /// True if the technique draws the hidden part of drawn edges in their own style
+    /// ([`EdgeStyle::display`](super::EdgeStyle::display)); the others ignore it.
+    fn draws_hidden(&self) -> bool {
+        false
+    }
+
     /// True if the technique's frame culls whole instances out of view on the GPU: the renderer
     /// then hands it every instance instead of culling on the host.
     fn culls_on_gpu(&self) -> bool {
@@ -256,7 +262,8 @@ pub(crate) fn frame_uniform(cx: &FrameContext<'_>, drawn: &Drawn<'_>, index: usi
         depth_ref,
         bias_px: style.bias_px(),
         classes: style.classes.0,
-        cull_back: u32::from(style.cull_back_facing),
+        // Back-facing creases are hidden edges: drawn when hidden edges are.
+        cull_back: u32::from(style.cull_back_facing && style.display.hidden.is_none()),
         edges_u16: u32::from(asset.edges_u16),
         rings_u16: u32::from(asset.rings_u16),
         edge_count: asset.edge_count,
@@ -280,6 +287,7 @@ pub(crate) fn frame_uniform(cx: &FrameContext<'_>, drawn: &Drawn<'_>, index: usi
         table_mask: 0,
         survivor_capacity: 0,
         section: drawn.section.rows(),
+        display: style.display.frame(camera),
     }
 }
 

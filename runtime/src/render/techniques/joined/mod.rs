@@ -36,7 +36,7 @@ use std::sync::Arc;
 use self::bindings::*;
 use self::highlight::HighlightUniforms;
 use self::lists::{FIRST_SLOTS, Instances, Lists};
-use self::pipelines::JoinedPipelines;
+use self::pipelines::{HiddenPipelines, JoinedPipelines};
 use self::readback::Needed;
 use self::record::{AssetGroups, Batch, Work};
 use super::{Blocks, FrameContext, FrameOptions, Module, PerAsset, TechniqueFrame};
@@ -71,6 +71,10 @@ impl Module for Joined {
         Ok(Box::new(Frame::new(cache, options)?))
     }
 
+    fn draws_hidden(&self) -> bool {
+        true
+    }
+
     fn culls_on_gpu(&self) -> bool {
         true
     }
@@ -90,6 +94,8 @@ const MAX_THREADS: u64 = 1 << 31;
 #[derive(Debug)]
 struct Frame {
     pipelines: Arc<JoinedPipelines>,
+    /// The hidden pass's pipelines, while the style draws hidden edges.
+    hidden: Option<Arc<HiddenPipelines>>,
     cache: Cache,
     /// Block 0 is the place pass's (every instance); then one per chunk of each batch.
     blocks: Blocks,
@@ -182,6 +188,7 @@ impl Frame {
         let block = std::mem::size_of::<layout::Frame>();
         Ok(Self {
             pipelines: cache.get::<JoinedPipelines>()?,
+            hidden: None,
             cache: cache.clone(),
             blocks: Blocks::new(cache, "edge batches", block),
             instance_blocks: Blocks::new(cache, "instances drawn one by one", block),
@@ -474,6 +481,10 @@ impl TechniqueFrame for Frame {
             }
         }
         self.highlighted = self.highlight.prepare(cx);
+        self.hidden = match cx.style.display.hidden {
+            Some(_) => Some(cx.pipelines.get::<HiddenPipelines>()?),
+            None => None,
+        };
         self.outlined = self.highlighted && cx.instances.iter().any(|d| d.asset.has_chamfers);
         self.ensure_lists(cx)?;
         let (Some(lists), Some(instances)) = (&self.lists, &self.instances) else {
@@ -600,6 +611,24 @@ impl TechniqueFrame for Frame {
             return;
         };
         let pipelines = &self.pipelines;
+        // Hidden edges first: a visible line crossing a hidden one is drawn over it.
+        if let Some(hidden) = self.hidden.as_ref().and_then(|h| h.0.as_ref()) {
+            pass.set_bind_group(0, draw_group, &[0]);
+            pass.set_pipeline(&hidden.edges);
+            pass.draw_indirect(&lists.out, 0);
+            if self.caps != CapMethod::None {
+                pass.set_pipeline(&hidden.caps);
+                pass.draw_indirect(&lists.out, CAP_DRAW_OFFSET);
+            }
+            for &(asset, block) in &self.instance_runs {
+                let (gpu, groups) = self.assets.get(asset);
+                if let Some(segments) = &groups.segments {
+                    pass.set_bind_group(0, segments, &[block]);
+                    pass.set_pipeline(&hidden.segments);
+                    pass.draw(0..18, 0..gpu.intersection_count);
+                }
+            }
+        }
         pass.set_bind_group(0, draw_group, &[0]);
         pass.set_pipeline(&pipelines.edges);
         pass.draw_indirect(&lists.out, 0);

@@ -110,6 +110,7 @@ const SHADERS: [(&str, &[&str], &[Program]); 9] = [
             wgsl::HIGHLIGHT,
             wgsl::ENVIRONMENT,
             wgsl::DRAW,
+            wgsl::DISPLAY,
             wgsl::EDGES,
         ],
         &[
@@ -127,6 +128,7 @@ const SHADERS: [(&str, &[&str], &[Program]); 9] = [
             wgsl::BRDF,
             wgsl::HIGHLIGHT,
             wgsl::DRAW,
+            wgsl::DISPLAY,
             wgsl::CAPS,
         ],
         &[Program::draw("cap_vertex_main", "cap_fragment", &DRAW)],
@@ -157,6 +159,7 @@ const SHADERS: [(&str, &[&str], &[Program]); 9] = [
             wgsl::COMMON,
             wgsl::SECTION,
             wgsl::FRAME,
+            wgsl::DISPLAY,
             wgsl::INTERSECTIONS,
         ],
         &[Program::draw(
@@ -227,6 +230,59 @@ pub(crate) struct JoinedPipelines {
     pub(crate) outline_corners: wgpu::RenderPipeline,
 }
 
+/// The joined technique's hidden pass (display.wgsl): edges, caps and intersections where the
+/// depth hides them. Compiled the first time a frame draws hidden edges; `None` on a target
+/// without depth.
+#[derive(Debug)]
+pub(crate) struct HiddenPipelines(pub(crate) Option<Hidden>);
+
+#[derive(Debug)]
+pub(crate) struct Hidden {
+    pub(crate) edges: wgpu::RenderPipeline,
+    pub(crate) caps: wgpu::RenderPipeline,
+    pub(crate) segments: wgpu::RenderPipeline,
+}
+
+impl PipelineSet for HiddenPipelines {
+    fn new(cache: &Cache) -> Result<Self, RenderError> {
+        let shaders = shaders(cache.target());
+        let module = |label: &str| {
+            let shader = shaders
+                .iter()
+                .find(|s| s.label == label)
+                .ok_or_else(|| RenderError::Internal(format!("no module {label}")))?;
+            cache.compile(shader)
+        };
+        let over_mesh = || Raster::over_mesh(cache.target());
+        Ok(Self(
+            match (
+                module("edges.wgsl")?.render_hidden(
+                    "edge_vertex_main",
+                    Some("edge_fragment"),
+                    over_mesh(),
+                )?,
+                module("caps.wgsl")?.render_hidden(
+                    "cap_vertex_main",
+                    Some("cap_fragment"),
+                    over_mesh(),
+                )?,
+                module("intersections.wgsl")?.render_hidden(
+                    "segment_vertex",
+                    Some("segment_fragment"),
+                    over_mesh(),
+                )?,
+            ) {
+                (Some(edges), Some(caps), Some(segments)) => Some(Hidden {
+                    edges,
+                    caps,
+                    segments,
+                }),
+                _ => None,
+            },
+        ))
+    }
+}
+
 impl PipelineSet for JoinedPipelines {
     fn new(cache: &Cache) -> Result<Self, RenderError> {
         let [
@@ -248,6 +304,8 @@ impl PipelineSet for JoinedPipelines {
         let joins = cache.compile(&joins)?;
         let chamfers = cache.compile(&chamfers)?;
         let edges = cache.compile(&edges)?;
+        let caps = cache.compile(&caps)?;
+        let intersections = cache.compile(&intersections)?;
         let over_mesh = || Raster::over_mesh(cache.target());
         let outline = cache.compile(&outline)?;
         // Into the finished single-sample colour, without depth (outline.wgsl tests the scene's).
@@ -274,17 +332,13 @@ impl PipelineSet for JoinedPipelines {
             chamfer_records: chamfers.compute("chamfer_records")?,
             edges: edges.render("edge_vertex_main", Some("edge_fragment"), over_mesh())?,
             strips: edges.render("strip_vertex", Some("strip_fragment"), over_mesh())?,
-            caps: cache.compile(&caps)?.render(
-                "cap_vertex_main",
-                Some("cap_fragment"),
-                over_mesh(),
-            )?,
+            caps: caps.render("cap_vertex_main", Some("cap_fragment"), over_mesh())?,
             corners: cache.compile(&corners)?.render(
                 "corner_vertex",
                 Some("corner_fragment"),
                 over_mesh(),
             )?,
-            segments: cache.compile(&intersections)?.render(
+            segments: intersections.render(
                 "segment_vertex",
                 Some("segment_fragment"),
                 over_mesh(),
