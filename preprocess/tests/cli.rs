@@ -1648,6 +1648,91 @@ fn every_section_entry_is_a_render_flag_that_changes_the_picture() {
     assert!(!refused.exists());
 }
 
+/// Issue 42: every display schema entry is a flag of `chamfer render`, in its help, accepted with its
+/// example and changing the picture (over hidden edges and a fade, which the hidden and fade entries
+/// style); conflicting modes, a hidden line wider than the edges, a technique without hidden edges
+/// and a fade without its end are refused naming the flag, and nothing is written.
+#[test]
+fn every_display_entry_is_a_render_flag_that_changes_the_picture() {
+    use chamfer_runtime::render::DisplaySettings;
+    use chamfer_runtime::schema::{Schema, Value, flag};
+
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mesh = fixture("shapes/cube.obj");
+    let help = text(&succeed(&["render", "--help"]).stdout);
+    let picture = |extra: &[String], name: &str| {
+        let out = dir.path().join(format!("{name}.png"));
+        let mut args = vec!["render", path_str(&mesh), "--width", "96", "--height", "72"];
+        args.extend(extra.iter().map(String::as_str));
+        args.extend(["-o", path_str(&out)]);
+        succeed(&args);
+        std::fs::read(&out).expect("png")
+    };
+    let owned = |args: &[&str]| args.iter().map(|a| (*a).to_owned()).collect::<Vec<_>>();
+    let styled = owned(&["--hidden-edges", "--fade-start", "0.5", "--fade-end", "8"]);
+    assert_ne!(picture(&styled, "styled"), picture(&[], "shaded"));
+    for entry in DisplaySettings::ENTRIES {
+        let given = match entry.example().expect("an example") {
+            Value::Flag(_) => vec![flag(entry.name)],
+            value => vec![flag(entry.name), value.to_string()],
+        };
+        assert!(
+            help.contains(&given[0]),
+            "{} is not in render --help",
+            given[0]
+        );
+        // Wireframe excludes hidden edges; hidden edges are the entry itself; the fade's own
+        // ends replace the base's.
+        let fade = &styled[1..];
+        let (without, with) = match entry.name {
+            "hidden_edges" | "wireframe" => (fade.to_vec(), fade.to_vec()),
+            "fade_start" => (
+                styled.clone(),
+                owned(&["--hidden-edges", "--fade-end", "8"]),
+            ),
+            "fade_end" => (
+                styled.clone(),
+                owned(&["--hidden-edges", "--fade-start", "0.5"]),
+            ),
+            _ => (styled.clone(), styled.clone()),
+        };
+        assert_ne!(
+            picture(&[with, given.clone()].concat(), entry.name),
+            picture(&without, &format!("{}-without", entry.name)),
+            "{given:?} changed nothing"
+        );
+    }
+    let refused = dir.path().join("refused.png");
+    for (args, message) in [
+        (
+            &["--hidden-line", "--wireframe"][..],
+            "the argument '--hidden-line' cannot be used with '--wireframe'",
+        ),
+        (
+            &["--hidden-edges", "--hidden-width", "3"][..],
+            "--hidden-width must be at most the edge width 2, not 3",
+        ),
+        (
+            &["--hidden-edges", "--technique", "plug"][..],
+            "--hidden-edges needs a technique that draws hidden edges (joined), not plug",
+        ),
+        (&["--fade-start", "2"][..], "--fade-end"),
+        (
+            &["--hidden-edges", "--hidden-dash", "1,-1"][..],
+            "--hidden-dash must be",
+        ),
+    ] {
+        let mut all = vec!["render", path_str(&mesh), "-o", path_str(&refused)];
+        all.extend(args);
+        let run = chamfer(&all);
+        let stderr = text(&run.stderr);
+        assert!(!run.status.success(), "{args:?} accepted");
+        assert!(stderr.contains(message), "{args:?}: {stderr}");
+        assert!(!stderr.contains("panicked"), "{stderr}");
+    }
+    assert!(!refused.exists());
+}
+
 /// Issue 40: every parameter of every technique that has some (its module's table) is a flag of
 /// `chamfer render`, `--{prefix}-{name}`, in its help, accepted with its example over the first
 /// preset of its table and changing the picture; a parameter given to another technique and a value out

@@ -207,6 +207,14 @@ pub fn cut_schema() -> String {
     chamfer_runtime::section::CutSettings::schema_json().to_string()
 }
 
+/// The display schema, as JSON: face modes, hidden edges' style, distance fade (`chamfer render`'s
+/// `--hidden-line`, `--xray`, `--wireframe`, `--hidden-*`, `--fade-*`), from which the page builds
+/// its display panel; the view settings take the same keys.
+#[wasm_bindgen(js_name = displaySchema)]
+pub fn display_schema() -> String {
+    chamfer_runtime::render::DisplaySettings::schema_json().to_string()
+}
+
 /// The edge classes' names, as JSON (`chamfer render --classes` takes the same).
 #[wasm_bindgen(js_name = edgeClasses)]
 pub fn edge_classes() -> String {

@@ -5,8 +5,8 @@
 use chamfer_preprocess::draw::LineClass;
 pub use chamfer_preprocess::schema::BakeSettings;
 use chamfer_runtime::render::{
-    Camera, DEFAULT_LIGHT_DIRECTION, EdgeClasses, EdgeStyle, Light, MeshStyle, Orbit, Shading,
-    StyleSettings, Technique,
+    Camera, DEFAULT_LIGHT_DIRECTION, DisplaySettings, EdgeClasses, EdgeStyle, Light, MeshStyle,
+    Orbit, Shading, StyleSettings, Technique,
 };
 use chamfer_runtime::schema::{Schema, Value};
 use chamfer_runtime::section::{ClipPlanes, CutSettings, Section};
@@ -46,6 +46,10 @@ pub struct ViewSettings {
     /// `--no-caps`, `--cap-*`, `--cut-outline-*`: the keys of the cut schema's names.
     #[serde(skip)]
     pub cut: CutSettings,
+    /// `--hidden-line`, `--xray`, `--wireframe`, `--hidden-*`, `--fade-*`: the keys of the display
+    /// schema's names.
+    #[serde(skip)]
+    pub display: DisplaySettings,
     /// `--technique`, by name.
     pub technique: String,
     /// The technique's own parameters by their names in its table (`{"step": 3}` for a `hybrid-*`
@@ -68,6 +72,7 @@ impl Default for ViewSettings {
             look: StyleSettings::default(),
             section: Section::default(),
             cut: CutSettings::default(),
+            display: DisplaySettings::default(),
             technique: Technique::default().name().to_owned(),
             parameters: serde_json::Map::new(),
             classes: EdgeClasses::names().map(str::to_owned).collect(),
@@ -102,12 +107,14 @@ impl ViewSettings {
         let look = take_keys(&mut keys, StyleSettings::ENTRIES.iter().map(|e| e.name));
         let section = take_keys(&mut keys, Section::ENTRIES.iter().map(|e| e.name));
         let cut = take_keys(&mut keys, CutSettings::ENTRIES.iter().map(|e| e.name));
+        let display = take_keys(&mut keys, DisplaySettings::ENTRIES.iter().map(|e| e.name));
         let mut settings: Self =
             serde_json::from_value(serde_json::Value::Object(keys)).map_err(error)?;
         settings.orbit = serde_json::from_value(camera).map_err(error)?;
         settings.look = serde_json::from_value(look).map_err(error)?;
         settings.section = serde_json::from_value(section).map_err(error)?;
         settings.cut = serde_json::from_value(cut).map_err(error)?;
+        settings.display = serde_json::from_value(display).map_err(error)?;
         settings.check()?;
         Ok(settings)
     }
@@ -121,7 +128,9 @@ impl ViewSettings {
         if !unit(&self.background) || self.edge_color.as_ref().is_some_and(|c| !unit(c)) {
             return Err("colours are four numbers from 0 to 1".into());
         }
-        self.technique()?;
+        self.display
+            .check_for(&self.technique()?, self.look.edge_width)
+            .map_err(|e| e.to_string())?;
         self.classes()?;
         Ok(())
     }
@@ -208,12 +217,21 @@ impl ViewSettings {
                 .shading()
                 .map(|shading| self.look.highlight(LIGHT, shading)),
             section: self.clip_planes(),
+            display: self.display.display(),
             ..EdgeStyle::default()
         });
         if let Some(color) = self.edge_color {
             style.colors = chamfer_runtime::render::EdgeColors::all(color);
         }
         Ok(style)
+    }
+
+    /// The mesh pass's style in the display's face mode over the background; `None`: no faces
+    /// (wireframe).
+    pub fn faces_style(&self) -> Option<MeshStyle> {
+        self.display
+            .faces()
+            .mesh_style(self.mesh_style(), self.background)
     }
 
     /// The mesh pass's style: the runtime's default, or with a highlight the highlight's own model
@@ -398,6 +416,53 @@ mod tests {
                 "cap_color must be three numbers",
             ),
             (r#"{"cut_outline_width": -1}"#, "cut_outline_width must be"),
+        ] {
+            let message = ViewSettings::from_json(json).expect_err(json);
+            assert!(message.contains(expected), "{json}: {message}");
+        }
+    }
+
+    /// Every display schema entry, given with its example (over hidden edges and a fade, which
+    /// some entries style), reaches the edge style or the faces as `chamfer render`'s flag of the
+    /// same name does; conflicting modes and a hidden line wider than the edges are refused.
+    #[test]
+    fn every_display_entry_reaches_the_edges_or_the_faces() {
+        let base = serde_json::json!({ "hidden_edges": true, "fade_start": 0.5, "fade_end": 8 });
+        let looks = |view: &ViewSettings| {
+            (
+                view.edge_style().expect("style").display,
+                view.faces_style(),
+            )
+        };
+        for entry in DisplaySettings::ENTRIES {
+            // Hidden edges off where the entry is hidden edges or wireframe (which excludes them).
+            let mut before = base.clone();
+            if ["hidden_edges", "wireframe"].contains(&entry.name) {
+                before["hidden_edges"] = false.into();
+            }
+            let plain = ViewSettings::from_json(&before.to_string()).expect("base");
+            let mut json = before.clone();
+            json[entry.name] = entry.example().expect("an example").to_json();
+            let view = ViewSettings::from_json(&json.to_string()).expect(entry.name);
+            let mut display = plain.display;
+            entry.set_example(&mut display);
+            assert_eq!(view.display, display, "{}", entry.name);
+            assert_ne!(looks(&view), looks(&plain), "{}", entry.name);
+        }
+        for (json, expected) in [
+            (
+                r#"{"hidden_line": true, "xray": 0.5}"#,
+                "hidden_line and xray cannot both be given",
+            ),
+            (
+                r#"{"hidden_edges": true, "hidden_width": 3}"#,
+                "hidden_width must be at most the edge width 2",
+            ),
+            (
+                r#"{"hidden_edges": true, "technique": "plug"}"#,
+                "hidden_edges needs a technique that draws hidden edges",
+            ),
+            (r#"{"fade_end": 3}"#, "fade_end needs option fade_start"),
         ] {
             let message = ViewSettings::from_json(json).expect_err(json);
             assert!(message.contains(expected), "{json}: {message}");

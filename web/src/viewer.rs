@@ -174,9 +174,12 @@ impl Viewer {
         let drawn = [Instance::new(&shown.gpu)];
         let bounds = shown.gpu.bounds();
         let camera = self.view.camera(bounds, size);
-        frame
-            .mesh
-            .prepare_scene(&self.queue, &camera, &drawn, &self.view.mesh_style());
+        let faces = self.view.faces_style();
+        if let Some(faces) = &faces {
+            frame
+                .mesh
+                .prepare_scene(&self.queue, &camera, &drawn, faces);
+        }
         let cut = self.view.cut_style();
         let cutting = !cut.section.is_empty();
         if cutting {
@@ -195,7 +198,9 @@ impl Viewer {
         {
             let background = self.view.background.map(f64::from);
             let mut pass = frame.target.begin_pass(&mut encoder, background);
-            frame.mesh.render(&mut pass);
+            if faces.is_some() {
+                frame.mesh.render(&mut pass);
+            }
             if cutting {
                 frame.cut.render(&mut pass);
             }

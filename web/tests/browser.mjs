@@ -379,6 +379,58 @@ await check("the section slider cuts the model and fills the cut as chamfer rend
   await page.close();
 });
 
+// Issue 42: hidden-line mode with hidden edges in the page is chamfer render's with the same flags
+// (the display schema's keys), and every display schema entry is a control of the display panel.
+await check("hidden-line mode draws the hidden edges chamfer render draws", async () => {
+  const page = await openPage(session, "&azimuth=-50&elevation=30");
+  await settled(page);
+  const shaded = await capture(page);
+  const hiddenLine = { hidden_line: true, hidden_edges: true, hidden_color: [0, 1, 0], hidden_opacity: 1, hidden_dash: [1, 0] };
+  const drawn = await capture(page, hiddenLine);
+  save(drawn, "hidden-line-page.png");
+  const greenOf = (png) => {
+    const mask = new Uint8Array(png.width * png.height);
+    for (let i = 0; i < mask.length; i++) {
+      const [r, g, b] = [0, 1, 2].map((k) => png.data[4 * i + k]);
+      mask[i] = g > 150 && r < 110 && b < 110 ? 1 : 0;
+    }
+    return mask;
+  };
+  const cli = render([fandisk, ...CAMERA, "--hidden-line", "--hidden-edges", "--hidden-color", "0,1,0",
+    "--hidden-opacity", "1", "--hidden-dash", "1,0"], "hidden-line-cli.png");
+  const [pageInCli, cliInPage] = overlap(greenOf(drawn), greenOf(cli));
+  console.log(`     ${count(greenOf(drawn))} hidden edge pixels in the page, ${count(greenOf(cli))} from ` +
+    `chamfer render; within 1 px ${pageInCli.toFixed(4)} / ${cliInPage.toFixed(4)}`);
+  expect(count(greenOf(drawn)) > 500, `only ${count(greenOf(drawn))} hidden edge pixels`);
+  expect(count(greenOf(shaded)) < 20, `the shaded view shows ${count(greenOf(shaded))} hidden edge pixels`);
+  expect(pageInCli >= 0.95 && cliInPage >= 0.95, "the page's hidden edges and chamfer render's differ");
+  await capture(page, { hidden_line: false, hidden_edges: false, hidden_color: null, hidden_opacity: 0.6, hidden_dash: [6, 4] });
+  const schema = await page.evaluate(() => window.chamfer.displaySchema);
+  const controls = await page.evaluate(() => [...document.querySelectorAll("#display-options input")].map((i) => i.id));
+  expect(controls.length === schema.length && schema.every((e) => controls.includes(`display-${e.name}`)),
+    `controls ${controls} for ${schema.map((e) => e.name)}`);
+  for (const entry of schema) {
+    const sent = await page.evaluate((entry) => {
+      const input = document.getElementById(`display-${entry.name}`);
+      if (entry.kind === "flag") input.checked = entry.example;
+      else input.value = entry.kind === "numbers" ? entry.example.join(",") : String(entry.example);
+      input.dispatchEvent(new Event("change"));
+      return window.chamfer.view[entry.name];
+    }, entry);
+    expect(JSON.stringify(sent) === JSON.stringify(entry.example), `${entry.name}: the view holds ${sent}`);
+    // An entry that needs another (fade_start needs fade_end) is refused alone, with a message.
+    const refused = await capture(page).then(() => null, (e) => String(e));
+    expect((refused !== null) === (entry.requires.length > 0), `${entry.name}: ${refused ?? "drawn"}`);
+    if (refused) expect(refused.includes(entry.requires[0]), `${entry.name}: ${refused}`);
+    await page.evaluate((entry) => {
+      const input = document.getElementById(`display-${entry.name}`);
+      if (entry.kind === "flag") input.checked = entry.default; else input.value = "";
+      input.dispatchEvent(new Event("change"));
+    }, entry);
+  }
+  await page.close();
+});
+
 await check("the downloads are the asset on screen and its SVG drawing", async () => {
   const folder = join(outDir, "downloads");
   rmSync(folder, { recursive: true, force: true });

@@ -2,9 +2,10 @@
 // drawn by the wasm Viewer on WebGPU, the controls, the downloads. Query parameters: url (a file to
 // load), any entry of the view and style schemas (azimuth, elevation, edge_width, ...), size (WxH
 // canvas pixels), technique and its parameters (hybrid_step, fin_thickness, ...), section_axis
-// (x, y, z, -x, -y, -z) and section_at (0 to 1) for the section slider, any entry of the cut schema.
+// (x, y, z, -x, -y, -z) and section_at (0 to 1) for the section slider, any entry of the cut and
+// display schemas.
 import init, {
-  bakeSchema, createViewer, cutSchema, edgeClasses, sectionSchema, styleSchema, techniques, viewSchema,
+  bakeSchema, createViewer, cutSchema, displaySchema, edgeClasses, sectionSchema, styleSchema, techniques, viewSchema,
 } from "./pkg/chamfer_web.js";
 
 const $ = (id) => document.getElementById(id);
@@ -454,6 +455,7 @@ async function start() {
   // The section's planes are the slider's (sectionSchema's `section` key); the cut look a panel.
   state.sectionSchema = JSON.parse(sectionSchema());
   setUpPanel(JSON.parse(cutSchema()), "cut-options");
+  setUpPanel(JSON.parse(displaySchema()), "display-options");
   setUpSection();
   setUpControls(JSON.parse(techniques()));
   setUpBakeOptions(JSON.parse(bakeSchema()));

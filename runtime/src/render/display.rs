@@ -14,7 +14,7 @@ use crate::schema::{FINITE, Numbers, Schema, SchemaError};
 
 use super::layout::{DISPLAY_FADE, DISPLAY_FADE_ORTHO, DISPLAY_HIDDEN, DISPLAY_HIDDEN_COLOR};
 use super::layout::{DISPLAY_PIXELS, DisplayFrame};
-use super::{Camera, MeshStyle};
+use super::{Camera, MeshStyle, Technique};
 
 /// The most dash and gap lengths a [`LinePattern::Dashes`] holds.
 pub const MAX_DASHES: usize = 8;
@@ -336,6 +336,38 @@ impl DisplaySettings {
         Ok(())
     }
 
+    /// [`check`](Self::check), and refuses hidden edges that `technique` cannot draw or wider
+    /// than the visible edges' `edge_width` (a hidden line is drawn inside the visible one's quad).
+    pub fn check_for(&self, technique: &Technique, edge_width: f32) -> Result<(), SchemaError> {
+        self.check()?;
+        if self.hidden().is_none() {
+            return Ok(());
+        }
+        if !technique.draws_hidden_edges() {
+            return Err(SchemaError::Invalid {
+                name: if self.hidden_edges {
+                    "hidden_edges"
+                } else {
+                    "xray"
+                },
+                reason: format!(
+                    "needs a technique that draws hidden edges (joined), not {}",
+                    technique.name()
+                ),
+            });
+        }
+        if self.hidden_width > edge_width {
+            return Err(SchemaError::Invalid {
+                name: "hidden_width",
+                reason: format!(
+                    "must be at most the edge width {edge_width}, not {}",
+                    self.hidden_width
+                ),
+            });
+        }
+        Ok(())
+    }
+
     /// How the faces are drawn.
     pub fn faces(&self) -> FaceMode {
         match (self.hidden_line, self.xray, self.wireframe) {
@@ -495,6 +527,35 @@ mod tests {
                 "{bad:?}"
             );
         }
+    }
+
+    #[test]
+    fn hidden_edges_need_a_technique_that_draws_them_and_a_narrower_width() {
+        let hidden = DisplaySettings {
+            hidden_edges: true,
+            ..DisplaySettings::default()
+        };
+        assert_eq!(hidden.check_for(&Technique::Joined, 2.0), Ok(()));
+        let error = |s: &DisplaySettings, t: &Technique, w: f32| {
+            s.check_for(t, w)
+                .map_err(|e| e.spelled(crate::schema::flag))
+        };
+        assert_eq!(
+            error(&hidden, &Technique::HalfHex, 2.0),
+            Err(
+                "--hidden-edges needs a technique that draws hidden edges (joined), not half-hex"
+                    .into()
+            )
+        );
+        assert_eq!(
+            error(&hidden, &Technique::Joined, 0.5),
+            Err("--hidden-width must be at most the edge width 0.5, not 1".into())
+        );
+        // Without hidden edges any technique and width will do.
+        assert_eq!(
+            DisplaySettings::default().check_for(&Technique::HalfHex, 0.5),
+            Ok(())
+        );
     }
 
     #[test]

@@ -217,7 +217,6 @@ impl ViewArgs {
             .0
             .check()
             .and_then(|()| self.cut.0.check())
-            .and_then(|()| self.display.0.check())
             .map_err(|e| anyhow::anyhow!(e.spelled(flag)))?;
         if self.env.is_some() && (self.style != Style::Chamfer || self.shading != Shading::Pbr) {
             bail!("--env needs --style chamfer --shading pbr");
@@ -248,22 +247,10 @@ impl ViewArgs {
             bail!("--light-dir / --light-pos need three finite numbers (a direction not 0,0,0)");
         }
         let technique = self.technique()?;
-        let display = &self.display.0;
-        if display.hidden().is_some() {
-            if !technique.draws_hidden_edges() {
-                bail!(
-                    "--technique {} draws no hidden edges (joined does)",
-                    self.technique
-                );
-            }
-            if display.hidden_width > self.look.0.edge_width {
-                bail!(
-                    "--hidden-width {} must be at most --edge-width {} (a hidden line is drawn inside the visible line's quad)",
-                    display.hidden_width,
-                    self.look.0.edge_width
-                );
-            }
-        }
+        self.display
+            .0
+            .check_for(&technique, self.look.0.edge_width)
+            .map_err(|e| anyhow::anyhow!(e.spelled(flag)))?;
         Ok(())
     }
 
