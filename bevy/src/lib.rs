@@ -29,6 +29,9 @@ pub use chamfer_preprocess::schema::BakeSettings;
 pub use chamfer_runtime::highlight::ggx::PbrMaterial;
 pub use chamfer_runtime::render::{CapHatch, CapStyle, CutOutline, CutStyle};
 pub use chamfer_runtime::render::{
+    Display, DisplaySettings, DistanceFade, HiddenStyle, LinePattern,
+};
+pub use chamfer_runtime::render::{
     EdgeClasses, EdgeStyle, FinSettings, Highlight, HybridDepth, Light, Parameters, Shading,
     SurfaceAngleSettings, Technique,
 };

@@ -21,9 +21,10 @@ use bevy::render::view::{
 use bevy::render::{Extract, ExtractSchedule, Render, RenderApp, RenderSystems};
 use chamfer_runtime::asset::Asset as EdgeAsset;
 use chamfer_runtime::render::{
-    Camera as EdgeCamera, CutRenderer, CutStyle, EdgeStyle, FrameViews, GpuAsset, Instance, Light,
-    Pipelines, SceneRenderer, Shading, Target,
+    Camera as EdgeCamera, CutRenderer, CutStyle, DisplaySettings, EdgeStyle, FrameViews, GpuAsset,
+    Instance, Light, Pipelines, SceneRenderer, Shading, Target,
 };
+use chamfer_runtime::schema::SchemaError;
 use chamfer_runtime::section::ClipPlanes;
 
 use crate::asset::ChamferAsset;
@@ -62,6 +63,17 @@ impl ChamferEdges {
     /// These edges in `style`.
     pub fn with_style(self, style: EdgeStyle) -> Self {
         Self { style, ..self }
+    }
+
+    /// These edges with the hidden edges' style and the distance fade of `display` (the display
+    /// schema, `chamfer render`'s `--hidden-*` and `--fade-*` flags): the hidden part of each edge,
+    /// behind anything in Bevy's depth, drawn in its own style. Refused as `chamfer render`
+    /// refuses it (a technique without hidden edges, a hidden line wider than the edges). The
+    /// face modes are the entity's material's: Bevy draws its faces.
+    pub fn with_display(mut self, display: &DisplaySettings) -> Result<Self, SchemaError> {
+        display.check_for(&self.style.technique, self.style.width_px)?;
+        self.style.display = display.display();
+        Ok(self)
     }
 }
 

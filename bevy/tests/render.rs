@@ -499,6 +499,68 @@ fn edges_behind_a_plain_bevy_cube_are_hidden() {
     assert_eq!(behind, 0, "{behind} edge pixels show through the box");
 }
 
+/// Issue 42: with the display schema's hidden edges, the part's edges behind the plain Bevy box
+/// (another entity, in Bevy's depth) are drawn in the hidden style: green, solid, where the control
+/// without it draws none; a hidden line wider than the edges is refused.
+#[test]
+fn edges_behind_a_plain_bevy_cube_are_drawn_in_the_hidden_style() {
+    use chamfer_bevy::DisplaySettings;
+    use chamfer_runtime::schema::Numbers;
+    let folder = assets(&[("cube", "shapes/cube.obj")]);
+    let (bounds, view, _) = cube_view();
+    let mut scene = Scene::new(folder.path(), "cube", view.clone(), Msaa::Sample4, false);
+    let [lo, hi] = bounds.map(Vec3::from_array);
+    let center = (lo + hi) * 0.5;
+    let eye = view.0.translation;
+    let between = center + (eye - center) * 0.6;
+    let world = scene.app.world_mut();
+    let mesh = world
+        .resource_mut::<Assets<Mesh>>()
+        .add(Cuboid::new(4.0, 4.0, 0.05));
+    let material = world
+        .resource_mut::<Assets<StandardMaterial>>()
+        .add(StandardMaterial::from(Color::srgb(0.2, 0.4, 0.8)));
+    world.spawn((
+        Mesh3d(mesh),
+        MeshMaterial3d(material),
+        Transform::from_translation(between).looking_at(eye, Vec3::Y),
+    ));
+    let green_pixels = |frame: &[u8]| {
+        frame
+            .chunks(4)
+            .filter(|p| p[1] > 150 && p[0] < 110 && p[2] < 110)
+            .count()
+    };
+    let plain = render(&mut scene.app, &scene.image);
+    let display = DisplaySettings {
+        hidden_edges: true,
+        hidden_color: Some(Numbers::from_array([0.0, 1.0, 0.0])),
+        hidden_opacity: 1.0,
+        hidden_width: 2.0,
+        hidden_dash: Numbers::from_array([1.0, 0.0]),
+        ..DisplaySettings::default()
+    };
+    let mut entity = scene.app.world_mut().entity_mut(scene.part);
+    let edges = entity.take::<ChamferEdges>().expect("edges");
+    let wider = DisplaySettings {
+        hidden_width: 3.0,
+        ..display
+    };
+    let refused = edges.clone().with_display(&wider).expect_err("wider");
+    assert!(refused.to_string().contains("hidden_width"), "{refused}");
+    entity.insert(edges.with_display(&display).expect("valid"));
+    let hidden = render(&mut scene.app, &scene.image);
+    keep(&hidden, "hidden-edges");
+    assert_eq!(green_pixels(&plain), 0, "green without hidden edges");
+    // The cube's three hidden edges and its nine visible ones, all behind the box: 12 edges of
+    // about 60 px at 2 px.
+    assert!(
+        green_pixels(&hidden) > 400,
+        "{} hidden edge pixels",
+        green_pixels(&hidden)
+    );
+}
+
 #[test]
 fn two_cameras_both_draw_the_edges() {
     let folder = assets(&[("cube", "shapes/cube.obj")]);
