@@ -7,7 +7,9 @@
 //! highlight under a light circling the model: off, seed 000's Blinn model, glTF's metallic-roughness; X explodes a scene (each instance moved
 //! away from the centre, every frame's transforms given anew); S cycles a section plane across x,
 //! y, z or none, and a right-button drag moves it along its axis (the cut capped and outlined);
-//! Esc quits. Meshes are baked with a chamfer radius of 0.4 % of their diagonal on ridges. It is also the smallest example of hosting the renderers in an
+//! V cycles the display mode: shaded, shaded with hidden edges dashed, hidden-line, X-ray,
+//! wireframe (the display schema's modes, as `chamfer render --hidden-line` and the others); Esc
+//! quits. Meshes are baked with a chamfer radius of 0.4 % of their diagonal on ridges. It is also the smallest example of hosting the renderers in an
 //! application's own wgpu setup: the window, device and frame belong to this file.
 
 use std::path::PathBuf;
@@ -18,8 +20,8 @@ use chamfer_runtime::asset::Asset;
 use chamfer_runtime::highlight::ggx::PbrMaterial;
 use chamfer_runtime::highlight::strip::Material;
 use chamfer_runtime::render::{
-    Camera, CapMethod, CutRenderer, CutStyle, EdgeClasses, EdgeStyle, FrameViews, GpuAsset,
-    Highlight, Instance, Light, MeshLight, MeshRenderer, MeshStyle, Orbit, Pipelines,
+    Camera, CapMethod, CutRenderer, CutStyle, DisplaySettings, EdgeClasses, EdgeStyle, FrameViews,
+    GpuAsset, Highlight, Instance, Light, MeshLight, MeshRenderer, MeshStyle, Orbit, Pipelines,
     SceneRenderer, Shading, Target, Technique,
 };
 use chamfer_runtime::section::{ClipPlanes, Plane};
@@ -70,6 +72,7 @@ fn main() -> anyhow::Result<()> {
         dragging: false,
         section: None,
         moving_section: false,
+        display: 0,
         cursor: None,
         error: None,
     };
@@ -101,8 +104,43 @@ struct Viewer {
     /// The section plane: across which axis, and where along the scene's box (0 to 1).
     section: Option<(usize, f32)>,
     moving_section: bool,
+    /// The display mode: an index into [`display_modes`].
+    display: usize,
     cursor: Option<(f64, f64)>,
     error: Option<anyhow::Error>,
+}
+
+/// The display modes V cycles through, by name.
+fn display_modes() -> [(&'static str, DisplaySettings); 5] {
+    let hidden = DisplaySettings {
+        hidden_edges: true,
+        ..DisplaySettings::default()
+    };
+    [
+        ("shaded", DisplaySettings::default()),
+        ("shaded, hidden edges", hidden),
+        (
+            "hidden-line",
+            DisplaySettings {
+                hidden_line: true,
+                ..hidden
+            },
+        ),
+        (
+            "x-ray",
+            DisplaySettings {
+                xray: Some(0.3),
+                ..DisplaySettings::default()
+            },
+        ),
+        (
+            "wireframe",
+            DisplaySettings {
+                wireframe: true,
+                ..DisplaySettings::default()
+            },
+        ),
+    ]
 }
 
 /// Everything that belongs to the application, not to the renderers.
@@ -195,7 +233,7 @@ impl Gpu {
         explode: bool,
         orbit: &Orbit,
         style: &EdgeStyle,
-        mesh_style: &MeshStyle,
+        mesh_style: Option<&MeshStyle>,
         draw_edges: bool,
         section: Option<(usize, f32)>,
     ) -> anyhow::Result<()> {
@@ -222,12 +260,14 @@ impl Gpu {
             section: cut.section,
             ..*style
         };
-        let mesh_style = &MeshStyle {
+        let mesh_style = mesh_style.map(|style| MeshStyle {
             section: cut.section,
-            ..*mesh_style
-        };
-        self.mesh
-            .prepare_scene(&self.queue, &camera, &instances, mesh_style);
+            ..*style
+        });
+        if let Some(mesh_style) = &mesh_style {
+            self.mesh
+                .prepare_scene(&self.queue, &camera, &instances, mesh_style);
+        }
         self.cut.prepare(&self.queue, &camera, &instances, &cut);
         let prepared = if draw_edges {
             Some(
@@ -264,7 +304,9 @@ impl Gpu {
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            self.mesh.render(&mut pass);
+            if mesh_style.is_some() {
+                self.mesh.render(&mut pass);
+            }
             self.cut.render(&mut pass);
             if let Some(prepared) = &prepared {
                 prepared.render(&mut pass);
@@ -471,12 +513,23 @@ impl ApplicationHandler for Viewer {
                 } else {
                     (self.style, MeshStyle::default())
                 };
+                let (mode, display) = display_modes()[self.display];
+                // A technique without hidden edges draws the mode's faces and its visible edges.
+                let style = EdgeStyle {
+                    display: if style.technique.draws_hidden_edges() {
+                        display.display()
+                    } else {
+                        Default::default()
+                    },
+                    ..style
+                };
+                let mesh_style = display.faces().mesh_style(mesh_style, [1.0; 4]);
                 if let Err(e) = gpu.draw(
                     &self.instances,
                     self.explode,
                     &self.orbit,
                     &style,
-                    &mesh_style,
+                    mesh_style.as_ref(),
                     self.draw_edges,
                     self.section,
                 ) {
@@ -484,7 +537,7 @@ impl ApplicationHandler for Viewer {
                     event_loop.exit();
                 }
                 gpu.window.set_title(&format!(
-                    "chamfer viewer: {} ({})",
+                    "chamfer viewer: {} ({}, {mode})",
                     self.title,
                     style.technique.name()
                 ));
@@ -561,6 +614,9 @@ impl ApplicationHandler for Viewer {
                     true
                 } else if event.logical_key == Key::Character("x".into()) {
                     self.explode = !self.explode;
+                    true
+                } else if event.logical_key == Key::Character("v".into()) {
+                    self.display = (self.display + 1) % display_modes().len();
                     true
                 } else if event.logical_key == Key::Character("s".into()) {
                     self.section = match self.section {
