@@ -1343,7 +1343,8 @@ fn stl_and_3mf_bake_from_the_command_line_and_inspect_reports_the_stitch() {
     );
 }
 
-/// The frame benchmarks (`examples/bench_render.rs`, `bench_section.rs`, `bench_scene.rs`, built
+/// The frame benchmarks (`examples/bench_render.rs`, `bench_section.rs`, `bench_display.rs`,
+/// `bench_scene.rs`, built
 /// by `cargo test`) run: one frame of each configuration at 64 × 64 on a cube (with chamfer radii
 /// for bench_render, the highlight's row included; the scenes of 2³ instances).
 #[test]
@@ -1358,6 +1359,11 @@ fn the_frame_benchmarks_run_at_a_tiny_size() {
         ),
         (
             "bench_section",
+            &["--grid", "2", cube][..],
+            &["| cube.obj", "| 8 instances (scene)"][..],
+        ),
+        (
+            "bench_display",
             &["--grid", "2", cube][..],
             &["| cube.obj", "| 8 instances (scene)"][..],
         ),
