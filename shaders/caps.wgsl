@@ -38,7 +38,7 @@ fn cap_vertex_main(
     v.center = vec3<f32>(end.p, cap.radius);
     v.sector = vec4<f32>(unpack2x16snorm(cap.from_dir), unpack2x16snorm(cap.to_dir));
     v.along_fade = vec2<f32>(
-        select(0.0, distance(s.s0, s.s1), (cap.end & 1u) == 1u),
+        pattern_phase(slot, select(0.0, distance(s.s0, s.s1), (cap.end & 1u) == 1u)),
         fade_at(from_pixels(end.p, end.depth, end.w)),
     );
     return v;

@@ -30,6 +30,20 @@ struct Out {
     cap_list: array<Cap>,
 }
 
+// Per slot, the hidden pattern's phase at end 0 and its sign along the edge (phase.wgsl), while
+// DISPLAY_CHAINED.
+@group(0) @binding(36) var<storage, read> phases: array<vec2<f32>>;
+
+// The hidden pattern's phase `along` pixels from end 0 of slot `slot`'s edge: continued along its
+// chain, or from end 0.
+fn pattern_phase(slot: u32, along: f32) -> f32 {
+    if (frame.display.flags & DISPLAY_CHAINED) == 0u {
+        return along;
+    }
+    let p = phases[slot];
+    return p.x + p.y * along;
+}
+
 // Per drawn instance, its COLOR_COUNT class colours (the drawn word's instance bits pick them).
 @group(0) @binding(25) var<storage, read> instance_colors: array<vec4<f32>>;
 

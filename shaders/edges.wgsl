@@ -79,7 +79,7 @@ fn edge_fragment(v: EdgeVarying) -> @location(0) vec4<f32> {
     if display_trims(dot(q, perp(d)), v.reach, v.fade) {
         discard;
     }
-    return display_color(v.color, dot(q, d), v.fade);
+    return display_color(v.color, pattern_phase(v.item.x, dot(q, d)), v.fade);
 }
 
 struct StripPixel {

@@ -12,6 +12,16 @@
 // Walks never need more than MAX_RING steps: the decoder refuses longer rings and checked every ring
 // is a closed cycle. joins_heads gathers MAX_GATHER ends per vertex; further drawn edges get no join.
 
+// Per drawn end, the end of the one other drawn edge that meets it there + 1 (0: none or several),
+// while dashes continue along chains (DISPLAY_CHAINED, phase.wgsl).
+@group(0) @binding(33) var<storage, read_write> chains: array<u32>;
+
+fn set_chain(end: u32, joined: u32) {
+    if (frame.display.flags & DISPLAY_CHAINED) != 0u {
+        chains[end] = joined;
+    }
+}
+
 // A drawn edge end as its vertex sees it.
 struct End {
     ok: bool,
@@ -138,6 +148,12 @@ fn resolve(me: End, n: Neighbours) {
         split_right = split_direction(x);
     }
     joins[2u * me.slot + (me.index & 1u)] = vec2<u32>(split_left, split_right);
+    let single = left.ok && right.ok && left.slot == right.slot
+        && (left.index & 1u) == (right.index & 1u);
+    set_chain(
+        2u * me.slot + (me.index & 1u),
+        select(0u, 2u * left.slot + (left.index & 1u) + 1u, single),
+    );
 }
 
 @compute @workgroup_size(WORKGROUP)
@@ -156,6 +172,7 @@ fn joins_next(
     let me = end_at(instance, start);
     if !me.ok {
         joins[index] = vec2<u32>(0u);
+        set_chain(index, 0u);
         return;
     }
     var found = no_neighbours();
@@ -176,6 +193,7 @@ fn clear_joins(
     let first = first_slot();
     if t < 2u * (slots_filled() - first) {
         joins[2u * first + t] = vec2<u32>(0u);
+        set_chain(2u * first + t, 0u);
     }
 }
 

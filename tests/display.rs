@@ -350,3 +350,95 @@ fn an_edge_hidden_by_another_object_is_hidden() {
         hidden(&alone)
     );
 }
+
+/// A ribbon along x of `segments` short quads: its long boundaries are polylines of short edges.
+fn ribbon(segments: usize) -> String {
+    let mut obj = String::new();
+    for i in 0..=segments {
+        let x = 4.0 * i as f32 / segments as f32;
+        obj.push_str(&format!("v {x} 0 0\nv {x} 0.2 0\n"));
+    }
+    for i in 0..segments {
+        let (a, b, c, d) = (2 * i + 1, 2 * i + 2, 2 * i + 3, 2 * i + 4);
+        obj.push_str(&format!("f {a} {c} {d}\nf {a} {d} {b}\n"));
+    }
+    obj
+}
+
+/// The on and off runs of the hidden (green) pixels along the row of `image` with the most of
+/// them in its lower half (the ribbon's lower boundary), ends left out: (first x, length, on).
+fn dash_runs(image: &Image) -> Vec<(u32, u32, bool)> {
+    let seen = classify(image);
+    let w = image.width as usize;
+    let row = (image.height as usize / 2..image.height as usize)
+        .max_by_key(|&y| (0..w).filter(|&x| seen[y * w + x] == Seen::Hidden).count())
+        .expect("rows");
+    let hidden: Vec<bool> = (0..w).map(|x| seen[row * w + x] == Seen::Hidden).collect();
+    let first = hidden.iter().position(|&h| h).expect("a hidden pixel");
+    let last = hidden.iter().rposition(|&h| h).expect("a hidden pixel");
+    let mut runs = Vec::new();
+    let mut start = first;
+    for x in first + 1..=last + 1 {
+        if x > last || hidden[x] != hidden[start] {
+            runs.push((start as u32, (x - start) as u32, hidden[start]));
+            start = x;
+        }
+    }
+    // The first and last dashes end where the line does.
+    runs[1..runs.len().saturating_sub(1)].to_vec()
+}
+
+/// The pattern checks: a dashed hidden line keeps its phase across the joins of a chain of
+/// short edges (each about 7.7 px here: a pattern restarting at every edge, the control without
+/// joins, is not 6 on and 4 off), and moves by at most a pixel when the
+/// camera turns by 0.1°.
+#[test]
+fn a_dashed_hidden_line_keeps_its_phase_along_a_chain_and_stands_still() {
+    let strip = bake_obj(&ribbon(40));
+    let cube = bake_fixture("shapes/cube.obj");
+    let (strip, cube) = (
+        GpuAsset::new(&gpu().device, &strip).expect("upload"),
+        GpuAsset::new(&gpu().device, &cube).expect("upload"),
+    );
+    // A thin box in front hides the whole ribbon.
+    let cover = Mat4::from_translation(Vec3::new(-1.0, -1.0, 1.0))
+        * Mat4::from_scale(Vec3::new(6.0, 2.2, 0.1));
+    let instances = [
+        Instance::new(&strip),
+        Instance::new(&cube).with_transform(cover),
+    ];
+    let bounds = Instance::scene_bounds(&instances).expect("bounds");
+    let dashed = hidden_in_green(LinePattern::dashes(&[6.0, 4.0]).expect("valid"));
+    let frame = |azimuth: f32, style: &EdgeStyle| {
+        let camera = orbit_camera(bounds, azimuth, 0.0, [480, 360]);
+        dash_runs(&picture(&camera, &instances, FaceMode::HiddenLine, style))
+    };
+    let runs = frame(0.0, &dashed);
+    println!("runs along the chain: {runs:?}");
+    // Every dash 6 px and every gap 4 px, within a pixel.
+    let regular = |runs: &[(u32, u32, bool)]| {
+        runs.len() >= 20
+            && runs
+                .iter()
+                .all(|&(_, length, on)| length.abs_diff(if on { 6 } else { 4 }) <= 1)
+    };
+    assert!(regular(&runs), "{runs:?}");
+    // Without joins each edge (about 7.7 px) starts the pattern again: not that pattern.
+    let restarting = EdgeStyle {
+        caps: chamfer_runtime::render::CapMethod::None,
+        ..dashed
+    };
+    let control = frame(0.0, &restarting);
+    assert!(!regular(&control), "the control passes: {control:?}");
+    // A tenth of a degree later every dash begins within a pixel of where it began.
+    let turned = frame(0.1, &dashed);
+    for &(x, _, on) in &runs {
+        let moved = turned
+            .iter()
+            .filter(|&&(_, _, o)| o == on)
+            .map(|&(t, _, _)| t.abs_diff(x))
+            .min()
+            .expect("runs");
+        assert!(moved <= 1, "a run at x = {x} moved {moved} px: {turned:?}");
+    }
+}

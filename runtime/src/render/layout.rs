@@ -105,6 +105,7 @@ pub(crate) fn constants() -> Vec<(&'static str, u32)> {
         ("DISPLAY_PIXELS", DISPLAY_PIXELS),
         ("DISPLAY_FADE", DISPLAY_FADE),
         ("DISPLAY_FADE_ORTHO", DISPLAY_FADE_ORTHO),
+        ("DISPLAY_CHAINED", DISPLAY_CHAINED),
     ]
 }
 
@@ -123,6 +124,9 @@ pub(crate) const DISPLAY_PIXELS: u32 = 4;
 pub(crate) const DISPLAY_FADE: u32 = 8;
 /// ... over clip z (orthographic cameras), not clip w.
 pub(crate) const DISPLAY_FADE_ORTHO: u32 = 16;
+/// The hidden pattern's phase continues along chains of drawn edges (the joined technique's
+/// `phases`, phase.wgsl); without it each edge starts its pattern at its end 0.
+pub(crate) const DISPLAY_CHAINED: u32 = 32;
 
 /// The WGSL declarations of [`constants`], put in front of every shader module.
 pub(crate) fn wgsl_constants() -> String {
@@ -190,6 +194,9 @@ pub(crate) struct Frame {
     pub(crate) display: DisplayFrame,
 }
 
+/// `Rank` in `shaders/phase.wgsl`: one directed item of a chain of drawn edges.
+pub(crate) const RANK_BYTES: u64 = 16;
+
 /// `Display` in `shaders/common.wgsl` (read by `shaders/display.wgsl`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
@@ -202,7 +209,8 @@ pub(crate) struct DisplayFrame {
     pub(crate) fade: [f32; 4],
     pub(crate) flags: u32,
     pub(crate) pixels: u32,
-    pub(crate) _pad: [u32; 2],
+    pub(crate) _pad0: u32,
+    pub(crate) _pad1: u32,
 }
 
 /// `InstanceFrame` in `shaders/common.wgsl`: one instance's camera in its model space, for the
@@ -439,6 +447,21 @@ pub(crate) fn layouts() -> Vec<Layout> {
                 table_mask,
                 survivor_capacity,
                 section,
+                display,
+            ]
+        ),
+        layout!(
+            "Display",
+            DisplayFrame,
+            [
+                hidden_color,
+                hidden,
+                dashes,
+                fade,
+                flags,
+                pixels,
+                _pad0,
+                _pad1
             ]
         ),
         layout!(

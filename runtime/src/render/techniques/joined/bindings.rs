@@ -40,6 +40,14 @@ const PLACED_FRAMES: Binding = Binding::new(29, "instance_frames", ReadWrite);
 /// The highlight's image-based light: the environment's prefiltered maps.
 pub(crate) const ENVIRONMENT: Binding = Binding::new(30, "environment", Read);
 
+/// Per drawn end, the end of the one other drawn edge meeting it + 1 (the join pass, phase.wgsl).
+pub(crate) const CHAINS: Binding = Binding::new(33, "chains", ReadWrite);
+/// The dash phases' list ranking: the round's input and output (two buffers, swapped each round).
+pub(crate) const RANKS_IN: Binding = Binding::new(34, "ranks_in", Read);
+pub(crate) const RANKS_OUT: Binding = Binding::new(35, "ranks_out", ReadWrite);
+/// Per slot, the hidden pattern's phase at end 0 and its sign along the edge.
+pub(crate) const PHASES: Binding = Binding::new(36, "phases", ReadWrite);
+
 /// What the draw passes read of the lists the compute passes wrote.
 const fn read_only(binding: Binding) -> Binding {
     Binding::new(binding.index, binding.name, Read)
@@ -86,6 +94,7 @@ pub(crate) const JOIN: Bindings = Bindings::compute(
         SCREEN,
         asset::CAP_HEADS,
         INSTANCE_FRAMES,
+        CHAINS,
     ],
 );
 pub(crate) const RECORDS: Bindings = Bindings::compute(
@@ -120,6 +129,22 @@ pub(crate) const DRAW: Bindings = Bindings::draw(
         LIGHTING,
         ENVIRONMENT,
         INSTANCE_FRAMES,
+        read_only(PHASES),
+    ],
+);
+/// The dash phases' passes (phase.wgsl), after the frame's joins; their dispatch is sized by
+/// `rank_args` through [`ARGS`] (a buffer read as indirect arguments cannot be bound as well).
+pub(crate) const PHASE: Bindings = Bindings::compute(
+    "dash phases",
+    &[
+        FRAME,
+        read_only(DRAWN),
+        OUT,
+        read_only(SCREEN),
+        read_only(CHAINS),
+        RANKS_IN,
+        RANKS_OUT,
+        PHASES,
     ],
 );
 pub(crate) const CORNER_DRAW: Bindings = Bindings::draw(

@@ -28,6 +28,12 @@ pub(super) struct Lists {
     pub(super) chamfer_records: wgpu::Buffer,
     pub(super) starts: wgpu::Buffer,
     pub(super) colors: wgpu::Buffer,
+    /// Sized by slots while hidden lines are patterned (else a stub): the chains the joins found,
+    /// the ranking's two buffers and the phases (phase.wgsl).
+    pub(super) patterned: bool,
+    pub(super) chains: wgpu::Buffer,
+    pub(super) ranks: [wgpu::Buffer; 2],
+    pub(super) phases: wgpu::Buffer,
     pub(super) bytes: u64,
 }
 
@@ -37,6 +43,7 @@ impl Lists {
         capacity: u32,
         instances: u32,
         chamfers: bool,
+        patterned: bool,
     ) -> Result<Self, RenderError> {
         let device = cache.device();
         let limit = device.limits().max_storage_buffer_binding_size;
@@ -68,7 +75,15 @@ impl Lists {
             + size(std::mem::size_of::<layout::Cap>()) * (slots + 64);
         // At most half full: a probe finds a free entry or its key within a few steps.
         let table_entries = (2 * slots).next_power_of_two().max(64);
+        let chained = if patterned { slots } else { 1 };
         Ok(Self {
+            chains: storage("chains", 2 * 4 * chained, wgpu::BufferUsages::COPY_DST)?,
+            ranks: [
+                storage("ranks a", 2 * layout::RANK_BYTES * chained, none)?,
+                storage("ranks b", 2 * layout::RANK_BYTES * chained, none)?,
+            ],
+            phases: storage("dash phases", 8 * chained, none)?,
+            patterned,
             table: storage(
                 "slot table",
                 4 * table_entries,

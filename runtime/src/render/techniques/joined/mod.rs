@@ -36,7 +36,7 @@ use std::sync::Arc;
 use self::bindings::*;
 use self::highlight::HighlightUniforms;
 use self::lists::{FIRST_SLOTS, Instances, Lists};
-use self::pipelines::{HiddenPipelines, JoinedPipelines};
+use self::pipelines::{HiddenPipelines, JoinedPipelines, PhasePipelines};
 use self::readback::Needed;
 use self::record::{AssetGroups, Batch, Work};
 use super::{Blocks, FrameContext, FrameOptions, Module, PerAsset, TechniqueFrame};
@@ -60,7 +60,9 @@ impl Module for Joined {
     }
 
     fn shaders(&self, target: &Target) -> Vec<Shader> {
-        pipelines::shaders(target)
+        let mut all = pipelines::shaders(target);
+        all.push(pipelines::phase_shader());
+        all
     }
 
     fn new_frame(
@@ -96,6 +98,11 @@ struct Frame {
     pipelines: Arc<JoinedPipelines>,
     /// The hidden pass's pipelines, while the style draws hidden edges.
     hidden: Option<Arc<HiddenPipelines>>,
+    /// The dash phases' pipelines and groups (into the second ranks buffer, into the first), while
+    /// the hidden lines' pattern continues along chains.
+    phases: Option<(Arc<PhasePipelines>, [wgpu::BindGroup; 2])>,
+    /// This frame's hidden lines are patterned and joined: their phases run along chains.
+    patterned: bool,
     cache: Cache,
     /// Block 0 is the place pass's (every instance); then one per chunk of each batch.
     blocks: Blocks,
@@ -145,7 +152,9 @@ struct Resources<'r> {
 impl<'r> Resources<'r> {
     fn get(&self, binding: Binding) -> Result<wgpu::BindingResource<'r>, RenderError> {
         let (lists, instances) = (self.lists, self.instances);
-        let buffers: [(Binding, &wgpu::Buffer); 15] = [
+        let buffers: [(Binding, &wgpu::Buffer); 17] = [
+            (CHAINS, &lists.chains),
+            (PHASES, &lists.phases),
             (DRAWN, &lists.drawn),
             (JOINS, &lists.joins),
             (OUT, &lists.out),
@@ -189,6 +198,8 @@ impl Frame {
         Ok(Self {
             pipelines: cache.get::<JoinedPipelines>()?,
             hidden: None,
+            phases: None,
+            patterned: false,
             cache: cache.clone(),
             blocks: Blocks::new(cache, "edge batches", block),
             instance_blocks: Blocks::new(cache, "instances drawn one by one", block),
@@ -216,6 +227,7 @@ impl Frame {
     /// Forgets every group (what they bind was remade).
     fn forget_groups(&mut self) {
         self.assets.clear();
+        self.phases = None;
         self.args_group = None;
         self.place_group = None;
         self.draw_group = None;
@@ -251,6 +263,7 @@ impl Frame {
             u64::from(l.capacity) >= wanted.min(limit)
                 && l.instances >= instances
                 && (l.chamfers || !chamfers)
+                && (l.patterned || !self.patterned)
         });
         if !enough {
             let capacity = wanted.min(limit) as u32;
@@ -260,6 +273,7 @@ impl Frame {
                 capacity,
                 instances.next_power_of_two(),
                 chamfers,
+                self.patterned,
             )?);
             self.forget_groups();
         }
@@ -339,6 +353,9 @@ impl Frame {
             uniform.capacity = lists.capacity;
             uniform.cap_capacity = lists.capacity + 64;
             uniform.highlight = u32::from(self.highlighted);
+            if self.patterned {
+                uniform.display.flags |= layout::DISPLAY_CHAINED;
+            }
             uniform.table_mask = lists.table_mask;
             uniform.survivor_capacity = instances.survivor_capacity;
             uniform
@@ -485,6 +502,19 @@ impl TechniqueFrame for Frame {
             Some(_) => Some(cx.pipelines.get::<HiddenPipelines>()?),
             None => None,
         };
+        // A pattern continues along chains where the joins find them (which needs rings).
+        let joined =
+            cx.style.caps != CapMethod::None && cx.instances.iter().all(|d| d.asset.has_rings);
+        let patterned = joined
+            && cx
+                .style
+                .display
+                .hidden
+                .is_some_and(|h| h.pattern != crate::render::LinePattern::Solid);
+        if patterned != self.patterned {
+            self.patterned = patterned;
+            self.phases = None;
+        }
         self.outlined = self.highlighted && cx.instances.iter().any(|d| d.asset.has_chamfers);
         self.ensure_lists(cx)?;
         let (Some(lists), Some(instances)) = (&self.lists, &self.instances) else {
@@ -548,6 +578,20 @@ impl TechniqueFrame for Frame {
         if self.draw_group.is_none() {
             self.draw_group = Some(group(&DRAW)?);
         }
+        if self.patterned && self.phases.is_none() {
+            let layout = cx.pipelines.layout(&PHASE);
+            let ranking = |from: usize| {
+                PHASE.group(&device, &layout, |b| match b.index {
+                    i if i == RANKS_IN.index => Ok(lists.ranks[from].as_entire_binding()),
+                    i if i == RANKS_OUT.index => Ok(lists.ranks[1 - from].as_entire_binding()),
+                    _ => shared.get(b),
+                })
+            };
+            self.phases = Some((
+                cx.pipelines.get::<PhasePipelines>()?,
+                [ranking(0)?, ranking(1)?],
+            ));
+        }
         let kept: Vec<super::Drawn<'_>> = order.iter().map(|&d| cx.instances[d].clone()).collect();
         self.assets.retain(&kept);
         self.batches.clear();
@@ -584,8 +628,12 @@ impl TechniqueFrame for Frame {
             CapMethod::None
         };
         self.instance_count = frames.len() as u32;
-        // The slot table starts every frame empty.
+        // The slot table starts every frame empty; so do the chains (the joins write those of
+        // the ends they join).
         encoder.clear_buffer(&lists.table, 0, None);
+        if self.patterned {
+            encoder.clear_buffer(&lists.chains, 0, None);
+        }
         if let (Some(args_group), Some(place_group)) = (&self.args_group, &self.place_group) {
             Work {
                 pipelines: &self.pipelines,
@@ -599,6 +647,14 @@ impl TechniqueFrame for Frame {
                 culling: self.culling,
                 highlight: self.highlighted,
                 caps: self.caps,
+                phases: self
+                    .phases
+                    .as_ref()
+                    .map(|(pipelines, groups)| record::Phases {
+                        pipelines,
+                        groups,
+                        rounds: record::rounds(lists.capacity),
+                    }),
             }
             .record(encoder);
         }

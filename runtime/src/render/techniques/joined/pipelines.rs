@@ -3,8 +3,8 @@
 use chamfer_shaders as wgsl;
 
 use super::bindings::{
-    ARGS, CLASSIFY, CORNER_DRAW, CULL, DRAW, JOIN, OUTLINE_CORNERS, OUTLINE_STRIPS, PLACE, RECORDS,
-    SEGMENTS,
+    ARGS, CLASSIFY, CORNER_DRAW, CULL, DRAW, JOIN, OUTLINE_CORNERS, OUTLINE_STRIPS, PHASE, PLACE,
+    RECORDS, SEGMENTS,
 };
 use crate::render::modules::{Program, Shader};
 use crate::render::pipelines::{PipelineSet, Raster};
@@ -179,6 +179,51 @@ const OUTLINE: [Program; 2] = [
         &OUTLINE_CORNERS,
     ),
 ];
+
+/// The dash phases' module (phase.wgsl), compiled while hidden lines are patterned.
+pub(crate) fn phase_shader() -> Shader {
+    Shader::new(
+        "phase.wgsl",
+        &[
+            wgsl::COMMON,
+            wgsl::SECTION,
+            wgsl::FRAME,
+            wgsl::LISTS,
+            wgsl::PHASE,
+        ],
+        vec![
+            Program::compute("rank_args", &ARGS),
+            Program::compute("rank_init", &PHASE),
+            Program::compute("rank_jump", &PHASE),
+            Program::compute("rank_cut", &PHASE),
+            Program::compute("rank_finish", &PHASE),
+        ],
+    )
+}
+
+/// The dash phases' passes: the first time a frame draws patterned hidden lines.
+#[derive(Debug)]
+pub(crate) struct PhasePipelines {
+    pub(crate) args: wgpu::ComputePipeline,
+    pub(crate) init: wgpu::ComputePipeline,
+    pub(crate) jump: wgpu::ComputePipeline,
+    pub(crate) cut: wgpu::ComputePipeline,
+    pub(crate) finish: wgpu::ComputePipeline,
+}
+
+impl PipelineSet for PhasePipelines {
+    fn new(cache: &Cache) -> Result<Self, RenderError> {
+        let shader = phase_shader();
+        let module = cache.compile(&shader)?;
+        Ok(Self {
+            args: module.compute("rank_args")?,
+            init: module.compute("rank_init")?,
+            jump: module.compute("rank_jump")?,
+            cut: module.compute("rank_cut")?,
+            finish: module.compute("rank_finish")?,
+        })
+    }
+}
 
 /// Every module the technique compiles for `target`: the outline pass reads its depth as the target
 /// samples it.

@@ -2,7 +2,7 @@
 //! asset) the chunks of its edge section, and the compute pass of the frame (place, then cull,
 //! classify and joins batch after batch, then the clamp of the lists).
 
-use super::pipelines::JoinedPipelines;
+use super::pipelines::{JoinedPipelines, PhasePipelines};
 use crate::render::CapMethod;
 use crate::render::layout::CLUSTER_EDGES;
 use crate::render::pipelines::workgroups;
@@ -58,6 +58,59 @@ pub(super) struct Work<'a> {
     pub(super) culling: bool,
     pub(super) highlight: bool,
     pub(super) caps: CapMethod,
+    /// The dash phases, while hidden lines are patterned.
+    pub(super) phases: Option<Phases<'a>>,
+}
+
+/// The dash phases' passes: their pipelines, the groups ranking into the second buffer and into
+/// the first, and the jumping rounds that cover the longest possible chain.
+pub(super) struct Phases<'a> {
+    pub(super) pipelines: &'a PhasePipelines,
+    pub(super) groups: &'a [wgpu::BindGroup; 2],
+    pub(super) rounds: u32,
+}
+
+/// Rounds of pointer jumping that end every walk among the items of `capacity` slots: each round
+/// doubles the reach, and a walk passes at most every item.
+pub(super) fn rounds(capacity: u32) -> u32 {
+    (2 * u64::from(capacity).max(1))
+        .next_power_of_two()
+        .trailing_zeros()
+}
+
+impl Phases<'_> {
+    /// Ranks the chains (phase.wgsl): init, jumps, the cut of closed loops, jumps again, the
+    /// phases. Every dispatch runs one thread per item, sized by the frame's drawn edges.
+    fn record(
+        &self,
+        pass: &mut wgpu::ComputePass<'_>,
+        args_group: &wgpu::BindGroup,
+        dispatch: &wgpu::Buffer,
+    ) {
+        let p = self.pipelines;
+        pass.set_bind_group(0, args_group, &[0]);
+        pass.set_pipeline(&p.args);
+        pass.dispatch_workgroups(1, 1, 1);
+        // groups[k] reads ranks[k] and writes the other: into ranks[0] first.
+        pass.set_bind_group(0, &self.groups[1], &[0]);
+        pass.set_pipeline(&p.init);
+        pass.dispatch_workgroups_indirect(dispatch, 0);
+        let mut current = 0;
+        let mut step = |pass: &mut wgpu::ComputePass<'_>, pipeline: &wgpu::ComputePipeline| {
+            pass.set_bind_group(0, &self.groups[current], &[0]);
+            pass.set_pipeline(pipeline);
+            pass.dispatch_workgroups_indirect(dispatch, 0);
+            current = 1 - current;
+        };
+        for _ in 0..self.rounds {
+            step(pass, &p.jump);
+        }
+        step(pass, &p.cut);
+        for _ in 0..self.rounds {
+            step(pass, &p.jump);
+        }
+        step(pass, &p.finish);
+    }
 }
 
 impl Work<'_> {
@@ -139,5 +192,8 @@ impl Work<'_> {
         pass.set_bind_group(0, self.args_group, &[0]);
         pass.set_pipeline(&pipelines.finish);
         pass.dispatch_workgroups(1, 1, 1);
+        if let Some(phases) = &self.phases {
+            phases.record(&mut pass, self.args_group, self.dispatch);
+        }
     }
 }
