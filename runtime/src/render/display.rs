@@ -47,7 +47,7 @@ impl LinePattern {
         }
         let total: f32 = lengths.iter().sum();
         let gaps = lengths.iter().skip(1).step_by(2).any(|&g| g > 0.0);
-        if lengths.is_empty() || total <= 0.0 || (!gaps && lengths.len() % 2 == 0) {
+        if lengths.is_empty() || total <= 0.0 || (!gaps && lengths.len().is_multiple_of(2)) {
             return Some(Self::Solid);
         }
         let mut all = [0.0; MAX_DASHES];
