@@ -471,13 +471,9 @@ fn a_hidden_entity_draws_no_edges() {
     assert_eq!(hidden, 0, "a hidden entity drew {hidden} edge pixels");
 }
 
-#[test]
-fn edges_behind_a_plain_bevy_cube_are_hidden() {
-    let folder = assets(&[("cube", "shapes/cube.obj")]);
-    let (bounds, view, _) = cube_view();
-    let mut scene = Scene::new(folder.path(), "cube", view.clone(), Msaa::Sample4, false);
-    let open = scene.edge_pixels().iter().filter(|&&e| e).count();
-    // A plain Bevy box (not a Chamfer asset) between the camera and the part, filling the view.
+/// A plain Bevy box (not a Chamfer asset) between the camera `view` and the part in `bounds`,
+/// filling the view.
+fn plain_box_in_front(scene: &mut Scene, bounds: [[f32; 3]; 2], view: &(Transform, Projection)) {
     let [lo, hi] = bounds.map(Vec3::from_array);
     let center = (lo + hi) * 0.5;
     let eye = view.0.translation;
@@ -494,6 +490,15 @@ fn edges_behind_a_plain_bevy_cube_are_hidden() {
         MeshMaterial3d(material),
         Transform::from_translation(between).looking_at(eye, Vec3::Y),
     ));
+}
+
+#[test]
+fn edges_behind_a_plain_bevy_cube_are_hidden() {
+    let folder = assets(&[("cube", "shapes/cube.obj")]);
+    let (bounds, view, _) = cube_view();
+    let mut scene = Scene::new(folder.path(), "cube", view.clone(), Msaa::Sample4, false);
+    let open = scene.edge_pixels().iter().filter(|&&e| e).count();
+    plain_box_in_front(&mut scene, bounds, &view);
     let behind = scene.edge_pixels().iter().filter(|&&e| e).count();
     assert!(open > 100, "{open} edge pixels without the box");
     assert_eq!(behind, 0, "{behind} edge pixels show through the box");
@@ -509,22 +514,7 @@ fn edges_behind_a_plain_bevy_cube_are_drawn_in_the_hidden_style() {
     let folder = assets(&[("cube", "shapes/cube.obj")]);
     let (bounds, view, _) = cube_view();
     let mut scene = Scene::new(folder.path(), "cube", view.clone(), Msaa::Sample4, false);
-    let [lo, hi] = bounds.map(Vec3::from_array);
-    let center = (lo + hi) * 0.5;
-    let eye = view.0.translation;
-    let between = center + (eye - center) * 0.6;
-    let world = scene.app.world_mut();
-    let mesh = world
-        .resource_mut::<Assets<Mesh>>()
-        .add(Cuboid::new(4.0, 4.0, 0.05));
-    let material = world
-        .resource_mut::<Assets<StandardMaterial>>()
-        .add(StandardMaterial::from(Color::srgb(0.2, 0.4, 0.8)));
-    world.spawn((
-        Mesh3d(mesh),
-        MeshMaterial3d(material),
-        Transform::from_translation(between).looking_at(eye, Vec3::Y),
-    ));
+    plain_box_in_front(&mut scene, bounds, &view);
     let green_pixels = |frame: &[u8]| {
         frame
             .chunks(4)
