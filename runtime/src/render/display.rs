@@ -159,7 +159,6 @@ impl FaceMode {
                 let [r, g, b, a] = shaded.color;
                 Some(MeshStyle {
                     color: [r, g, b, a * opacity.clamp(0.0, 1.0)],
-                    pbr: shaded.pbr,
                     ..shaded
                 })
             }
