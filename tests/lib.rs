@@ -9,6 +9,7 @@ use std::path::PathBuf;
 use chamfer_preprocess::mesh::Mesh;
 
 pub mod files;
+pub mod rigged;
 pub mod rounded;
 
 pub use files::fixture;

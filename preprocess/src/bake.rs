@@ -13,6 +13,7 @@ use web_time::Instant;
 
 use crate::mesh::{Mark, Mesh, MeshError};
 use crate::{
+    motion,
     BakeOptions, Companions, Error, adjacency, caps, classify, degenerate, intersections, load,
     mesh_order, normals, radii, stitch, weld,
 };
@@ -134,6 +135,17 @@ fn bake_loaded(
     })?;
     baked.timings.parse = parse;
     baked.warnings = loaded.warnings;
+    if let Some(input) = loaded.motion {
+        let vertices = baked.asset.topology_positions.len();
+        let (motion, differ) = motion::attach(input, &baked.input_vertex_map, vertices);
+        if differ > 0 {
+            baked.warnings.push(format!(
+                "{differ} vertices were welded into a vertex with other joints, weights or morph \
+                 deltas: in motion they follow it"
+            ));
+        }
+        baked.asset.motion = motion;
+    }
     Ok(baked)
 }
 
@@ -364,5 +376,6 @@ fn assemble(
         intersection_segments: Vec::new(),
         intersection_starts: Vec::new(),
         edge_clusters: Vec::new(),
+        motion: Default::default(),
     }
 }

@@ -41,6 +41,7 @@ pub mod limits;
 pub mod load;
 pub mod mesh;
 mod mesh_order;
+pub mod motion;
 pub mod normals;
 mod options;
 mod polylines;

@@ -25,15 +25,19 @@ pub struct Limits {
     /// Bytes of one input file after inflating `.gz`, and of each file it refers to (`.mtl`,
     /// glTF buffers). Default 2³¹ (2 GiB).
     pub max_input_bytes: u64,
+    /// Joints of the skins a glTF's drawn meshes are bound to, all skins and every joint that
+    /// moves a rigid part counted. Default 2¹² (4,096); an asset holds at most 2¹⁶.
+    pub max_joints: u64,
 }
 
 impl Limits {
-    /// 64 Mi triangles and vertices, 1 Mi instances, 2 GiB per file.
+    /// 64 Mi triangles and vertices, 1 Mi instances, 2 GiB per file, 4 Ki joints.
     pub const DEFAULT: Self = Self {
         max_triangles: 1 << 26,
         max_vertices: 1 << 26,
         max_instances: 1 << 20,
         max_input_bytes: 1 << 31,
+        max_joints: 1 << 12,
     };
 
     /// No bound at all: for inputs that are trusted and known to be large.
@@ -42,6 +46,7 @@ impl Limits {
         max_vertices: u64::MAX,
         max_instances: u64::MAX,
         max_input_bytes: u64::MAX,
+        max_joints: u64::MAX,
     };
 
     /// Sets [`max_triangles`](Self::max_triangles).
@@ -76,6 +81,11 @@ impl Limits {
         }
     }
 
+    /// Sets [`max_joints`](Self::max_joints).
+    pub fn with_max_joints(self, max_joints: u64) -> Self {
+        Self { max_joints, ..self }
+    }
+
     /// [`Error::LimitExceeded`] naming `path` if `count` is over the bound on `what`.
     pub(crate) fn check(&self, path: &Path, what: Limited, count: u64) -> Result<(), Error> {
         let limit = match what {
@@ -83,6 +93,7 @@ impl Limits {
             Limited::Vertices => self.max_vertices,
             Limited::Instances => self.max_instances,
             Limited::InputBytes => self.max_input_bytes,
+            Limited::Joints => self.max_joints,
         };
         if count > limit {
             Err(Error::LimitExceeded {
@@ -114,6 +125,8 @@ pub enum Limited {
     Instances,
     /// [`Limits::max_input_bytes`].
     InputBytes,
+    /// [`Limits::max_joints`].
+    Joints,
 }
 
 impl Limited {
@@ -124,6 +137,7 @@ impl Limited {
             Self::Vertices => "vertices",
             Self::Instances => "mesh instances",
             Self::InputBytes => "bytes",
+            Self::Joints => "joints",
         }
     }
 
@@ -134,6 +148,7 @@ impl Limited {
             Self::Vertices => "--max-vertices",
             Self::Instances => "--max-instances",
             Self::InputBytes => "--max-input-bytes",
+            Self::Joints => "--max-joints",
         }
     }
 }

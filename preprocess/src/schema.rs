@@ -58,6 +58,10 @@ chamfer_runtime::schema! {
         /// .gz.
         max_input_bytes: u64 = Limits::DEFAULT.max_input_bytes, { group: "bake", value: "BYTES",
             range: None, example: 1 << 30, conflicts: [], requires: [] },
+        /// Refuse a glTF whose skins (and animated rigid parts) have more joints than this
+        /// (an asset holds at most 65,536).
+        max_joints: u64 = Limits::DEFAULT.max_joints, { group: "bake", value: "N",
+            range: None, example: 1 << 8, conflicts: [], requires: [] },
         /// Also find intersection edges, where triangles cut through each other (within one
         /// mesh and between the objects, primitives and instances of the file), and store them
         /// in the asset.
@@ -151,6 +155,7 @@ impl BakeSettings {
                 max_vertices: self.max_vertices,
                 max_instances: self.max_instances,
                 max_input_bytes: self.max_input_bytes,
+                max_joints: self.max_joints,
             })
             .with_intersections(self.intersections)
             .with_stitch(match (self.no_stitch, self.stitch_epsilon) {

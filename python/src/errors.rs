@@ -50,7 +50,7 @@ pyo3::create_exception!(
     chamfer,
     LimitError,
     ChamferError,
-    "A file asks for more than the limits allow (max_triangles, max_vertices, max_instances, max_input_bytes)."
+    "A file asks for more than the limits allow (max_triangles, max_vertices, max_instances, max_input_bytes, max_joints)."
 );
 pyo3::create_exception!(
     chamfer,

@@ -17,6 +17,7 @@ pub mod camera;
 pub mod highlight;
 #[cfg(feature = "render")]
 pub mod render;
+pub mod rig;
 pub mod scene;
 pub mod schema;
 pub mod section;

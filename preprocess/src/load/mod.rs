@@ -23,6 +23,7 @@ use std::path::Path;
 use glam::Mat4;
 
 use crate::mesh::Mesh;
+use crate::motion::InputMotion;
 use crate::{Error, Limits};
 
 /// The mesh formats this crate reads.
@@ -74,6 +75,8 @@ pub struct Loaded {
     pub mesh: Mesh,
     /// Things the file holds that were skipped (line primitives, unknown required extensions, ...).
     pub warnings: Vec<String>,
+    /// What moves the mesh (a glTF's skins, morph targets and animations); `None` for a still one.
+    pub motion: Option<InputMotion>,
 }
 
 /// Loads a mesh file, choosing the loader by extension, and validates it.
@@ -101,9 +104,14 @@ pub fn load_bytes_with(
         path: path.to_owned(),
     })?;
     let mut warnings = Vec::new();
+    let mut motion = None;
     let mesh = match format {
         Format::Obj => obj::parse(path, bytes, companions, limits, &mut warnings)?,
-        Format::Gltf => gltf::parse(path, bytes, companions, limits, &mut warnings)?,
+        Format::Gltf => {
+            let (mesh, moves) = gltf::parse(path, bytes, companions, limits, &mut warnings)?;
+            motion = moves;
+            mesh
+        }
         Format::Ply => ply::parse(path, bytes, limits, &mut warnings)?,
         Format::Stl => stl::parse(path, bytes, limits, &mut warnings)?,
         Format::ThreeMf => threemf::parse(path, bytes, limits, &mut warnings)?,
@@ -112,7 +120,11 @@ pub fn load_bytes_with(
         path: path.to_owned(),
         source,
     })?;
-    Ok(Loaded { mesh, warnings })
+    Ok(Loaded {
+        mesh,
+        warnings,
+        motion,
+    })
 }
 
 /// The meshes of a file that keeps them apart (a glTF node graph, a 3MF build), each in its own

@@ -68,14 +68,15 @@ impl Asset {
             render_counts,
             keep_positions: false,
             coded,
+            rig: envelope::encode_rig(&self.motion.rig)?,
         })
     }
 
     /// The sections [`encode`](Self::encode) writes: kind, offset and length in the file.
     pub fn encoded_sections(&self) -> Vec<SectionEntry> {
         let clusters = self.clusters();
-        let derived = Derived::of(self, &SectionKind::ALL, &clusters);
-        self.layout(&SectionKind::ALL, &derived)
+        Derived::of(self, &SectionKind::ALL, &clusters)
+            .and_then(|derived| self.layout(&SectionKind::ALL, &derived))
             .map_or_else(|_| Vec::new(), |(_, sections)| sections)
     }
 
@@ -110,7 +111,7 @@ impl Asset {
     #[cfg(test)]
     pub(super) fn encode_with_positions_and_counts(&self, out: &mut impl Write) -> io::Result<()> {
         let clusters = self.clusters();
-        let mut derived = Derived::of(self, &SectionKind::ALL, &clusters);
+        let mut derived = Derived::of(self, &SectionKind::ALL, &clusters)?;
         derived.keep_positions = true;
         self.write_as(FORMAT_VERSION, &SectionKind::ALL, &derived, out)
     }
@@ -124,7 +125,7 @@ impl Asset {
         out: &mut impl Write,
     ) -> io::Result<()> {
         let clusters = self.clusters();
-        let mut derived = Derived::of(self, &SectionKind::ALL, &clusters);
+        let mut derived = Derived::of(self, &SectionKind::ALL, &clusters)?;
         derived.coded = sections;
         self.write_as(FORMAT_VERSION, &SectionKind::ALL, &derived, out)
     }
@@ -136,7 +137,7 @@ impl Asset {
         clusters: &[EdgeCluster],
         out: &mut impl Write,
     ) -> io::Result<()> {
-        self.write_as(version, kinds, &Derived::of(self, kinds, clusters), out)
+        self.write_as(version, kinds, &Derived::of(self, kinds, clusters)?, out)
     }
 
     fn write_as(
@@ -163,16 +164,10 @@ impl Asset {
 
     /// The encoded asset in a new vector.
     pub fn encode_to_vec(&self) -> Vec<u8> {
-        let clusters = self.clusters();
-        let derived = Derived::of(self, &SectionKind::ALL, &clusters);
-        let capacity = self
-            .layout(&SectionKind::ALL, &derived)
-            .ok()
-            .and_then(|(_, sections)| sections.last().map(|s| s.offset + s.length))
-            .unwrap_or(0);
+        let capacity = self.encoded_len();
         let mut bytes = Vec::with_capacity(capacity as usize);
-        // Writing to a Vec cannot fail; the header limit is far above any real header.
-        if let Err(e) = self.write_as(FORMAT_VERSION, &SectionKind::ALL, &derived, &mut bytes) {
+        // Writing to a Vec cannot fail; the header and rig limits are far above any real asset's.
+        if let Err(e) = self.encode(&mut bytes) {
             panic!("chamfer: encoding into memory failed ({e}); please report this");
         }
         bytes
@@ -200,6 +195,7 @@ impl Asset {
         match kind {
             SectionKind::EdgeClusters => bytemuck::cast_slice(derived.clusters),
             SectionKind::RenderVertexCounts => derived.render_counts.as_deref().unwrap_or(&[]),
+            SectionKind::Rig => &derived.rig,
             SectionKind::RenderPositions
                 if derived.render_counts.is_some() && !derived.keep_positions =>
             {
@@ -252,20 +248,28 @@ struct Derived<'a> {
     keep_positions: bool,
     /// The coded sections of a compact file, each in place of its raw twin.
     coded: Vec<(SectionKind, Vec<u8>)>,
+    /// The rig section, encoded (empty for a still asset).
+    rig: Vec<u8>,
 }
 
 impl<'a> Derived<'a> {
-    fn of(asset: &Asset, kinds: &[SectionKind], clusters: &'a [EdgeCluster]) -> Self {
+    fn of(asset: &Asset, kinds: &[SectionKind], clusters: &'a [EdgeCluster]) -> io::Result<Self> {
         let render_counts = kinds
             .contains(&SectionKind::RenderVertexCounts)
             .then(|| render_vertex_counts(asset))
             .flatten();
-        Self {
+        let rig = if kinds.contains(&SectionKind::Rig) {
+            envelope::encode_rig(&asset.motion.rig)?
+        } else {
+            Vec::new()
+        };
+        Ok(Self {
             clusters,
             render_counts,
             keep_positions: false,
             coded: Vec::new(),
-        }
+            rig,
+        })
     }
 }
 

@@ -1,6 +1,6 @@
 //! The `.chamfer` edge asset: what the bake writes and the runtime uploads.
 //!
-//! # Layout (format version 5)
+//! # Layout (format version 6)
 //!
 //! All numbers are little-endian.
 //!
@@ -30,6 +30,7 @@
 //! | [`SectionKind::EdgeClusters`] | [`EdgeCluster`] (48 bytes) | ⌈E / 64⌉ (since version 3) |
 //! | [`SectionKind::RenderVertexCounts`] | `u8` | V, or empty (since version 4) |
 //! | the coded twins of the sections above ([`compact`]) | coded bytes | empty, or in place of their raw twin (since version 5) |
+//! | skin joints and weights, morph targets, the rig ([`motion`]) | see there | empty for a still asset (since version 6) |
 //!
 //! An *index* section is `u16` when its values are bounded by 65 536 and `u32` otherwise
 //! ([`IndexWidth::for_bound`]); the width is implied by the counts, so it is never stored.
@@ -66,8 +67,8 @@
 //!
 //! The version is bumped on any change to the header or to a section's meaning. Version 2 added the
 //! two intersection sections, version 3 the edge clusters, version 4 the render vertex counts, version
-//! 5 the coded sections of compact files (the header is unchanged). A reader of version 5 also reads
-//! versions 1 to 4: a version-1 file has no
+//! 5 the coded sections of compact files (the header is unchanged), version 6 the sections of
+//! animated assets. A reader of version 6 also reads versions 1 to 5: a version-1 file has no
 //! intersection edges, the clusters of a version-1 or 2 file are computed when it is decoded (over
 //! its edge order, which was not made for them: they cull less), and files before version 4 store
 //! every render position. Any other version is reported as
@@ -88,17 +89,19 @@ mod encode;
 mod envelope;
 mod error;
 mod join;
+pub mod motion;
 
 pub use clusters::{CLUSTER_EDGES, EdgeCluster};
 pub use compact::{Codecs, CompactOptions, Precision};
 pub use error::DecodeError;
+pub use motion::Motion;
 
 use serde::{Deserialize, Serialize};
 
 /// The eight bytes every asset starts with.
 pub const MAGIC: [u8; 8] = *b"CHAMFER\0";
 /// The format version this crate writes (and the newest it reads).
-pub const FORMAT_VERSION: u32 = 5;
+pub const FORMAT_VERSION: u32 = 6;
 /// The oldest format version this crate still reads.
 pub const OLDEST_READ_VERSION: u32 = 1;
 /// The largest header accepted; real headers are a few hundred bytes.
@@ -373,11 +376,23 @@ pub enum SectionKind {
     RenderVertexCountsCoded = 19,
     /// [`EdgeClusters`](Self::EdgeClusters), quantized and coded (version 5).
     EdgeClustersCoded = 20,
+    /// Four joint indices (`u16`) per topology vertex, or empty ([`motion`], version 6).
+    SkinJoints = 21,
+    /// Four joint weights (`f32`) per topology vertex, or empty (version 6).
+    SkinWeights = 22,
+    /// The first entry of each morph target (`u32`, version 6).
+    MorphStarts = 23,
+    /// The topology vertex of each morph entry (`u32`, version 6).
+    MorphVertices = 24,
+    /// The position delta of each morph entry (`[f32; 3]`, version 6).
+    MorphDeltas = 25,
+    /// The [`Rig`](crate::rig::Rig): nodes, joints, morph weights, animations (bincode, version 6).
+    Rig = 26,
 }
 
 impl SectionKind {
     /// Every kind, in the order sections are written.
-    pub const ALL: [Self; 20] = [
+    pub const ALL: [Self; 26] = [
         Self::RenderPositions,
         Self::RenderNormals,
         Self::MeshIndices,
@@ -398,12 +413,20 @@ impl SectionKind {
         Self::RingOrders,
         Self::RenderVertexCountsCoded,
         Self::EdgeClustersCoded,
+        Self::SkinJoints,
+        Self::SkinWeights,
+        Self::MorphStarts,
+        Self::MorphVertices,
+        Self::MorphDeltas,
+        Self::Rig,
     ];
 
-    /// Whether a decoded asset holds this kind as an array for the GPU (the raw kinds but the render
-    /// vertex counts, which only say how to rebuild the render positions).
+    /// Whether a decoded asset holds this kind as an array for the GPU: the raw kinds but the render
+    /// vertex counts, which only say how to rebuild the render positions, and the rig, which the
+    /// CPU samples.
     pub const fn is_gpu_ready(self) -> bool {
         (self as u32) < Self::RenderVertexCounts as u32
+            || (self as u32 >= Self::SkinJoints as u32 && self as u32 <= Self::MorphDeltas as u32)
     }
 
     /// The coded kind that replaces this raw one in a compact file, and back; `None` for the kinds
@@ -438,7 +461,8 @@ impl SectionKind {
             2 => Some(&Self::ALL[..10]),
             3 => Some(&Self::ALL[..11]),
             4 => Some(&Self::ALL[..12]),
-            5 => Some(&Self::ALL),
+            5 => Some(&Self::ALL[..20]),
+            6 => Some(&Self::ALL),
             _ => None,
         }
     }
@@ -471,6 +495,12 @@ impl SectionKind {
             Self::RingOrders => "ring_orders",
             Self::RenderVertexCountsCoded => "render_vertex_counts_coded",
             Self::EdgeClustersCoded => "edge_clusters_coded",
+            Self::SkinJoints => "skin_joints",
+            Self::SkinWeights => "skin_weights",
+            Self::MorphStarts => "morph_starts",
+            Self::MorphVertices => "morph_vertices",
+            Self::MorphDeltas => "morph_deltas",
+            Self::Rig => "rig",
         }
     }
 }
@@ -601,6 +631,8 @@ pub struct Asset {
     /// fills it; an asset built in code may leave it empty, and [`encode`](Self::encode) and the
     /// renderer then compute it (see [`clusters`](Self::clusters)).
     pub edge_clusters: Vec<EdgeCluster>,
+    /// Skinning, morph targets and animations; empty for a still asset.
+    pub motion: Motion,
 }
 
 impl Asset {
@@ -696,6 +728,11 @@ impl Asset {
             SectionKind::IntersectionSegments => bytemuck::cast_slice(&self.intersection_segments),
             SectionKind::IntersectionPolylines => bytemuck::cast_slice(&self.intersection_starts),
             SectionKind::EdgeClusters => bytemuck::cast_slice(&self.edge_clusters),
+            SectionKind::SkinJoints
+            | SectionKind::SkinWeights
+            | SectionKind::MorphStarts
+            | SectionKind::MorphVertices
+            | SectionKind::MorphDeltas => self.motion.section_bytes(kind),
             // Derived when encoding, never held.
             SectionKind::RenderVertexCounts
             | SectionKind::MeshIndicesCoded
@@ -705,7 +742,8 @@ impl Asset {
             | SectionKind::EdgeAttributesCoded
             | SectionKind::RingOrders
             | SectionKind::RenderVertexCountsCoded
-            | SectionKind::EdgeClustersCoded => &[],
+            | SectionKind::EdgeClustersCoded
+            | SectionKind::Rig => &[],
         }
     }
 }

@@ -71,6 +71,7 @@ fn tetrahedron() -> Asset {
         intersection_segments: Vec::new(),
         intersection_starts: Vec::new(),
         edge_clusters: Vec::new(),
+        motion: Default::default(),
     };
     asset.edge_clusters = super::clusters::edge_clusters(&asset);
     asset

@@ -17,6 +17,7 @@ mod extensions;
 mod gpu_instancing;
 mod instances;
 pub mod marks;
+mod motion;
 
 use std::collections::HashMap;
 use std::collections::hash_map::Entry;
@@ -30,6 +31,7 @@ use super::SceneMeshes;
 use crate::limits::Limited;
 use crate::load::files::Companions;
 use crate::mesh::Mesh;
+use crate::motion::InputMotion;
 use crate::{Error, Limits};
 
 /// Where one primitive's first drawn instance lies in the loaded mesh (for writing marks back).
@@ -50,17 +52,29 @@ pub(crate) struct PrimitiveSpan {
     pub mirrored: bool,
 }
 
+/// One drawing of a mesh: the mesh, its world transform, the node that draws it (`None` when the
+/// file has no scene) and whether that node draws it through `EXT_mesh_gpu_instancing`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Placed {
+    pub mesh: usize,
+    pub world: Mat4,
+    pub node: Option<usize>,
+    pub gpu_instanced: bool,
+}
+
+/// The file's drawn meshes flattened into one, and what moves them (skins, morph targets,
+/// animations; `None` when nothing does).
 pub(super) fn parse(
     path: &Path,
     bytes: &[u8],
     companions: Companions<'_>,
     limits: &Limits,
     warnings: &mut Vec<String>,
-) -> Result<Mesh, Error> {
-    parse_with_spans(path, bytes, companions, limits, warnings, &mut Vec::new())
+) -> Result<(Mesh, Option<InputMotion>), Error> {
+    parse_drawn(path, bytes, companions, limits, warnings, &mut Vec::new(), true)
 }
 
-/// [`parse`], also listing each primitive's first instance.
+/// The flattened mesh alone, also listing each primitive's first instance.
 pub(crate) fn parse_with_spans(
     path: &Path,
     bytes: &[u8],
@@ -69,6 +83,18 @@ pub(crate) fn parse_with_spans(
     warnings: &mut Vec<String>,
     spans: &mut Vec<PrimitiveSpan>,
 ) -> Result<Mesh, Error> {
+    parse_drawn(path, bytes, companions, limits, warnings, spans, false).map(|(mesh, _)| mesh)
+}
+
+fn parse_drawn(
+    path: &Path,
+    bytes: &[u8],
+    companions: Companions<'_>,
+    limits: &Limits,
+    warnings: &mut Vec<String>,
+    spans: &mut Vec<PrimitiveSpan>,
+    read_motion: bool,
+) -> Result<(Mesh, Option<InputMotion>), Error> {
     with_document(
         path,
         bytes,
@@ -84,7 +110,14 @@ pub(crate) fn parse_with_spans(
             // Each primitive is read once, however many nodes draw it; instances only transform it.
             let mut read: HashMap<(usize, usize), Option<Mesh>> = HashMap::new();
             let mut mesh = Mesh::default();
-            for (mesh_index, transform) in instances {
+            let mut motion =
+                read_motion.then(|| motion::MotionReader::new(root, accessors, limits.max_joints));
+            for placed in instances {
+                let Placed {
+                    mesh: mesh_index,
+                    world: transform,
+                    ..
+                } = placed;
                 let Some(m) = root.meshes.get(mesh_index) else {
                     return Err(invalid(format!(
                         "a node refers to mesh {mesh_index}, which does not exist"
@@ -113,9 +146,26 @@ pub(crate) fn parse_with_spans(
                             mirrored: transform.determinant() < 0.0,
                         });
                     }
+                    if let Some(motion) = &mut motion {
+                        motion
+                            .add(&motion::Drawn {
+                                mesh_index,
+                                primitive,
+                                node: placed.node,
+                                world: transform,
+                                gpu_instanced: placed.gpu_instanced,
+                                first_vertex: mesh.positions.len() as u32,
+                                vertices: local.positions.len(),
+                            })
+                            .map_err(|e| invalid(format!("mesh {mesh_index} primitive {p}: {e}")))?;
+                    }
                     mesh.append(transformed(local, transform));
                 }
             }
+            let motion = match motion {
+                Some(motion) => motion.finish(warnings).map_err(invalid)?,
+                None => None,
+            };
             if mesh.triangles.is_empty() {
                 let drawn: Vec<usize> = read.keys().map(|&(m, _)| m).collect();
                 if let Some(held) = non_triangle_modes(root, &drawn) {
@@ -127,7 +177,7 @@ pub(crate) fn parse_with_spans(
                     });
                 }
             }
-            Ok(mesh)
+            Ok((mesh, motion))
         },
     )
 }
@@ -178,7 +228,7 @@ pub(crate) fn parse_scene(
                 format: "glTF",
                 message,
             };
-            let mut used: Vec<usize> = instances.iter().map(|&(m, _)| m).collect();
+            let mut used: Vec<usize> = instances.iter().map(|p| p.mesh).collect();
             used.sort_unstable();
             used.dedup();
             let mut meshes = Vec::with_capacity(used.len());
@@ -201,7 +251,7 @@ pub(crate) fn parse_scene(
             }
             let instances = instances
                 .into_iter()
-                .filter_map(|(m, transform)| used.binary_search(&m).ok().map(|i| (i, transform)))
+                .filter_map(|p| used.binary_search(&p.mesh).ok().map(|i| (i, p.world)))
                 .collect();
             Ok(SceneMeshes { meshes, instances })
         },
@@ -219,7 +269,7 @@ fn with_document<R>(
     read: impl FnOnce(
         &json::Root,
         &Accessors<'_>,
-        Vec<(usize, Mat4)>,
+        Vec<Placed>,
         &mut Vec<String>,
     ) -> Result<R, Error>,
 ) -> Result<R, Error> {
@@ -264,9 +314,19 @@ fn with_document<R>(
             (Some(count), Some((index, node))) => {
                 let local = gpu_instancing::transforms(&accessors, node, count)
                     .map_err(|e| invalid(format!("node {index}: {e}")))?;
-                instances.extend(local.into_iter().map(|t| (n.mesh, n.world * t)));
+                instances.extend(local.into_iter().map(|t| Placed {
+                    mesh: n.mesh,
+                    world: n.world * t,
+                    node: Some(index),
+                    gpu_instanced: true,
+                }));
             }
-            _ => instances.push((n.mesh, n.world)),
+            _ => instances.push(Placed {
+                mesh: n.mesh,
+                world: n.world,
+                node: n.node,
+                gpu_instanced: false,
+            }),
         }
     }
     read(root, &accessors, instances, warnings)

@@ -32,17 +32,20 @@ const PARALLEL_TRIANGLES: usize = 1 << 15;
 impl Asset {
     /// Decodes and validates an asset.
     ///
-    /// Reads format versions 1 to 5 (a version-1 file has no intersection edges; the clusters of a
+    /// Reads format versions 1 to 6 (a version-1 file has no intersection edges; the clusters of a
     /// version-1 or 2 file are computed here; from version 4 the render positions may be derived
     /// from the topology positions and render vertex counts; version 5 may code its sections, see
-    /// [`compact`](super::compact)).
+    /// [`compact`](super::compact); version 6 adds the sections of animated assets, [`motion`](super::motion)).
     /// Rejects, with a typed error: bad magic, another format version, a header or section table
     /// that does not fit the file, sections whose lengths disagree with each other, coded sections
     /// that do not decode or declare more than the file can hold, indices out of range, non-finite
     /// floats, unknown flag bits, next-index rings that are not closed, cap heads without rings,
     /// vertices with more kept edge ends than [`MAX_RING`](super::MAX_RING) and intersection
     /// polylines that are not chained, and clusters that are not one per 64 edges or whose numbers
-    /// are not finite, non-negative radii and cosines within [-1, 1].
+    /// are not finite, non-negative radii and cosines within [-1, 1]; and, in an animated asset
+    /// (version 6), joints or weights that are not one per vertex, joint indices past the rig's
+    /// joints, weights that are negative, not finite or do not sum to 1, morph entries out of range
+    /// or out of order, and a rig that breaks [`Rig::validate`](crate::rig::Rig::validate).
     /// Allocates at most about twice the input's size for an uncompressed file, and a fixed multiple
     /// (below 200) of it for a compact one. Never panics.
     pub fn decode(bytes: &[u8]) -> Result<Asset, DecodeError> {
@@ -300,6 +303,7 @@ fn decode(
         intersection_segments: vertices.intersection_segments,
         intersection_starts: vertices.intersection_starts,
         edge_clusters: Vec::new(),
+        motion: super::motion::read(&|kind| sections.get(kind), shape.topology_vertices)?,
     };
     // Rings decoded from their orders are cycles within bounds by construction.
     if sections.coded(SectionKind::RingOrders).is_none() {

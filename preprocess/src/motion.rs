@@ -1,0 +1,126 @@
+//! Skins and morph targets from the loaded vertices to the welded ones (issue 41).
+//!
+//! A loader gives joints, weights and morph deltas per *input* vertex; the asset keeps them per
+//! topology vertex. Welding uses the bind pose, so corners that coincide there are one vertex:
+//! each topology vertex takes the data of the first input vertex welded into it, and the bake
+//! counts the welded vertices whose data differ (their seam would open in motion, the edges follow
+//! the first).
+
+use chamfer_runtime::asset::Motion;
+use chamfer_runtime::rig::{INFLUENCES, Rig};
+
+/// Motion per loaded vertex, as a loader reads it.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct InputMotion {
+    /// Per input vertex, four joints of [`Rig::joints`]; empty when nothing is skinned.
+    pub joints: Vec<[u16; INFLUENCES]>,
+    /// Per input vertex, their weights (summing to 1, or all 0 for a vertex no joint moves).
+    pub weights: Vec<[f32; INFLUENCES]>,
+    /// Per morph target, the input vertices it moves and by how much (any order).
+    pub targets: Vec<Vec<(u32, [f32; 3])>>,
+    /// Nodes, joints, morph weights and animations.
+    pub rig: Rig,
+}
+
+impl InputMotion {
+    /// True when the file moves nothing.
+    pub fn is_empty(&self) -> bool {
+        self.joints.is_empty() && self.targets.is_empty() && self.rig.is_empty()
+    }
+}
+
+/// `input` per topology vertex: `input_vertex_map[i]` is input vertex `i`'s topology vertex, of
+/// `vertices`. Returns the motion and how many input vertices were welded into a vertex whose
+/// first input vertex has other joints, weights or morph deltas.
+pub fn attach(input: InputMotion, input_vertex_map: &[u32], vertices: usize) -> (Motion, usize) {
+    if input.is_empty() {
+        return (Motion::default(), 0);
+    }
+    const NONE: u32 = u32::MAX;
+    // The first input vertex of each topology vertex.
+    let mut first = vec![NONE; vertices];
+    for (i, &v) in input_vertex_map.iter().enumerate() {
+        if first[v as usize] == NONE {
+            first[v as usize] = i as u32;
+        }
+    }
+    let mut differ = vec![false; input_vertex_map.len()];
+    let (mut joints, mut weights) = (Vec::new(), Vec::new());
+    if !input.joints.is_empty() {
+        let of = |v: usize| first[v] as usize;
+        joints = (0..vertices).map(|v| input.joints[of(v)]).collect();
+        weights = (0..vertices).map(|v| input.weights[of(v)]).collect();
+        for (i, &v) in input_vertex_map.iter().enumerate() {
+            let r = of(v as usize);
+            differ[i] |= input.joints[i] != input.joints[r] || input.weights[i] != input.weights[r];
+        }
+    }
+    let mut morph_starts = Vec::with_capacity(input.targets.len());
+    let (mut morph_vertices, mut morph_deltas) = (Vec::new(), Vec::new());
+    for target in input.targets {
+        morph_starts.push(morph_vertices.len() as u32);
+        // A delta of a vertex that is not its topology vertex's first is not kept; it differs from
+        // the first's unless that one moves by the same amount.
+        let mut kept: Vec<(u32, [f32; 3])> = Vec::with_capacity(target.len());
+        let mut moved = std::collections::HashMap::new();
+        for &(i, delta) in &target {
+            let v = input_vertex_map[i as usize];
+            if first[v as usize] == i {
+                kept.push((v, delta));
+            }
+            moved.insert(i, delta);
+        }
+        for (i, &v) in input_vertex_map.iter().enumerate() {
+            let mine = moved.get(&(i as u32)).copied().unwrap_or([0.0; 3]);
+            let theirs = moved.get(&first[v as usize]).copied().unwrap_or([0.0; 3]);
+            differ[i] |= mine != theirs;
+        }
+        kept.sort_unstable_by_key(|&(v, _)| v);
+        for (v, delta) in kept {
+            morph_vertices.push(v);
+            morph_deltas.push(delta);
+        }
+    }
+    let motion = Motion {
+        joints,
+        weights,
+        morph_starts,
+        morph_vertices,
+        morph_deltas,
+        rig: input.rig,
+    };
+    (motion, differ.iter().filter(|&&d| d).count())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn welded_vertices_take_their_first_input_vertex_and_differences_are_counted() {
+        let rig = Rig {
+            morph_weights: vec![0.0],
+            morph_names: vec![String::new()],
+            ..Rig::default()
+        };
+        let input = InputMotion {
+            joints: vec![[0; 4], [1, 0, 0, 0], [1, 0, 0, 0]],
+            weights: vec![[1.0, 0.0, 0.0, 0.0]; 3],
+            // Input vertex 2 is welded into vertex 0 (first input vertex 1) and moves like it.
+            targets: vec![vec![(2, [1.0, 0.0, 0.0]), (1, [1.0, 0.0, 0.0]), (0, [0.0, 2.0, 0.0])]],
+            rig,
+        };
+        let (motion, differ) = attach(input, &[1, 0, 0], 2);
+        assert_eq!(motion.joints, [[1, 0, 0, 0], [0; 4]]);
+        assert_eq!(motion.morph_vertices, [0, 1]);
+        assert_eq!(motion.morph_deltas, [[1.0, 0.0, 0.0], [0.0, 2.0, 0.0]]);
+        assert_eq!(differ, 0);
+        let input = InputMotion {
+            joints: vec![[0; 4], [1, 0, 0, 0], [2, 0, 0, 0]],
+            weights: vec![[1.0, 0.0, 0.0, 0.0]; 3],
+            targets: Vec::new(),
+            rig: Rig::default(),
+        };
+        assert_eq!(attach(input, &[1, 0, 0], 2).1, 1);
+    }
+}
