@@ -38,7 +38,10 @@ fn a_skinned_cylinder_bends_as_the_skinning_formula_says() {
     let (model, _) = rigged::cylinder();
     for interpolation in ["LINEAR", "STEP", "CUBICSPLINE"] {
         // The node's offset places the bind pose; skinning ignores it (glTF 2.0 §3.7.3.3).
-        let baked = bake("cylinder.glb", &rigged::skinned_cylinder(interpolation, [3.0, 0.0, 0.0]));
+        let baked = bake(
+            "cylinder.glb",
+            &rigged::skinned_cylinder(interpolation, [3.0, 0.0, 0.0]),
+        );
         let motion = &baked.asset.motion;
         assert_eq!(motion.rig.joints.len(), 2, "{interpolation}");
         assert_eq!(motion.joints.len(), baked.asset.topology_positions.len());
@@ -64,7 +67,10 @@ fn a_skinned_cylinder_bends_as_the_skinning_formula_says() {
         // A control: the bent pose is not the rest pose (the comparison can fail).
         let bent = Pose::sampled(&motion.rig, 0, 1.0).expect("animation 0");
         let rest = worst(&baked, &bent, |i| model[i].map(f64::from));
-        assert!(rest > 0.5, "{interpolation}: bending moved nothing ({rest})");
+        assert!(
+            rest > 0.5,
+            "{interpolation}: bending moved nothing ({rest})"
+        );
     }
 }
 
@@ -84,7 +90,15 @@ fn a_morph_cube_rises_by_its_weight_and_keeps_its_rest_weight() {
         let input = &input;
         move |i: usize| {
             let p: [f64; 3] = input[i];
-            [p[0], if p[1] == 1.0 { 1.0 + weight * rise } else { p[1] }, p[2]]
+            [
+                p[0],
+                if p[1] == 1.0 {
+                    1.0 + weight * rise
+                } else {
+                    p[1]
+                },
+                p[2],
+            ]
         }
     };
     let rest = Pose::rest(&motion.rig);
@@ -106,9 +120,24 @@ fn cube_input(baked: &Baked) -> Vec<[f64; 3]> {
 
 #[test]
 fn an_animated_asset_survives_encoding_and_a_still_one_has_no_motion_sections() {
-    let baked = bake("cylinder.glb", &rigged::skinned_cylinder("LINEAR", [0.0; 3]));
+    let baked = bake(
+        "cylinder.glb",
+        &rigged::skinned_cylinder("LINEAR", [0.0; 3]),
+    );
     let decoded = Asset::decode(&baked.asset.encode_to_vec()).expect("decodes");
     assert_eq!(decoded.motion, baked.asset.motion);
+    // A compact file keeps the motion sections raw.
+    let compact = baked
+        .asset
+        .encode_compact_to_vec(
+            &chamfer_runtime::asset::CompactOptions::LOSSLESS,
+            &chamfer_preprocess::compact::Meshopt,
+        )
+        .expect("encodes");
+    assert_eq!(
+        Asset::decode(&compact).expect("decodes").motion,
+        baked.asset.motion
+    );
     let cube = bake("cube.glb", &rigged::morph_cube(0.0));
     let decoded = Asset::decode(&cube.asset.encode_to_vec()).expect("decodes");
     assert_eq!(decoded.motion, cube.asset.motion);
@@ -149,8 +178,12 @@ fn broken_cylinder(change: impl FnOnce(&mut Value, &mut Vec<u8>)) -> Vec<u8> {
 
 /// Where accessor `a`'s element `e` component `k` (of `size` bytes each, `n` per element) lies.
 fn at(document: &Value, a: usize, e: usize, k: usize, n: usize, size: usize) -> usize {
-    let view = document["accessors"][a]["bufferView"].as_u64().expect("view") as usize;
-    let start = document["bufferViews"][view]["byteOffset"].as_u64().expect("offset") as usize;
+    let view = document["accessors"][a]["bufferView"]
+        .as_u64()
+        .expect("view") as usize;
+    let start = document["bufferViews"][view]["byteOffset"]
+        .as_u64()
+        .expect("offset") as usize;
     start + (e * n + k) * size
 }
 
@@ -165,7 +198,10 @@ fn refused(glb: &[u8], limits: Limits) -> String {
         Ok(_) => panic!("a broken file was baked"),
         Err(e) => {
             let text = e.to_string();
-            assert!(text.contains("broken.glb"), "the error names the file: {text}");
+            assert!(
+                text.contains("broken.glb"),
+                "the error names the file: {text}"
+            );
             assert!(!matches!(e, Error::Read { .. }), "{text}");
             text
         }
@@ -183,7 +219,10 @@ fn hostile_weights_that_are_nan_negative_or_do_not_sum_to_one() {
     assert!(refused(&negative, Limits::DEFAULT).contains("negative"));
     let short = broken_cylinder(|d, bin| set_f32(bin, at(d, WEIGHTS, 5, 0, 4, 4), 0.5));
     let text = refused(&short, Limits::DEFAULT);
-    assert!(text.contains("sum to") && text.contains("vertex 5"), "{text}");
+    assert!(
+        text.contains("sum to") && text.contains("vertex 5"),
+        "{text}"
+    );
 }
 
 #[test]
@@ -193,7 +232,10 @@ fn hostile_joint_indices_out_of_range() {
         bin[at..at + 2].copy_from_slice(&9u16.to_le_bytes());
     });
     let text = refused(&glb, Limits::DEFAULT);
-    assert!(text.contains("joint 9") && text.contains("2 joints"), "{text}");
+    assert!(
+        text.contains("joint 9") && text.contains("2 joints"),
+        "{text}"
+    );
 }
 
 #[test]
@@ -202,7 +244,10 @@ fn hostile_a_skin_whose_inverse_bind_matrices_are_missing_or_short() {
     assert!(refused(&missing, Limits::DEFAULT).contains("accessor 99 does not exist"));
     let short = broken_cylinder(|d, _| d["accessors"][INVERSE_BINDS]["count"] = 1.into());
     let text = refused(&short, Limits::DEFAULT);
-    assert!(text.contains("2 joints but 1 inverse bind matrices"), "{text}");
+    assert!(
+        text.contains("2 joints but 1 inverse bind matrices"),
+        "{text}"
+    );
     // None at all is valid glTF: identities.
     let none = broken_cylinder(|d, _| {
         if let Some(skin) = d["skins"][0].as_object_mut() {
@@ -218,19 +263,51 @@ fn hostile_morph_targets_of_a_different_length() {
     document["accessors"][2]["count"] = 23.into();
     document["accessors"][2]["sparse"]["count"] = 3.into();
     let text = refused(&rigged::glb(&document, &bin), Limits::DEFAULT);
-    assert!(text.contains("23 positions") && text.contains("24 vertices"), "{text}");
+    assert!(
+        text.contains("23 positions") && text.contains("24 vertices"),
+        "{text}"
+    );
 }
 
 #[test]
 fn hostile_animations_with_non_increasing_times() {
     let glb = broken_cylinder(|d, bin| set_f32(bin, at(d, TIMES, 1, 0, 1, 4), 0.0));
     let text = refused(&glb, Limits::DEFAULT);
-    assert!(text.contains("animation 0 channel 0") && text.contains("not increasing"), "{text}");
+    assert!(
+        text.contains("animation 0 channel 0") && text.contains("not increasing"),
+        "{text}"
+    );
 }
 
 #[test]
 fn hostile_more_joints_than_the_limit() {
     let glb = rigged::skinned_cylinder("LINEAR", [0.0; 3]);
     let text = refused(&glb, Limits::DEFAULT.with_max_joints(1));
-    assert!(text.contains("2 joints") && text.contains("--max-joints"), "{text}");
+    assert!(
+        text.contains("2 joints") && text.contains("--max-joints"),
+        "{text}"
+    );
+}
+
+/// The generated files, kept in `fixtures/shapes/` for the fuzz harness and the other front ends'
+/// tests; `CHAMFER_WRITE_FIXTURES=1` rewrites them.
+#[test]
+fn the_rigged_fixtures_are_what_the_generator_writes() {
+    for (name, bytes) in [
+        (
+            "shapes/cylinder-skinned.glb",
+            rigged::skinned_cylinder("LINEAR", [0.0; 3]),
+        ),
+        ("shapes/cube-morph.glb", rigged::morph_cube(0.0)),
+    ] {
+        let path = chamfer_tests::fixture(name);
+        if std::env::var_os("CHAMFER_WRITE_FIXTURES").is_some() {
+            std::fs::write(&path, &bytes).expect("write fixture");
+        }
+        let stored = std::fs::read(&path).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert!(
+            stored == bytes,
+            "{name} differs from the generator's output"
+        );
+    }
 }

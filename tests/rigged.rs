@@ -39,7 +39,14 @@ pub struct Buffer {
 impl Buffer {
     /// Appends `values` (little-endian, `component` a glTF component type) as one accessor of
     /// `count` elements of type `kind`; returns its index.
-    pub fn add(&mut self, bytes: &[u8], component: u32, count: usize, kind: &str, extra: serde_json::Value) -> usize {
+    pub fn add(
+        &mut self,
+        bytes: &[u8],
+        component: u32,
+        count: usize,
+        kind: &str,
+        extra: serde_json::Value,
+    ) -> usize {
         while self.bytes.len() % 4 != 0 {
             self.bytes.push(0);
         }
@@ -65,7 +72,11 @@ impl Buffer {
 
     /// Positions, with the min and max glTF requires.
     pub fn positions(&mut self, positions: &[[f32; 3]]) -> usize {
-        let bytes: Vec<u8> = positions.iter().flatten().flat_map(|v| v.to_le_bytes()).collect();
+        let bytes: Vec<u8> = positions
+            .iter()
+            .flatten()
+            .flat_map(|v| v.to_le_bytes())
+            .collect();
         let (mut lo, mut hi) = ([f32::MAX; 3], [f32::MIN; 3]);
         for p in positions {
             for k in 0..3 {
@@ -73,7 +84,13 @@ impl Buffer {
                 hi[k] = hi[k].max(p[k]);
             }
         }
-        self.add(&bytes, 5126, positions.len(), "VEC3", json!({"min": lo, "max": hi}))
+        self.add(
+            &bytes,
+            5126,
+            positions.len(),
+            "VEC3",
+            json!({"min": lo, "max": hi}),
+        )
     }
 
     /// `u16` values of type `kind` (`n` numbers each).

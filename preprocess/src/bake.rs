@@ -13,9 +13,8 @@ use web_time::Instant;
 
 use crate::mesh::{Mark, Mesh, MeshError};
 use crate::{
-    motion,
     BakeOptions, Companions, Error, adjacency, caps, classify, degenerate, intersections, load,
-    mesh_order, normals, radii, stitch, weld,
+    mesh_order, motion, normals, radii, stitch, weld,
 };
 use chamfer_runtime::asset::corners::VertexCorners;
 

@@ -107,7 +107,11 @@ mod tests {
             joints: vec![[0; 4], [1, 0, 0, 0], [1, 0, 0, 0]],
             weights: vec![[1.0, 0.0, 0.0, 0.0]; 3],
             // Input vertex 2 is welded into vertex 0 (first input vertex 1) and moves like it.
-            targets: vec![vec![(2, [1.0, 0.0, 0.0]), (1, [1.0, 0.0, 0.0]), (0, [0.0, 2.0, 0.0])]],
+            targets: vec![vec![
+                (2, [1.0, 0.0, 0.0]),
+                (1, [1.0, 0.0, 0.0]),
+                (0, [0.0, 2.0, 0.0]),
+            ]],
             rig,
         };
         let (motion, differ) = attach(input, &[1, 0, 0], 2);

@@ -820,6 +820,8 @@ fn fuzz_glb() {
     let seeds = seeds(&[
         "shapes/cube-marked-extras.glb",
         "shapes/two-materials.glb",
+        "shapes/cylinder-skinned.glb",
+        "shapes/cube-morph.glb",
         "broken/truncated.glb",
     ]);
     run("glb", 4, seeds, mutate_glb, load_and_bake);
@@ -865,6 +867,54 @@ fn fuzz_asset_decode() {
     })
     .collect();
     run("asset", 5, seeds, mutate_asset, decode_round_trip);
+}
+
+/// Damages an animated asset inside its motion sections (skin joints and weights, morph targets,
+/// the rig), found through its own section table: byte-level damage to the whole file rarely
+/// reaches them intact enough to test their checks.
+fn mutate_motion(bytes: &mut Vec<u8>, rng: &mut Rng) {
+    let motion: Vec<(usize, usize)> = Asset::decode(bytes)
+        .map(|a| {
+            a.header
+                .sections
+                .iter()
+                .filter(|s| s.kind >= SectionKind::SkinJoints as u32 && s.length >= 4)
+                .map(|s| (s.offset as usize, s.length as usize))
+                .collect()
+        })
+        .unwrap_or_default();
+    if motion.is_empty() || rng.below(8) == 0 {
+        return mutate_asset(bytes, rng);
+    }
+    let (start, length) = *rng.pick(&motion);
+    let at = start + rng.below(length.saturating_sub(3).max(1));
+    match rng.below(3) {
+        0 => bytes[at] ^= 1 << rng.below(8),
+        1 => bytes[at] = rng.next() as u8,
+        _ => {
+            let end = (at + 4).min(start + length);
+            let word = rng.pick(WORDS).to_le_bytes();
+            bytes[at..end].copy_from_slice(&word[..end - at]);
+        }
+    }
+}
+
+#[test]
+fn fuzz_motion_decode() {
+    let seeds: Vec<Seed> = ["shapes/cylinder-skinned.glb", "shapes/cube-morph.glb"]
+        .iter()
+        .map(|name| {
+            let path = fixture(name);
+            let bytes = std::fs::read(&path).expect("read");
+            let baked = bake_bytes(&path, &bytes, &BakeOptions::DEFAULT).expect("seed bakes");
+            assert!(!baked.asset.motion.is_empty(), "{name} moves");
+            Seed {
+                name: format!("{name}.chamfer").replace('/', "-"),
+                bytes: baked.asset.encode_to_vec(),
+            }
+        })
+        .collect();
+    run("motion", 12, seeds, mutate_motion, decode_round_trip);
 }
 
 /// Damages a compact asset inside one of its coded sections (found through its own section table

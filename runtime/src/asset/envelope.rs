@@ -84,9 +84,9 @@ fn describe(error: &bincode::error::DecodeError, what: &str, limit: usize) -> St
         E::UnexpectedEnd { additional } => {
             format!("the {what} ends {additional} bytes before its last field")
         }
-        E::LimitExceeded => format!(
-            "a length inside the {what} would take it past the {limit}-byte {what} limit"
-        ),
+        E::LimitExceeded => {
+            format!("a length inside the {what} would take it past the {limit}-byte {what} limit")
+        }
         E::Utf8 { .. } => format!("a text field of the {what} is not valid UTF-8"),
         E::OutsideUsizeRange(n) => format!("a length inside the {what} ({n}) is out of range"),
         E::InvalidBooleanValue(b) => format!("a yes/no field of the {what} holds {b}"),

@@ -80,7 +80,9 @@ impl Motion {
             }
         }
         if self.is_skinned() {
-            for (p, (joints, weights)) in posed.iter_mut().zip(self.joints.iter().zip(&self.weights)) {
+            for (p, (joints, weights)) in
+                posed.iter_mut().zip(self.joints.iter().zip(&self.weights))
+            {
                 *p = skinned(*p, joints, weights, &pose.joints);
             }
         }
@@ -102,7 +104,12 @@ impl Motion {
 }
 
 /// `p` moved by its joints: `Σ wᵢ · Jᵢ · p`, or `p` itself when all weights are 0.
-fn skinned(p: Vec3, joints: &[u16; INFLUENCES], weights: &[f32; INFLUENCES], matrices: &[Mat4]) -> Vec3 {
+fn skinned(
+    p: Vec3,
+    joints: &[u16; INFLUENCES],
+    weights: &[f32; INFLUENCES],
+    matrices: &[Mat4],
+) -> Vec3 {
     if weights.iter().all(|&w| w == 0.0) {
         return p;
     }
@@ -127,14 +134,20 @@ pub(super) fn read<'a>(
         position: 0,
         reason,
     })?;
-    let joints: Vec<[u16; INFLUENCES]> = elements(section(SectionKind::SkinJoints), SectionKind::SkinJoints)?;
-    let weights: Vec<[f32; INFLUENCES]> = elements(section(SectionKind::SkinWeights), SectionKind::SkinWeights)?;
+    let joints: Vec<[u16; INFLUENCES]> =
+        elements(section(SectionKind::SkinJoints), SectionKind::SkinJoints)?;
+    let weights: Vec<[f32; INFLUENCES]> =
+        elements(section(SectionKind::SkinWeights), SectionKind::SkinWeights)?;
     check_skin(&joints, &weights, vertices, rig.joints.len())?;
 
-    let morph_starts: Vec<u32> = elements(section(SectionKind::MorphStarts), SectionKind::MorphStarts)?;
-    let morph_vertices: Vec<u32> =
-        elements(section(SectionKind::MorphVertices), SectionKind::MorphVertices)?;
-    let morph_deltas: Vec<[f32; 3]> = elements(section(SectionKind::MorphDeltas), SectionKind::MorphDeltas)?;
+    let morph_starts: Vec<u32> =
+        elements(section(SectionKind::MorphStarts), SectionKind::MorphStarts)?;
+    let morph_vertices: Vec<u32> = elements(
+        section(SectionKind::MorphVertices),
+        SectionKind::MorphVertices,
+    )?;
+    let morph_deltas: Vec<[f32; 3]> =
+        elements(section(SectionKind::MorphDeltas), SectionKind::MorphDeltas)?;
     let motion = Motion {
         joints,
         weights,
@@ -153,7 +166,10 @@ fn elements<T: bytemuck::Pod>(bytes: &[u8], kind: SectionKind) -> Result<Vec<T>,
     if !bytes.len().is_multiple_of(size) {
         return Err(length_error(
             kind,
-            format!("{} bytes is not a whole number of {size}-byte elements", bytes.len()),
+            format!(
+                "{} bytes is not a whole number of {size}-byte elements",
+                bytes.len()
+            ),
         ));
     }
     // Copied element by element: the file's bytes need not be aligned for `T`.
@@ -216,7 +232,11 @@ fn check_skin(
             });
         }
         if w.iter().any(|&x| x < 0.0) {
-            return Err(invalid(SectionKind::SkinWeights, v, format!("negative weight in {w:?}")));
+            return Err(invalid(
+                SectionKind::SkinWeights,
+                v,
+                format!("negative weight in {w:?}"),
+            ));
         }
         let sum: f32 = w.iter().sum();
         if sum != 0.0 && (sum - 1.0).abs() > WEIGHT_SUM_TOLERANCE {
@@ -238,20 +258,30 @@ fn check_morphs(motion: &Motion, vertices: usize) -> Result<(), DecodeError> {
     if starts.len() != targets {
         return Err(length_error(
             SectionKind::MorphStarts,
-            format!("{} targets, the rig has {targets} morph weights", starts.len()),
+            format!(
+                "{} targets, the rig has {targets} morph weights",
+                starts.len()
+            ),
         ));
     }
     let entries = motion.morph_vertices.len();
     if motion.morph_deltas.len() != entries {
         return Err(length_error(
             SectionKind::MorphDeltas,
-            format!("{} deltas for {entries} morph vertices", motion.morph_deltas.len()),
+            format!(
+                "{} deltas for {entries} morph vertices",
+                motion.morph_deltas.len()
+            ),
         ));
     }
     if let Some(&first) = starts.first()
         && first != 0
     {
-        return Err(invalid(SectionKind::MorphStarts, 0, format!("the first target starts at {first}, not 0")));
+        return Err(invalid(
+            SectionKind::MorphStarts,
+            0,
+            format!("the first target starts at {first}, not 0"),
+        ));
     }
     if let Some(t) = (0..starts.len()).find(|&t| {
         let end = starts.get(t + 1).map_or(entries as u64, |&s| u64::from(s));
@@ -263,7 +293,11 @@ fn check_morphs(motion: &Motion, vertices: usize) -> Result<(), DecodeError> {
             format!("target {t}'s entries do not lie in order within the {entries} entries"),
         ));
     }
-    if let Some(d) = motion.morph_deltas.iter().position(|d| !d.iter().all(|x| x.is_finite())) {
+    if let Some(d) = motion
+        .morph_deltas
+        .iter()
+        .position(|d| !d.iter().all(|x| x.is_finite()))
+    {
         return Err(DecodeError::NonFinite {
             kind: SectionKind::MorphDeltas,
             position: d as u64,

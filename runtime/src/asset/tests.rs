@@ -770,3 +770,138 @@ fn ring_orders_without_corner_coded_edges_are_refused() {
         "{error}"
     );
 }
+
+/// The tetrahedron with a two-joint skin (vertex 3 on joint 1), a morph target moving vertices 1
+/// and 3, and an animation of the second joint.
+fn animated_tetrahedron() -> Asset {
+    use crate::rig::{Animation, Channel, Interpolation, Joint, Node, Rig, Target, Transform};
+    let rig = Rig {
+        nodes: vec![
+            Node::default(),
+            Node {
+                name: "tip".into(),
+                parent: Some(0),
+                rest: Transform::IDENTITY,
+            },
+        ],
+        joints: (0..2)
+            .map(|node| Joint {
+                node,
+                inverse_bind: glam::Mat4::IDENTITY.to_cols_array(),
+            })
+            .collect(),
+        morph_weights: vec![0.0],
+        morph_names: vec!["lift".into()],
+        animations: vec![Animation {
+            name: "nod".into(),
+            channels: vec![Channel {
+                target: Target::Translation(1),
+                interpolation: Interpolation::Linear,
+                times: vec![0.0, 1.0],
+                values: vec![0.0, 0.0, 0.0, 0.0, 0.0, 1.0],
+            }],
+        }],
+    };
+    Asset {
+        motion: Motion {
+            joints: vec![[0; 4], [0; 4], [0; 4], [1, 0, 0, 0]],
+            weights: vec![[1.0, 0.0, 0.0, 0.0]; 4],
+            morph_starts: vec![0],
+            morph_vertices: vec![1, 3],
+            morph_deltas: vec![[0.0, 0.5, 0.0], [0.0, 0.5, 0.0]],
+            rig,
+        },
+        ..tetrahedron()
+    }
+}
+
+#[test]
+fn animated_assets_round_trip_and_pose() {
+    let asset = animated_tetrahedron();
+    let back = decoded(&asset);
+    assert_eq!(back.motion, asset.motion);
+    let rig = &back.motion.rig;
+    let pose = crate::rig::Pose::sampled(rig, 0, 0.5).expect("animation 0");
+    let mut weighted = pose.clone();
+    weighted.weights = vec![1.0];
+    let posed = back
+        .motion
+        .pose_positions(&back.topology_positions, &weighted);
+    assert_eq!(
+        posed[3],
+        [0.0, 0.5, 1.5],
+        "lifted by the target, moved by joint 1"
+    );
+    assert_eq!(posed[1], [1.0, 0.5, 0.0], "lifted only");
+    assert_eq!(posed[0], back.topology_positions[0]);
+}
+
+#[test]
+fn broken_motion_sections_are_refused() {
+    let refuse = |change: &dyn Fn(&mut Motion), expected: &str| {
+        let mut asset = animated_tetrahedron();
+        change(&mut asset.motion);
+        let error = Asset::decode(&asset.encode_to_vec()).expect_err(expected);
+        let text = error.to_string();
+        assert!(text.contains(expected), "{expected}: {text}");
+    };
+    refuse(
+        &|m| m.joints[2][0] = 2,
+        "skin_joints: element 2 is 2, out of range",
+    );
+    refuse(
+        &|m| m.weights.truncate(3),
+        "3 entries for 4 topology vertices",
+    );
+    refuse(
+        &|m| m.weights[1] = [0.5, 0.0, 0.0, 0.0],
+        "weights sum to 0.5",
+    );
+    refuse(&|m| m.weights[1] = [1.5, -0.5, 0.0, 0.0], "negative weight");
+    refuse(
+        &|m| m.weights[1][0] = f32::NAN,
+        "skin_weights: element 1 is not a finite number",
+    );
+    refuse(
+        &|m| m.morph_vertices = vec![3, 1],
+        "target 0 lists vertex 1 after 3",
+    );
+    refuse(
+        &|m| m.morph_vertices[1] = 4,
+        "morph_vertices: element 1 is 4",
+    );
+    refuse(
+        &|m| m.morph_deltas.pop().map_or((), drop),
+        "1 deltas for 2 morph vertices",
+    );
+    refuse(
+        &|m| m.morph_starts = vec![1],
+        "the first target starts at 1",
+    );
+    refuse(
+        &|m| m.morph_starts.clear(),
+        "0 targets, the rig has 1 morph weights",
+    );
+    refuse(
+        &|m| m.rig.nodes[0].parent = Some(1),
+        "node 0 comes before its parent",
+    );
+    refuse(&|m| m.rig.joints[1].node = 7, "joint 1 refers to node 7");
+    refuse(
+        &|m| m.rig.animations[0].channels[0].times = vec![1.0, 1.0],
+        "animation 0 channel 0: key times are not increasing",
+    );
+    refuse(
+        &|m| m.rig.animations[0].channels[0].values.push(0.0),
+        "7 values for 2 keys of 3 numbers",
+    );
+    // A rig section that is not a rig at all.
+    let asset = animated_tetrahedron();
+    let garbage = vec![0xff; 40];
+    let mut bytes = Vec::new();
+    asset
+        .encode_with_sections(vec![(SectionKind::Rig, garbage)], &mut bytes)
+        .expect("encodes");
+    let text = Asset::decode(&bytes).expect_err("garbage rig").to_string();
+    assert!(text.starts_with("section rig:"), "{text}");
+}

@@ -231,7 +231,11 @@ impl Rig {
         self.animations
             .iter()
             .position(|a| a.name == name)
-            .or_else(|| name.parse().ok().filter(|&i: &usize| i < self.animations.len()))
+            .or_else(|| {
+                name.parse()
+                    .ok()
+                    .filter(|&i: &usize| i < self.animations.len())
+            })
     }
 
     /// Checks the rules [`sample`] and [`Pose`] rely on: parents before children, indices in
@@ -255,7 +259,10 @@ impl Rig {
         let nodes = self.nodes.len();
         for (i, joint) in self.joints.iter().enumerate() {
             if joint.node as usize >= nodes {
-                return Err(format!("joint {i} refers to node {}, of {nodes}", joint.node));
+                return Err(format!(
+                    "joint {i} refers to node {}, of {nodes}",
+                    joint.node
+                ));
             }
             if !joint.inverse_bind.iter().all(|x| x.is_finite()) {
                 return Err(format!("joint {i} has a non-finite inverse bind matrix"));

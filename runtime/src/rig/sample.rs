@@ -105,7 +105,12 @@ fn between(channel: &Channel, next: usize, time: f32, out: &mut [f32]) {
 mod tests {
     use super::*;
 
-    fn channel(target: Target, interpolation: Interpolation, times: &[f32], values: &[f32]) -> Channel {
+    fn channel(
+        target: Target,
+        interpolation: Interpolation,
+        times: &[f32],
+        values: &[f32],
+    ) -> Channel {
         Channel {
             target,
             interpolation,
@@ -173,9 +178,21 @@ mod tests {
 
     #[test]
     fn bad_keys_are_named() {
-        assert!(check_keys(&[0.0, 0.0], &[1.0, 2.0], 1).unwrap_err().contains("not increasing"));
-        assert!(check_keys(&[0.0], &[1.0, 2.0], 1).unwrap_err().contains("2 values"));
+        assert!(
+            check_keys(&[0.0, 0.0], &[1.0, 2.0], 1)
+                .unwrap_err()
+                .contains("not increasing")
+        );
+        assert!(
+            check_keys(&[0.0], &[1.0, 2.0], 1)
+                .unwrap_err()
+                .contains("2 values")
+        );
         assert!(check_keys(&[], &[], 1).unwrap_err().contains("no keys"));
-        assert!(check_keys(&[f32::NAN], &[1.0], 1).unwrap_err().contains("finite"));
+        assert!(
+            check_keys(&[f32::NAN], &[1.0], 1)
+                .unwrap_err()
+                .contains("finite")
+        );
     }
 }

@@ -71,7 +71,15 @@ pub(super) fn parse(
     limits: &Limits,
     warnings: &mut Vec<String>,
 ) -> Result<(Mesh, Option<InputMotion>), Error> {
-    parse_drawn(path, bytes, companions, limits, warnings, &mut Vec::new(), true)
+    parse_drawn(
+        path,
+        bytes,
+        companions,
+        limits,
+        warnings,
+        &mut Vec::new(),
+        true,
+    )
 }
 
 /// The flattened mesh alone, also listing each primitive's first instance.
@@ -157,7 +165,9 @@ fn parse_drawn(
                                 first_vertex: mesh.positions.len() as u32,
                                 vertices: local.positions.len(),
                             })
-                            .map_err(|e| invalid(format!("mesh {mesh_index} primitive {p}: {e}")))?;
+                            .map_err(|e| {
+                                invalid(format!("mesh {mesh_index} primitive {p}: {e}"))
+                            })?;
                     }
                     mesh.append(transformed(local, transform));
                 }
@@ -266,12 +276,7 @@ fn with_document<R>(
     companions: Companions<'_>,
     limits: &Limits,
     warnings: &mut Vec<String>,
-    read: impl FnOnce(
-        &json::Root,
-        &Accessors<'_>,
-        Vec<Placed>,
-        &mut Vec<String>,
-    ) -> Result<R, Error>,
+    read: impl FnOnce(&json::Root, &Accessors<'_>, Vec<Placed>, &mut Vec<String>) -> Result<R, Error>,
 ) -> Result<R, Error> {
     let invalid = |message: String| Error::Parse {
         path: path.to_owned(),

@@ -188,7 +188,8 @@ impl<'a> MotionReader<'a> {
                 _ => None,
             };
             let file = &self.root.nodes[node];
-            let (scale, rotation, translation) = local_transform(file).to_scale_rotation_translation();
+            let (scale, rotation, translation) =
+                local_transform(file).to_scale_rotation_translation();
             self.rig_node[node] = Some(self.rig.nodes.len() as u32);
             self.rig.nodes.push(Node {
                 name: file.name.clone().unwrap_or_default(),
@@ -214,7 +215,9 @@ impl<'a> MotionReader<'a> {
         }
         let matrix = inverse_bind.to_cols_array();
         if !matrix.iter().all(|x| x.is_finite()) {
-            return Err(format!("joint node {n}'s inverse bind matrix is not finite"));
+            return Err(format!(
+                "joint node {n}'s inverse bind matrix is not finite"
+            ));
         }
         let node = self.rig_node(n)?;
         let key = (node, matrix.map(f32::to_bits));
@@ -258,7 +261,9 @@ impl<'a> MotionReader<'a> {
         for (j, node) in skin.joints.iter().enumerate() {
             let n = node.value();
             if n >= self.root.nodes.len() {
-                return Err(format!("skin {skin_index}'s joint {j} is node {n}, which does not exist"));
+                return Err(format!(
+                    "skin {skin_index}'s joint {j} is node {n}, which does not exist"
+                ));
             }
             table.push(self.joint(n, inverse_binds[j] * world_inverse, drawn.world)?);
         }
@@ -363,9 +368,7 @@ impl<'a> MotionReader<'a> {
                 (None, None) => break,
                 (Some(j), Some(w)) => (j, w),
                 _ => {
-                    return Err(format!(
-                        "JOINTS_{set} and WEIGHTS_{set} must come together"
-                    ));
+                    return Err(format!("JOINTS_{set} and WEIGHTS_{set} must come together"));
                 }
             };
             let read = |name: &str, accessor: usize| -> Result<Vec<[f32; 4]>, String> {
@@ -544,8 +547,12 @@ impl<'a> MotionReader<'a> {
             .collect();
         let output = sampler.output.value();
         let values: Vec<f32> = match target.components() {
-            3 if !matches!(target, Target::Weights { .. }) => flat(self.accessors.read_vectors::<3>(output)),
-            4 if matches!(target, Target::Rotation(_)) => flat(self.accessors.read_vectors::<4>(output)),
+            3 if !matches!(target, Target::Weights { .. }) => {
+                flat(self.accessors.read_vectors::<3>(output))
+            }
+            4 if matches!(target, Target::Rotation(_)) => {
+                flat(self.accessors.read_vectors::<4>(output))
+            }
             _ => flat(self.accessors.read_vectors::<1>(output)),
         }
         .map_err(|e| format!("key values: {e}"))?;
