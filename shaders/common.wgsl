@@ -106,13 +106,6 @@ struct InstanceFrame {
 @group(0) @binding(1) var<storage, read> topology: array<f32>;
 @group(0) @binding(2) var<storage, read> edge_vertices: array<u32>;
 
-// Flat thread index of a 2D dispatch: a second row of workgroups is only used once the first is full
-// (MAX_GROUPS workgroups, see `workgroups` in pipelines.rs and args.wgsl), so rows have a fixed length.
-// (num_workgroups would do, but D3D12 leaves it 0 for indirect dispatches without wgpu's validation.)
-fn thread_index(id: vec3<u32>) -> u32 {
-    return id.y * (MAX_GROUPS * WORKGROUP) + id.x;
-}
-
 // A position outside the clip volume: every triangle made of it is dropped (thesis §8.3).
 const NOWHERE: vec4<f32> = vec4<f32>(0.0, 0.0, -1.0, 1.0);
 

@@ -125,7 +125,7 @@ fn bake_loaded(
         || path.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
     );
-    let mut baked = bake(loaded.mesh, &name, options).map_err(|e| match e {
+    let mut baked = bake_moving(loaded.mesh, loaded.motion.as_ref(), &name, options).map_err(|e| match e {
         Error::Mesh { source, .. } => Error::Mesh {
             path: path.to_owned(),
             source,
@@ -153,6 +153,18 @@ fn bake_loaded(
 /// Consumes the mesh so its arrays can be freed as soon as each step is done with them.
 /// The result depends only on the mesh and the options, never on the thread count.
 pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Error> {
+    bake_moving(mesh, None, source, options)
+}
+
+/// [`bake`] of a mesh that `motion` moves (per input vertex): edges between vertices that move
+/// apart are kept even where the rest pose is flat (see [`classify::classify_moving`]); the
+/// motion itself is attached by the caller.
+fn bake_moving(
+    mesh: Mesh,
+    motion: Option<&motion::InputMotion>,
+    source: &str,
+    options: &BakeOptions,
+) -> Result<Baked, Error> {
     options.validate()?;
     let mesh_error = |source_error| Error::Mesh {
         path: source.into(),
@@ -232,13 +244,16 @@ pub fn bake(mesh: Mesh, source: &str, options: &BakeOptions) -> Result<Baked, Er
     drop(materials);
     lap(&mut timings.stitch);
 
-    stats.edges = classify::classify(
+    let rigid = motion.map(|m| motion::rigid_groups(m, &input_vertex_map, positions.len()));
+    stats.edges = classify::classify_moving(
         &positions,
         &mut edges,
         &marks,
         options.coplanar_deg,
         options.crease_deg,
+        rigid.as_deref(),
     );
+    drop(rigid);
     stats.chamfer = radii::assign_radii(
         &positions,
         &mut edges,

@@ -87,6 +87,20 @@ pub fn classify(
     coplanar_deg: f32,
     crease_deg: f32,
 ) -> EdgeStats {
+    classify_moving(positions, edges, marks, coplanar_deg, crease_deg, None)
+}
+
+/// [`classify`] for a mesh that moves: `rigid[v]` numbers the group of vertices that always move
+/// together (the same joints and weights, no morph target), and an edge is dropped as coplanar
+/// only when its four vertices are in one group, since faces that bend apart can become a contour.
+pub fn classify_moving(
+    positions: &[Vec3],
+    edges: &mut Edges,
+    marks: &[Mark],
+    coplanar_deg: f32,
+    crease_deg: f32,
+    rigid: Option<&[u32]>,
+) -> EdgeStats {
     let mut stats = EdgeStats {
         total: edges.len() as u64,
         ..EdgeStats::default()
@@ -129,7 +143,9 @@ pub fn classify(
             // In f64: at a threshold of a thousandth of a degree, f32's rounding of the cross
             // products decides, and it depends on which face is face a (the triangle order).
             let (sin, cos) = dihedral_sin_cos_f64(positions, v, flags.contains(EdgeFlags::FLIPPED));
-            coplanar.reached_by_f64(sin, cos)
+            let bends = rigid.is_some_and(|group| v.iter().any(|&u| group[u as usize] != group[v[0] as usize]));
+            bends
+                || coplanar.reached_by_f64(sin, cos)
                 || flags.intersects(EdgeFlags::MARKED | EdgeFlags::MATERIAL)
         })
         .collect();

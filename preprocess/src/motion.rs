@@ -92,6 +92,42 @@ pub fn attach(input: InputMotion, input_vertex_map: &[u32], vertices: usize) -> 
     (motion, differ.iter().filter(|&&d| d).count())
 }
 
+/// Per topology vertex (`input_vertex_map[i]` is input vertex `i`'s, of `vertices`), a number
+/// shared by the vertices that always move together: the same joints and weights and no morph
+/// target (each vertex a morph target moves is a group of its own).
+pub fn rigid_groups(input: &InputMotion, input_vertex_map: &[u32], vertices: usize) -> Vec<u32> {
+    let mut morphed = vec![false; vertices];
+    for &(i, _) in input.targets.iter().flatten() {
+        morphed[input_vertex_map[i as usize] as usize] = true;
+    }
+    let mut first = vec![u32::MAX; vertices];
+    for (i, &v) in input_vertex_map.iter().enumerate().rev() {
+        first[v as usize] = i as u32;
+    }
+    let mut groups = std::collections::HashMap::new();
+    let mut next = 0u32;
+    (0..vertices)
+        .map(|v| {
+            let i = first[v] as usize;
+            let skin = match input.joints.get(i) {
+                Some(joints) => (*joints, input.weights[i].map(f32::to_bits)),
+                None => ([0; INFLUENCES], [0; INFLUENCES]),
+            };
+            let key = (!morphed[v]).then_some(skin);
+            match key {
+                Some(key) => *groups.entry(key).or_insert_with(|| {
+                    next += 1;
+                    next - 1
+                }),
+                None => {
+                    next += 1;
+                    next - 1
+                }
+            }
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -74,6 +74,10 @@ pub enum RenderError {
     /// A bug in the renderer: two of its parts disagree. Please report it with the message.
     #[error("internal error in the renderer (please report it): {0}")]
     Internal(String),
+    /// A pose that does not fit its asset's rig (another number of joints or morph targets, a
+    /// number that is not finite).
+    #[error("the pose does not fit the asset: {0}")]
+    BadPose(String),
     /// The asset cannot be drawn by this technique.
     #[error("{technique} cannot draw this asset: {why}")]
     Unsupported {

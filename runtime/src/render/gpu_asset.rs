@@ -71,6 +71,8 @@ pub struct GpuAsset {
     /// asset with chamfer edges; else a placeholder.
     pub(crate) corners: wgpu::Buffer,
     pub(crate) corner_count: u32,
+    /// The skin and morph targets of an animated asset ([`PosedAsset`](super::PosedAsset)).
+    pub(crate) motion: Option<std::sync::Arc<super::pose::GpuMotion>>,
 }
 
 impl GpuAsset {
@@ -106,13 +108,19 @@ impl GpuAsset {
         let mut uploaded = checked(device, "the asset's buffers", || {
             Self::upload(device, asset)
         })??;
-        if extras == AssetExtras::NONE {
+        if extras == AssetExtras::NONE && asset.motion.is_empty() {
             return Ok(uploaded);
         }
         let map = derived::render_to_topology(asset).ok_or_else(|| RenderError::Unsupported {
             technique: "GpuAsset::with_extras",
             why: "its render vertices do not sit on its topology vertices".into(),
         })?;
+        if !asset.motion.is_empty() {
+            uploaded.motion = checked(device, "the asset's skin", || {
+                super::pose::GpuMotion::new(device, asset, &map)
+            })?
+            .map(std::sync::Arc::new);
+        }
         let storage = wgpu::BufferUsages::STORAGE;
         let extra = |label: &str, bytes: &[u8]| {
             checked(device, label, || upload(device, label, bytes, storage))
@@ -270,6 +278,7 @@ impl GpuAsset {
                 storage,
             ),
             corner_count: corners.corners.len() as u32,
+            motion: None,
         })
     }
 
@@ -292,9 +301,16 @@ impl GpuAsset {
         Self::new(device, &asset)
     }
 
-    /// Minimum and maximum corners of the model's bounding box.
+    /// Minimum and maximum corners of the model's bounding box (of its pose, for a
+    /// [`PosedAsset`](super::PosedAsset)'s).
     pub fn bounds(&self) -> [[f32; 3]; 2] {
         self.bounds
+    }
+
+    /// The rig of an animated asset (its joints, morph targets and animations); `None` for a still
+    /// one. Pose it with a [`PosedAsset`](super::PosedAsset).
+    pub fn rig(&self) -> Option<&crate::rig::Rig> {
+        self.motion.as_deref().map(super::pose::GpuMotion::rig)
     }
 
     /// True if the mesh is closed ([`Asset::is_closed`](crate::asset::Asset::is_closed)), so a
@@ -524,7 +540,7 @@ pub(crate) const VERTEX_LAYOUTS: [Option<wgpu::VertexBufferLayout<'static>>; 2] 
 
 /// A buffer holding `bytes` (wgpu pads it to a multiple of four; an empty section gets four zero
 /// bytes, since a binding cannot be empty).
-fn upload(
+pub(crate) fn upload(
     device: &wgpu::Device,
     label: &str,
     bytes: &[u8],

@@ -129,12 +129,23 @@ pub(crate) const DISPLAY_FADE_ORTHO: u32 = 16;
 pub(crate) const DISPLAY_CHAINED: u32 = 32;
 
 /// The WGSL declarations of [`constants`], put in front of every shader module.
+/// The flat thread index of a 2D dispatch ([`workgroups`](super::pipelines::workgroups)): a second
+/// row of workgroups is only used once the first is full (MAX_GROUPS workgroups, see also
+/// `args.wgsl`), so rows have a fixed length. (`num_workgroups` would do, but D3D12 leaves it 0 for
+/// indirect dispatches without wgpu's validation.)
+const THREAD_INDEX: &str = "fn thread_index(id: vec3<u32>) -> u32 {
+    return id.y * (MAX_GROUPS * WORKGROUP) + id.x;
+}
+";
+
 pub(crate) fn wgsl_constants() -> String {
     let mut text = String::from("// Generated from runtime/src/render/layout.rs: do not edit.\n");
     for (name, value) in constants() {
         text.push_str(&format!("const {name}: u32 = {value}u;\n"));
     }
     text.push_str("const PI: f32 = 3.14159265358979;\n");
+    // Beside the constants it depends on, so the formula has one source.
+    text.push_str(THREAD_INDEX);
     // The GGX arc rule's nodes and weights (highlight/ggx.rs).
     let nodes = crate::highlight::ggx::NODES;
     let pairs: Vec<String> = nodes

@@ -57,6 +57,7 @@ mod mesh;
 mod modules;
 mod offscreen;
 mod pipelines;
+mod pose;
 mod renderer;
 mod style;
 mod style_settings;
@@ -76,6 +77,7 @@ pub use lighting::{DEFAULT_LIGHT_DIRECTION, Highlight, Light, Shading};
 pub use mesh::{MeshLight, MeshRenderer, MeshStyle};
 pub use offscreen::{Image, Offscreen, OffscreenTarget};
 pub use pipelines::Pipelines;
+pub use pose::PosedAsset;
 pub use renderer::{
     DrawCounts, EdgeRenderer, FrameViews, Instance, Prepared, SceneRenderer, SceneStats,
 };

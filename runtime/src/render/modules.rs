@@ -117,6 +117,10 @@ pub(crate) mod tests {
                     out.push((target, shader, Vec::new()));
                 }
             }
+            let pose = super::super::pose::shader();
+            if !out.iter().any(|(_, s, _)| s.source == pose.source) {
+                out.push((target, pose, super::super::pose::structs()));
+            }
         }
         out
     }
