@@ -311,3 +311,212 @@ fn the_rigged_fixtures_are_what_the_generator_writes() {
         );
     }
 }
+
+// --- On the GPU ------------------------------------------------------------------------------
+
+mod gpu {
+    use super::*;
+    use chamfer_preprocess::mesh::Mesh;
+    use chamfer_runtime::render::{
+        Camera, EdgeRenderer, GpuAsset, Image, MeshRenderer, Orbit, PosedAsset,
+    };
+    use chamfer_tests::cube::{BLUE_BACKGROUND, RED, edges_in, grey_mesh, is_red};
+    use chamfer_tests::{gpu, pipelines};
+
+    /// The posed topology positions the GPU wrote, read back.
+    fn read_positions(posed: &PosedAsset) -> Vec<[f32; 3]> {
+        let gpu = gpu();
+        let source = posed.asset().topology_positions();
+        let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("posed positions readback"),
+            size: source.size(),
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        let mut encoder = gpu.encoder();
+        encoder.copy_buffer_to_buffer(source, 0, &staging, 0, source.size());
+        gpu.submit(encoder).expect("submit");
+        let slice = staging.slice(..);
+        slice.map_async(wgpu::MapMode::Read, |r| r.expect("map"));
+        gpu.wait().expect("wait");
+        let bytes = slice.get_mapped_range().expect("mapped");
+        bytemuck::cast_slice::<u8, [f32; 3]>(&bytes).to_vec()
+    }
+
+    fn posed_on_the_gpu(asset: &Asset, pose: &Pose) -> (PosedAsset, Vec<[f32; 3]>) {
+        let gpu = gpu();
+        let target = gpu.target(8, 8, 1).expect("target");
+        let pipelines = pipelines(target.formats());
+        let uploaded = GpuAsset::new(&gpu.device, asset).expect("upload");
+        let mut posed = PosedAsset::new(&pipelines, &uploaded).expect("posed");
+        let mut encoder = gpu.encoder();
+        posed
+            .prepare(&gpu.queue, &mut encoder, pose)
+            .expect("prepare");
+        gpu.submit(encoder).expect("submit");
+        let positions = read_positions(&posed);
+        (posed, positions)
+    }
+
+    fn farthest(a: &[[f32; 3]], b: &[[f32; 3]]) -> f32 {
+        a.iter()
+            .zip(b)
+            .map(|(p, q)| (glam::Vec3::from(*p) - glam::Vec3::from(*q)).length())
+            .fold(0.0, f32::max)
+    }
+
+    #[test]
+    fn the_gpu_poses_as_the_cpu_does() {
+        for (name, glb) in [
+            (
+                "cylinder.glb",
+                rigged::skinned_cylinder("CUBICSPLINE", [1.0, 0.0, 0.0]),
+            ),
+            ("cube.glb", rigged::morph_cube(0.25)),
+        ] {
+            let asset = bake(name, &glb).asset;
+            let rig = &asset.motion.rig;
+            for time in [0.0, 0.4, 1.0] {
+                let pose = Pose::sampled(rig, 0, time).expect("animation 0");
+                let cpu = asset
+                    .motion
+                    .pose_positions(&asset.topology_positions, &pose);
+                let (posed, gpu) = posed_on_the_gpu(&asset, &pose);
+                assert_eq!(gpu.len(), cpu.len());
+                let off = farthest(&gpu, &cpu);
+                assert!(
+                    off < 1e-5,
+                    "{name} at {time} s: the GPU is {off} from the CPU"
+                );
+                // The refitted box holds the pose.
+                let [lo, hi] = posed.asset().bounds();
+                assert!(
+                    gpu.iter()
+                        .all(|p| (0..3).all(|k| p[k] >= lo[k] - 1e-5 && p[k] <= hi[k] + 1e-5)),
+                    "{name} at {time} s: a vertex outside the refitted box"
+                );
+            }
+            let pose = Pose::sampled(rig, 0, 1.0).expect("animation 0");
+            let (_, gpu) = posed_on_the_gpu(&asset, &pose);
+            assert!(
+                farthest(&gpu, &asset.topology_positions) > 0.1,
+                "{name}: the control moved"
+            );
+        }
+    }
+
+    /// Bakes the cylinder, and the same cylinder posed on the CPU at the end of the bend (90°),
+    /// with creases at 60° (the rims; the bend's folds stay smooth in both).
+    fn cylinders() -> (Asset, Asset) {
+        let options = BakeOptions::default().with_crease_deg(60.0);
+        let glb = rigged::skinned_cylinder("LINEAR", [0.0; 3]);
+        let animated = chamfer_preprocess::bake_bytes(Path::new("cylinder.glb"), &glb, &options)
+            .expect("bakes")
+            .asset;
+        let (model, triangles) = rigged::cylinder();
+        let positions = model
+            .iter()
+            .map(|p| {
+                let q = posed_cylinder_vertex(p.map(f64::from), rigged::BEND);
+                glam::Vec3::new(q[0] as f32, q[1] as f32, q[2] as f32)
+            })
+            .collect();
+        let mesh = Mesh {
+            positions,
+            triangles,
+            ..Mesh::default()
+        };
+        let still = chamfer_preprocess::bake(mesh, "bent.obj", &options)
+            .expect("bakes")
+            .asset;
+        (animated, still)
+    }
+
+    /// One frame of `asset` (posed by `pose` when given) with the grey mesh and red edges.
+    fn frame(asset: &Asset, pose: Option<&Pose>, camera: &Camera) -> Image {
+        let gpu = gpu();
+        let [width, height] = camera.viewport;
+        let target = gpu.target(width, height, 1).expect("target");
+        let pipelines = pipelines(target.formats());
+        let uploaded = GpuAsset::new(&gpu.device, asset).expect("upload");
+        let mut encoder = gpu.encoder();
+        let mut posed = None;
+        if let Some(pose) = pose {
+            let p = posed.insert(PosedAsset::new(&pipelines, &uploaded).expect("posed"));
+            p.prepare(&gpu.queue, &mut encoder, pose).expect("pose");
+        }
+        let drawn = posed.as_ref().map_or(&uploaded, PosedAsset::asset);
+        let mut mesh = MeshRenderer::new(&pipelines, drawn).expect("mesh");
+        mesh.prepare(&gpu.queue, camera, &grey_mesh());
+        let mut edges = EdgeRenderer::new(&pipelines, drawn);
+        let style = edges_in(RED, 2.0, Default::default());
+        let prepared = edges
+            .prepare(&gpu.queue, &mut encoder, camera, &style)
+            .expect("prepare");
+        {
+            let mut pass = target.begin_pass(&mut encoder, BLUE_BACKGROUND);
+            mesh.render(&mut pass);
+            prepared.render(&mut pass);
+        }
+        gpu.submit(encoder).expect("submit");
+        let image = target.read(gpu).expect("read");
+        if let Ok(dir) = std::env::var("CHAMFER_TEST_IMAGES") {
+            let n = if pose.is_some() { "posed" } else { "still" };
+            chamfer_tests::save_png(&image, &Path::new(&dir).join(format!("motion-{n}.png")));
+        }
+        image
+    }
+
+    /// Red pixels of `a` with no red pixel of `b` within a pixel.
+    fn unmatched(a: &Image, b: &Image) -> usize {
+        let [w, h] = [a.width, a.height];
+        let red = |image: &Image, x: i64, y: i64| {
+            x >= 0
+                && y >= 0
+                && x < i64::from(w)
+                && y < i64::from(h)
+                && is_red(image.pixel(x as u32, y as u32))
+        };
+        let mut count = 0;
+        for y in 0..i64::from(h) {
+            for x in 0..i64::from(w) {
+                if red(a, x, y) && !(-1..=1).any(|dy| (-1..=1).any(|dx| red(b, x + dx, y + dy))) {
+                    count += 1;
+                }
+            }
+        }
+        count
+    }
+
+    #[test]
+    fn a_bent_cylinder_draws_as_the_same_mesh_posed_on_the_cpu_and_baked_still() {
+        let (animated, still) = cylinders();
+        let bent = Pose::sampled(&animated.motion.rig, 0, 1.0).expect("animation 0");
+        for (azimuth, elevation) in [(35.0, 25.0), (-120.0, 10.0), (90.0, 60.0)] {
+            let orbit = Orbit {
+                azimuth,
+                elevation,
+                ..Orbit::default()
+            };
+            let bounds = [still.header.bounds_min, still.header.bounds_max];
+            let camera = Camera::orbit(bounds, &orbit, [320, 240]);
+            let posed = frame(&animated, Some(&bent), &camera);
+            let reference = frame(&still, None, &camera);
+            let red = posed
+                .rgba
+                .chunks_exact(4)
+                .filter(|p| is_red([p[0], p[1], p[2], p[3]]))
+                .count();
+            assert!(red > 500, "edges drawn ({red} red pixels)");
+            let (extra, missing) = (unmatched(&posed, &reference), unmatched(&reference, &posed));
+            assert!(
+                extra == 0 && missing == 0,
+                "from ({azimuth}, {elevation}): {extra} edge pixels beyond a pixel of the still \
+                 render's, {missing} of its missing ({red} drawn)"
+            );
+            // The control: the rest pose is not the bent one.
+            let rest = frame(&animated, None, &camera);
+            assert!(unmatched(&rest, &reference) > 200, "the control differs");
+        }
+    }
+}

@@ -125,13 +125,14 @@ fn bake_loaded(
         || path.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
     );
-    let mut baked = bake_moving(loaded.mesh, loaded.motion.as_ref(), &name, options).map_err(|e| match e {
-        Error::Mesh { source, .. } => Error::Mesh {
-            path: path.to_owned(),
-            source,
-        },
-        other => other,
-    })?;
+    let mut baked =
+        bake_moving(loaded.mesh, loaded.motion.as_ref(), &name, options).map_err(|e| match e {
+            Error::Mesh { source, .. } => Error::Mesh {
+                path: path.to_owned(),
+                source,
+            },
+            other => other,
+        })?;
     baked.timings.parse = parse;
     baked.warnings = loaded.warnings;
     if let Some(input) = loaded.motion {

@@ -143,7 +143,8 @@ pub fn classify_moving(
             // In f64: at a threshold of a thousandth of a degree, f32's rounding of the cross
             // products decides, and it depends on which face is face a (the triangle order).
             let (sin, cos) = dihedral_sin_cos_f64(positions, v, flags.contains(EdgeFlags::FLIPPED));
-            let bends = rigid.is_some_and(|group| v.iter().any(|&u| group[u as usize] != group[v[0] as usize]));
+            let bends = rigid
+                .is_some_and(|group| v.iter().any(|&u| group[u as usize] != group[v[0] as usize]));
             bends
                 || coplanar.reached_by_f64(sin, cos)
                 || flags.intersects(EdgeFlags::MARKED | EdgeFlags::MATERIAL)

@@ -148,7 +148,15 @@ impl GpuMotion {
             return None;
         }
         let storage = wgpu::BufferUsages::STORAGE;
-        let upload = |label: &str, bytes: &[u8]| super::gpu_asset::upload(device, label, bytes, storage);
+        // An empty section still binds a whole element of the widest array here (vec4).
+        let upload = |label: &str, bytes: &[u8]| {
+            let bytes = if bytes.is_empty() {
+                &[0u8; 16][..]
+            } else {
+                bytes
+            };
+            super::gpu_asset::upload(device, label, bytes, storage)
+        };
         let vertices = asset.topology_positions.len();
         // The morph targets by vertex: each vertex's entries (delta, target) in one run.
         let mut ranges = vec![0u32; vertices + 1];
@@ -189,7 +197,15 @@ impl GpuMotion {
         let open: Vec<EdgeCluster> = asset
             .clusters()
             .iter()
-            .map(|c| EdgeCluster::new([0.0; 3], f32::MAX, [0.0, 0.0, 1.0], -1.0, crate::asset::EdgeFlags(c.flags as u16)))
+            .map(|c| {
+                EdgeCluster::new(
+                    [0.0; 3],
+                    f32::MAX,
+                    [0.0, 0.0, 1.0],
+                    -1.0,
+                    crate::asset::EdgeFlags(c.flags as u16),
+                )
+            })
             .collect();
         Some(Self {
             rig: motion.rig.clone(),
@@ -198,7 +214,10 @@ impl GpuMotion {
             skinned: motion.is_skinned(),
             morph_ranges: upload("morph ranges", bytemuck::cast_slice(&ranges)),
             morph_entries: upload("morph entries", bytemuck::cast_slice(&entries)),
-            render_to_topology: upload("render to topology", bytemuck::cast_slice(render_to_topology)),
+            render_to_topology: upload(
+                "render to topology",
+                bytemuck::cast_slice(render_to_topology),
+            ),
             open_clusters: upload("open clusters", bytemuck::cast_slice(&open)),
             vertices: vertices as u32,
             render_vertices: render_to_topology.len() as u32,
@@ -224,7 +243,8 @@ impl GpuMotion {
         let mut hold = |[lo, hi]: [Vec3; 2], m: Mat4| {
             let (lo, hi) = (lo - reach, hi + reach);
             for k in 0..8 {
-                let corner = Vec3::select(glam::BVec3::new(k & 1 == 0, k & 2 == 0, k & 4 == 0), lo, hi);
+                let corner =
+                    Vec3::select(glam::BVec3::new(k & 1 == 0, k & 2 == 0, k & 4 == 0), lo, hi);
                 let p = m.transform_point3(corner);
                 out = [out[0].min(p), out[1].max(p)];
             }
@@ -260,10 +280,13 @@ impl PosedAsset {
     /// A pose of `asset`, at rest until the first [`prepare`](Self::prepare). Fails with
     /// [`RenderError::Unsupported`] for a still asset (no joints, no morph targets).
     pub fn new(pipelines: &Pipelines, asset: &GpuAsset) -> Result<Self, RenderError> {
-        let motion = asset.motion.clone().ok_or_else(|| RenderError::Unsupported {
-            technique: "PosedAsset",
-            why: "it has no skin and no morph targets".into(),
-        })?;
+        let motion = asset
+            .motion
+            .clone()
+            .ok_or_else(|| RenderError::Unsupported {
+                technique: "PosedAsset",
+                why: "it has no skin and no morph targets".into(),
+            })?;
         let device = pipelines.device();
         let pose_pipelines = pipelines.get::<PosePipelines>()?;
         let storage = wgpu::BufferUsages::STORAGE;
@@ -271,7 +294,8 @@ impl PosedAsset {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
                 size: source.size(),
-                usage: usage | storage,
+                // Readable, for whoever needs the pose itself (picking, tests).
+                usage: usage | storage | wgpu::BufferUsages::COPY_SRC,
                 mapped_at_creation: false,
             })
         };
@@ -288,10 +312,11 @@ impl PosedAsset {
         posed.intersection_count = 0;
         posed.corner_count = 0;
         posed.key = Arc::new(());
+        // At least a mat4: a rig without joints still binds one.
         let buffer = |label: &str, size: u64, usage| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
-                size: size.max(16),
+                size: size.max(64),
                 usage: usage | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             })
@@ -300,19 +325,33 @@ impl PosedAsset {
         let frame = buffer("pose frame", 16, wgpu::BufferUsages::UNIFORM);
         let joints = buffer("joint matrices", joint_bytes, storage);
         let normals = buffer("joint normals", joint_bytes, storage);
-        let weights = buffer("morph weights", 4 * motion.rig.morph_weights.len() as u64, storage);
-        let placeholder = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("no vertex normals"),
-            contents: &[0u8; 16],
-            usage: storage,
-        });
+        let weights = buffer(
+            "morph weights",
+            4 * motion.rig.morph_weights.len() as u64,
+            storage,
+        );
+        // Without vertex normals, one placeholder to read and another to write (a buffer cannot
+        // be both in one dispatch).
+        let placeholder = |label| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents: &[0u8; 16],
+                usage: storage,
+            })
+        };
+        let (no_normals, no_posed_normals) = (
+            placeholder("no vertex normals"),
+            placeholder("no posed vertex normals"),
+        );
         let layout = pipelines.layout(&POSE_BINDINGS);
         let group = POSE_BINDINGS.group(device, &layout, |binding| {
             let resource = match binding {
                 POSE => &frame,
                 bindings::asset::TOPOLOGY => &asset.topology_positions,
                 bindings::asset::RENDER_NORMALS => &asset.render_normals,
-                bindings::asset::VERTEX_NORMALS => asset.vertex_normals.as_ref().unwrap_or(&placeholder),
+                bindings::asset::VERTEX_NORMALS => {
+                    asset.vertex_normals.as_ref().unwrap_or(&no_normals)
+                }
                 bindings::asset::RENDER_TO_TOPOLOGY => &motion.render_to_topology,
                 SKIN_JOINTS => &motion.skin_joints,
                 SKIN_WEIGHTS => &motion.skin_weights,
@@ -324,7 +363,7 @@ impl PosedAsset {
                 POSED_TOPOLOGY => &posed.topology_positions,
                 POSED_RENDER => &posed.render_positions,
                 POSED_NORMALS => &posed.render_normals,
-                POSED_VERTEX_NORMALS => posed.vertex_normals.as_ref().unwrap_or(&placeholder),
+                POSED_VERTEX_NORMALS => posed.vertex_normals.as_ref().unwrap_or(&no_posed_normals),
                 other => return Err(bindings::unbound(&POSE_BINDINGS, other)),
             };
             Ok(resource.as_entire_binding())
@@ -372,8 +411,11 @@ impl PosedAsset {
                 rig.morph_weights.len()
             )));
         }
-        if !pose.joints.iter().all(|m| m.is_finite()) || !pose.weights.iter().all(|w| w.is_finite()) {
-            return Err(RenderError::BadPose("a joint matrix or morph weight is not finite".into()));
+        if !pose.joints.iter().all(|m| m.is_finite()) || !pose.weights.iter().all(|w| w.is_finite())
+        {
+            return Err(RenderError::BadPose(
+                "a joint matrix or morph weight is not finite".into(),
+            ));
         }
         let matrices: Vec<[f32; 16]> = pose.joints.iter().map(Mat4::to_cols_array).collect();
         let normals: Vec<[f32; 16]> = pose
@@ -427,5 +469,9 @@ fn normal_matrix(m: Mat3) -> Mat3 {
         m.z_axis.cross(m.x_axis),
         m.x_axis.cross(m.y_axis),
     );
-    if m.determinant() < 0.0 { -cofactor } else { cofactor }
+    if m.determinant() < 0.0 {
+        -cofactor
+    } else {
+        cofactor
+    }
 }
