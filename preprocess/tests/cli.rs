@@ -1824,3 +1824,90 @@ fn every_technique_parameter_is_a_render_flag() {
         assert!(!out.exists());
     }
 }
+
+/// Issue 41: `chamfer render` poses an animated glTF by the animation flags (every entry of
+/// `AnimationSettings` is a flag that changes the picture), and refuses what does not fit.
+#[test]
+fn render_poses_an_animated_gltf_by_the_animation_flags() {
+    use chamfer_runtime::rig::AnimationSettings;
+    use chamfer_runtime::schema::{Schema, flag};
+
+    let dir = tempfile::tempdir().expect("tempdir");
+    let help = text(&succeed(&["render", "--help"]).stdout);
+    for entry in AnimationSettings::ENTRIES {
+        assert!(
+            help.contains(&flag(entry.name)),
+            "{} not in render --help",
+            entry.name
+        );
+    }
+    let picture = |mesh: &str, extra: &[&str], name: &str| {
+        let mesh = fixture(mesh);
+        let out = dir.path().join(format!("{name}.png"));
+        let mut args = vec!["render", path_str(&mesh), "--width", "96", "--height", "72"];
+        args.extend(extra);
+        args.extend(["-o", path_str(&out)]);
+        succeed(&args);
+        png_pixels(&std::fs::read(&out).expect("png"))
+    };
+    let cylinder = "shapes/cylinder-skinned.glb";
+    let rest = picture(cylinder, &[], "rest");
+    let bent = picture(cylinder, &["--animation", "0", "--time", "1"], "bent");
+    let by_name = picture(
+        cylinder,
+        &["--animation-name", "bend", "--time", "1"],
+        "by-name",
+    );
+    let start = picture(cylinder, &["--animation", "0", "--time", "0"], "start");
+    assert_ne!(rest, bent, "--time 1 bends the cylinder");
+    assert_eq!(bent, by_name, "the animation by name or number is the same");
+    assert_ne!(start, bent, "--time moves the pose");
+    let cube = "shapes/cube-morph.glb";
+    assert_ne!(
+        picture(cube, &["--pose", "1"], "risen"),
+        picture(cube, &[], "flat")
+    );
+
+    let refused = dir.path().join("refused.png");
+    for (mesh, args, message) in [
+        (
+            cylinder,
+            &["--animation", "4"][..],
+            "--animation must be below 1, not 4 (0 \"bend\")",
+        ),
+        (
+            cylinder,
+            &["--animation-name", "run"][..],
+            "no such animation (the asset's: 0 \"bend\")",
+        ),
+        (
+            cylinder,
+            &["--time", "1"][..],
+            "--time needs --animation or --animation-name",
+        ),
+        (
+            cube,
+            &["--pose", "1,1"][..],
+            "--pose must be 1 weights, one per morph target, not 2",
+        ),
+        (
+            "shapes/cube.obj",
+            &["--animation", "0"][..],
+            "--animation needs an animated asset",
+        ),
+        (
+            cylinder,
+            &["--animation", "0", "--time", "nan"][..],
+            "--time",
+        ),
+    ] {
+        let mesh = fixture(mesh);
+        let mut all = vec!["render", path_str(&mesh), "-o", path_str(&refused)];
+        all.extend(args);
+        let out = chamfer(&all);
+        let stderr = text(&out.stderr);
+        assert!(!out.status.success(), "{args:?} was accepted");
+        assert!(stderr.contains(message), "{args:?}: {stderr}");
+        assert!(!refused.exists(), "{args:?} wrote a picture");
+    }
+}

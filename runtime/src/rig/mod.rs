@@ -17,8 +17,10 @@
 
 mod pose;
 pub mod sample;
+mod settings;
 
 pub use pose::Pose;
+pub use settings::{AnimationSettings, names as animation_names};
 
 use serde::{Deserialize, Serialize};
 

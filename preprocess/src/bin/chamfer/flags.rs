@@ -6,6 +6,7 @@ use chamfer_preprocess::BakeSettings;
 use chamfer_preprocess::draw::style::DrawingStyle;
 use chamfer_runtime::camera::Orbit;
 use chamfer_runtime::render::{DisplaySettings, StyleSettings, Technique};
+use chamfer_runtime::rig::AnimationSettings;
 use chamfer_runtime::schema::{Entry, Kind, Numbers, Schema, Value, flag};
 use chamfer_runtime::section::{CutSettings, Section};
 use clap::error::ErrorKind;
@@ -164,6 +165,11 @@ group_flags!(
     /// Display modes: faces, hidden edges, distance fade (`chamfer render`).
     DisplayFlags(DisplaySettings),
     "display"
+);
+group_flags!(
+    /// The pose of an animated asset: an animation at a time, morph weights (`chamfer render`).
+    AnimationFlags(AnimationSettings),
+    "animation"
 );
 group_flags!(
     /// The line roles' styles and the hatch as flags (`chamfer draw`).

@@ -11,16 +11,18 @@ use chamfer_runtime::asset::Asset;
 use chamfer_runtime::render::{
     Camera, CapMethod, CutRenderer, CutStyle, DEFAULT_LIGHT_DIRECTION, EdgeClasses, EdgeStyle,
     GpuAsset, Highlight, Image, Instance, Light, MeshRenderer, MeshStyle, Offscreen, Pipelines,
-    SceneRenderer, Shading as ShadingModel, StyleSettings, Technique,
+    PosedAsset, SceneRenderer, Shading as ShadingModel, StyleSettings, Technique,
 };
 use clap::{Args, ValueEnum};
 use glam::Mat4;
 
+use chamfer_runtime::rig::{Pose, animation_names};
 use chamfer_runtime::schema::flag;
 use chamfer_runtime::section::ClipPlanes;
 
 use crate::flags::{
-    BakeFlags, CutFlags, DisplayFlags, SectionFlags, StyleFlags, TechniqueFlags, ViewFlags,
+    AnimationFlags, BakeFlags, CutFlags, DisplayFlags, SectionFlags, StyleFlags, TechniqueFlags,
+    ViewFlags,
 };
 
 /// Render an asset (`.chamfer`) or a mesh (baked on the fly with the bake flags) to a PNG.
@@ -100,6 +102,12 @@ pub struct ViewArgs {
     /// fading with distance.
     #[command(flatten)]
     display: DisplayFlags,
+    /// The pose of an animated asset (a glTF's skins, morph targets and animations).
+    #[command(flatten)]
+    animation: AnimationFlags,
+    /// Pose the asset by its animation of this name (or number), like --animation.
+    #[arg(long, value_name = "NAME", conflicts_with = "animation")]
+    animation_name: Option<String>,
     /// Which technique draws the edges (`--style edges`).
     #[arg(long, default_value = "joined", value_parser = technique_names(),
           long_help = technique_help())]
@@ -200,6 +208,34 @@ fn technique_help() -> String {
 }
 
 impl ViewArgs {
+    /// The pose the animation flags ask each of `assets` in (`None`: as stored). In a scene of
+    /// several assets the still ones are drawn as they are; a single still asset with animation
+    /// flags is refused.
+    fn poses(&self, assets: &[Asset]) -> anyhow::Result<Vec<Option<Pose>>> {
+        let spelled = |e: chamfer_runtime::schema::SchemaError| anyhow::anyhow!(e.spelled(flag));
+        assets
+            .iter()
+            .map(|asset| {
+                let rig = (!asset.motion.rig.is_empty()).then_some(&asset.motion.rig);
+                if rig.is_none() && assets.len() > 1 {
+                    return Ok(None);
+                }
+                let mut settings = self.animation.0;
+                if let Some(name) = &self.animation_name {
+                    let rig = rig.context("--animation-name needs an animated asset")?;
+                    let index = rig.animation(name).with_context(|| {
+                        format!(
+                            "--animation-name {name:?}: no such animation (the asset's: {})",
+                            animation_names(rig)
+                        )
+                    })?;
+                    settings.animation = Some(index as u64);
+                }
+                settings.pose_of(rig).map_err(spelled)
+            })
+            .collect()
+    }
+
     /// The technique named by `--technique`.
     pub fn technique(&self) -> anyhow::Result<Technique> {
         let technique = Technique::from_name(&self.technique)
@@ -217,7 +253,14 @@ impl ViewArgs {
             .0
             .check()
             .and_then(|()| self.cut.0.check())
+            .and_then(|()| self.animation.0.check())
             .map_err(|e| anyhow::anyhow!(e.spelled(flag)))?;
+        if self.animation.1.contains(&"time")
+            && self.animation.0.animation.is_none()
+            && self.animation_name.is_none()
+        {
+            bail!("--time needs --animation or --animation-name");
+        }
         if self.env.is_some() && (self.style != Style::Chamfer || self.shading != Shading::Pbr) {
             bail!("--env needs --style chamfer --shading pbr");
         }
@@ -395,9 +438,26 @@ pub fn render_scene(
         .iter()
         .map(|asset| GpuAsset::for_techniques(&gpu.device, asset, &[technique]))
         .collect::<Result<Vec<_>, _>>()?;
+    let mut encoder = gpu.encoder();
+    let mut posed = Vec::with_capacity(assets.len());
+    for (gpu_asset, pose) in uploaded.iter().zip(view.poses(assets)?) {
+        posed.push(match pose {
+            Some(pose) => {
+                let mut posed = PosedAsset::new(&pipelines, gpu_asset)?;
+                posed.prepare(&gpu.queue, &mut encoder, &pose)?;
+                Some(posed)
+            }
+            None => None,
+        });
+    }
+    let shown: Vec<&GpuAsset> = uploaded
+        .iter()
+        .zip(&posed)
+        .map(|(still, posed)| posed.as_ref().map_or(still, PosedAsset::asset))
+        .collect();
     let drawn: Vec<Instance<'_>> = instances
         .iter()
-        .map(|&(a, transform)| Instance::new(&uploaded[a]).with_transform(transform))
+        .map(|&(a, transform)| Instance::new(shown[a]).with_transform(transform))
         .collect();
     let camera = view
         .camera
@@ -424,7 +484,6 @@ pub fn render_scene(
     };
     let mut edges = SceneRenderer::new(&pipelines);
     edges.set_environment(environment);
-    let mut encoder = gpu.encoder();
     let prepared = match view.style {
         Style::Mesh => None,
         _ => Some(edges.prepare(
