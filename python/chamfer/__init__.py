@@ -26,6 +26,7 @@ import textwrap as _textwrap
 
 from . import _chamfer
 from ._chamfer import (
+    ANIMATION_SCHEMA,
     BAKE_SCHEMA,
     FORMAT_VERSION,
     VIEW_SCHEMA,
@@ -50,6 +51,7 @@ from ._chamfer import (
     decode,
     load,
     plan_folder,
+    pose,
     settings,
 )
 

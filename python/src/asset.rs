@@ -236,6 +236,63 @@ impl PyAsset {
         view(slf.as_any(), starts, &[starts.len()])
     }
 
+    /// Per topology vertex the four joints it follows (indices into the rig's joints): uint16
+    /// (V, 4); empty (0, 4) when nothing is skinned.
+    #[getter]
+    fn joints<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
+        let joints = &slf.get().asset.motion.joints;
+        view(slf.as_any(), joints.as_flattened(), &[joints.len(), 4])
+    }
+
+    /// Per topology vertex how much it follows each of its joints (summing to 1, or all 0 for a
+    /// vertex no joint moves): float32 (V, 4); empty (0, 4) when nothing is skinned.
+    #[getter]
+    fn weights<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
+        let weights = &slf.get().asset.motion.weights;
+        view(slf.as_any(), weights.as_flattened(), &[weights.len(), 4])
+    }
+
+    /// The morph targets, sparse: each target's first entry in morph_vertices/morph_deltas:
+    /// uint32 (M,).
+    #[getter]
+    fn morph_starts<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
+        let starts = &slf.get().asset.motion.morph_starts;
+        view(slf.as_any(), starts, &[starts.len()])
+    }
+
+    /// The topology vertex of each morph entry: uint32 (D,).
+    #[getter]
+    fn morph_vertices<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
+        let vertices = &slf.get().asset.motion.morph_vertices;
+        view(slf.as_any(), vertices, &[vertices.len()])
+    }
+
+    /// How far each morph entry moves its vertex at weight 1: float32 (D, 3).
+    #[getter]
+    fn morph_deltas<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
+        vec3_view(slf, &slf.get().asset.motion.morph_deltas)
+    }
+
+    /// The rig: {"joints": J, "nodes": [names], "morph_targets": [names], "morph_weights": [rest
+    /// weights], "animations": [{"name", "duration", "channels"}]}; all empty for a still asset.
+    #[getter]
+    fn rig<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let rig = &self.asset.motion.rig;
+        let summary = serde_json::json!({
+            "joints": rig.joints.len(),
+            "nodes": rig.nodes.iter().map(|n| n.name.as_str()).collect::<Vec<_>>(),
+            "morph_targets": rig.morph_names,
+            "morph_weights": rig.morph_weights,
+            "animations": rig.animations.iter().map(|a| serde_json::json!({
+                "name": a.name,
+                "duration": a.duration(),
+                "channels": a.channels.len(),
+            })).collect::<Vec<_>>(),
+        });
+        py.import("json")?
+            .call_method1("loads", (summary.to_string(),))
+    }
+
     /// The asset as the bytes of a `.chamfer` file (what save() writes). Its keywords are the bake
     /// schema's "encoding" group (chamfer.BAKE_SCHEMA), as `chamfer bake`'s flags of the same
     /// names: `compact` writes the compact format for shipping (positions on a grid, normals as

@@ -12,6 +12,7 @@ mod asset;
 mod bake;
 mod draw;
 mod errors;
+mod motion;
 mod options;
 
 use pyo3::prelude::*;
@@ -32,7 +33,12 @@ fn _chamfer(module: &Bound<'_, PyModule>) -> PyResult<()> {
         "DRAWING_STYLE_SCHEMA",
         options::schema_of::<chamfer_preprocess::draw::style::DrawingStyle>(module.py())?,
     )?;
+    module.add(
+        "ANIMATION_SCHEMA",
+        options::schema_of::<chamfer_runtime::rig::AnimationSettings>(module.py())?,
+    )?;
     module.add_class::<asset::PyAsset>()?;
+    module.add_function(wrap_pyfunction!(motion::pose, module)?)?;
     module.add_function(wrap_pyfunction!(bake::bake, module)?)?;
     module.add_function(wrap_pyfunction!(bake::bake_arrays, module)?)?;
     module.add_function(wrap_pyfunction!(bake::settings, module)?)?;
