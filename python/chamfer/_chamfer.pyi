@@ -43,6 +43,7 @@ class BakeOptions(TypedDict, total=False):
     max_vertices: Optional[int]
     max_instances: Optional[int]
     max_input_bytes: Optional[int]
+    max_joints: Optional[int]
     intersections: Optional[bool]
     stitch_rel: Optional[float]
     stitch_epsilon: Optional[float]

@@ -2,7 +2,7 @@
 
 It is a test of the document, not part of the package: if it reads every fixture as `chamfer.load`
 does, a reader in any language can be written from the text. It reads the raw sections of every
-format version (1 to 5) and applies the document's validation rules; a compact file's coded sections
+format version (1 to 6) and applies the document's validation rules; a compact file's coded sections
 (§4, docs/format-compact.md) it names but does not decode.
 """
 
@@ -41,9 +41,15 @@ KINDS = {
     18: "ring_orders",
     19: "render_vertex_counts_coded",
     20: "edge_clusters_coded",
+    21: "skin_joints",
+    22: "skin_weights",
+    23: "morph_starts",
+    24: "morph_vertices",
+    25: "morph_deltas",
+    26: "rig",
 }
 # §7: the last kind of each version's table.
-LAST_KIND = {1: 8, 2: 10, 3: 11, 4: 12, 5: 20}
+LAST_KIND = {1: 8, 2: 10, 3: 11, 4: 12, 5: 20, 6: 26}
 # §4: each coded kind and the raw kinds it replaces.
 TWINS = {13: (3,), 14: (4,), 15: (2,), 16: (5,), 17: (6,), 18: (7, 8), 19: (12,), 20: (11,)}
 
@@ -70,7 +76,7 @@ class _Fields:
 
     def take(self, n):
         if n > len(self.data) - self.at:
-            raise FormatError("header ends before its last field")
+            raise FormatError("ends before its last field")
         piece = self.data[self.at : self.at + n]
         self.at += n
         return piece
@@ -91,13 +97,148 @@ class _Fields:
         try:
             return self.take(self.u64()).decode("utf-8")
         except UnicodeDecodeError:
-            raise FormatError("header text is not UTF-8") from None
+            raise FormatError("text is not UTF-8") from None
+
+    def option(self, read):
+        tag = self.unpack("B")[0]
+        if tag > 1:
+            raise FormatError(f"an option's tag is {tag}")
+        return read() if tag else None
+
+    def variant(self, count):
+        number = self.u32()
+        if number >= count:
+            raise FormatError(f"an enumeration holds an unknown variant {number}")
+        return number
+
+    def list(self, element_bytes, read):
+        return [read() for _ in range(self.count(element_bytes))]
 
     def count(self, element_bytes):
         n = self.u64()
         if n * element_bytes > len(self.data) - self.at:
             raise FormatError("header list longer than the header")
         return n
+
+
+# §3.9: numbers a key of each Target variant (None: its count field), values a key per Interpolation.
+TARGET_NUMBERS = (3, 4, 3, None)
+VALUES_PER_KEY = (1, 1, 3)
+MAX_JOINTS = 1 << 16
+WEIGHT_SUM_TOLERANCE = np.float32(1e-3)
+
+
+def read_rig(data):
+    """§3.9's Rig as a dict; an empty section is an empty rig."""
+    fields = _Fields(bytes(data))
+    if not len(data):
+        return {"nodes": [], "joints": [], "morph_weights": [], "morph_names": [], "animations": []}
+
+    def node():
+        name = fields.string()
+        parent = fields.option(fields.u32)
+        return {"name": name, "parent": parent, "rest": fields.f32s(10)}
+
+    def joint():
+        return {"node": fields.u32(), "inverse_bind": fields.f32s(16)}
+
+    def channel():
+        kind = fields.variant(4)
+        target = (kind, fields.unpack("2I") if kind == 3 else (fields.u32(),))
+        interpolation = fields.variant(3)
+        times = fields.list(4, lambda: fields.f32s(1)[0])
+        values = fields.list(4, lambda: fields.f32s(1)[0])
+        return {"target": target, "interpolation": interpolation, "times": times, "values": values}
+
+    def animation():
+        return {"name": fields.string(), "channels": fields.list(1, channel)}
+
+    rig = {
+        "nodes": fields.list(1, node),
+        "joints": fields.list(68, joint),
+        "morph_weights": fields.list(4, lambda: fields.f32s(1)[0]),
+        "morph_names": fields.list(8, fields.string),
+        "animations": fields.list(1, animation),
+    }
+    if fields.at != len(data):
+        raise FormatError("rig: bytes are left after the rig")
+    _check_rig(rig)
+    return rig
+
+
+def _check_rig(rig):
+    """§3.9's rules of a rig."""
+    finite = lambda values: all(math.isfinite(v) for v in values)  # noqa: E731
+    nodes, targets = len(rig["nodes"]), len(rig["morph_weights"])
+    if len(rig["joints"]) > MAX_JOINTS:
+        raise FormatError("rig: more joints than an index names")
+    for i, node in enumerate(rig["nodes"]):
+        if node["parent"] is not None and node["parent"] >= i:
+            raise FormatError(f"rig: node {i} comes before its parent")
+        if not finite(node["rest"]):
+            raise FormatError(f"rig: node {i}'s rest transform is not finite")
+    for i, joint in enumerate(rig["joints"]):
+        if joint["node"] >= nodes or not finite(joint["inverse_bind"]):
+            raise FormatError(f"rig: joint {i} is not a node's, or not finite")
+    if len(rig["morph_names"]) != targets or not finite(rig["morph_weights"]):
+        raise FormatError("rig: morph names and weights disagree, or a weight is not finite")
+    for animation in rig["animations"]:
+        for channel in animation["channels"]:
+            kind, numbers = channel["target"]
+            if kind == 3:
+                first, count = numbers
+                if count == 0 or first + count > targets:
+                    raise FormatError("rig: a channel sets morph targets the rig lacks")
+                per_key = count
+            else:
+                if numbers[0] >= nodes:
+                    raise FormatError("rig: a channel moves a node the rig lacks")
+                per_key = TARGET_NUMBERS[kind]
+            times, values = channel["times"], channel["values"]
+            if not times or not finite(times) or any(b <= a for a, b in zip(times, times[1:])):
+                raise FormatError("rig: a channel's key times are not finite and increasing")
+            if len(values) != len(times) * per_key * VALUES_PER_KEY[channel["interpolation"]]:
+                raise FormatError("rig: a channel's values do not fill its keys")
+            if not finite(values):
+                raise FormatError("rig: a channel's value is not finite")
+
+
+def _motion(raw, v):
+    """§3.9: the skin and morph sections checked against the rig and the V topology vertices."""
+    rig = read_rig(raw("rig"))
+    joints = _array(raw("skin_joints"), "skin_joints", np.uint16, 4)
+    weights = _array(raw("skin_weights"), "skin_weights", np.float32, 4)
+    if len(joints) or len(weights):
+        if len(joints) != v or len(weights) != v:
+            raise FormatError("skin_joints, skin_weights: not one per topology vertex")
+        if (joints >= len(rig["joints"])).any():
+            raise FormatError("skin_joints: a joint the rig lacks")
+        if not np.isfinite(weights).all() or (weights < 0).any():
+            raise FormatError("skin_weights: not finite, or negative")
+        total = np.zeros(len(weights), np.float32)
+        for k in range(4):
+            total = (total + weights[:, k]).astype(np.float32)
+        off = np.abs((total - np.float32(1)).astype(np.float32))
+        if ((total != 0) & (off > WEIGHT_SUM_TOLERANCE)).any():
+            raise FormatError("skin_weights: a vertex's weights do not sum to 1")
+    starts = _array(raw("morph_starts"), "morph_starts", np.uint32, 1)
+    vertices = _array(raw("morph_vertices"), "morph_vertices", np.uint32, 1)
+    deltas = _array(raw("morph_deltas"), "morph_deltas", np.float32, 3)
+    d = len(vertices)
+    if len(starts) != len(rig["morph_weights"]) or len(deltas) != d:
+        raise FormatError("morph_starts, morph_deltas: counts disagree with the rig or the vertices")
+    ends = np.append(starts[1:].astype(np.int64), d)
+    if len(starts) and (starts[0] != 0 or (ends < starts).any() or (ends > d).any()):
+        raise FormatError("morph_starts: targets out of order")
+    if not np.isfinite(deltas).all():
+        raise FormatError("morph_deltas: not finite")
+    if (vertices >= v).any():
+        raise FormatError("morph_vertices: a vertex out of range")
+    for start, end in zip(starts, ends):
+        if (np.diff(vertices[start:end].astype(np.int64)) <= 0).any():
+            raise FormatError("morph_vertices: not increasing within a target")
+    return {"rig": rig, "skin_joints": joints, "skin_weights": weights, "morph_starts": starts,
+            "morph_vertices": vertices, "morph_deltas": deltas}  # fmt: skip
 
 
 def read_header(data):
@@ -309,7 +450,9 @@ def read(data):
     # §3.8: absent before version 3, and may be left empty in version 5; then a reader computes them.
     has_clusters = version >= 3 and (len(clusters_raw) or version < 5)
     clusters = _clusters(clusters_raw, e) if has_clusters else None
+    motion = _motion(raw, v)
     return {
+        **motion,
         "version": version,
         "header": header,
         "render_positions": render_positions,

@@ -24,6 +24,19 @@ def assert_same(read, asset):
         got = read[name]
         assert got.dtype == expected.dtype, name
         np.testing.assert_array_equal(got.reshape(expected.shape), expected, err_msg=name)
+    for mine, theirs in [("skin_joints", "joints"), ("skin_weights", "weights"),
+                         ("morph_starts", "morph_starts"), ("morph_vertices", "morph_vertices"),
+                         ("morph_deltas", "morph_deltas")]:  # fmt: skip
+        expected = np.asarray(getattr(asset, theirs))
+        assert read[mine].dtype == expected.dtype, mine
+        np.testing.assert_array_equal(read[mine].reshape(expected.shape), expected, err_msg=mine)
+    rig, summary = read["rig"], asset.rig
+    assert len(rig["joints"]) == summary["joints"]
+    assert [n["name"] for n in rig["nodes"]] == summary["nodes"]
+    assert rig["morph_names"] == summary["morph_targets"]
+    assert [(a["name"], len(a["channels"])) for a in rig["animations"]] == [
+        (a["name"], a["channels"]) for a in summary["animations"]
+    ]
     header = read["header"]
     assert header["source"] == asset.source
     assert header["generator"] == asset.generator
@@ -67,6 +80,8 @@ BAKES = [(mesh, {}) for mesh in mesh_files(MESHES)] + [
     (MESHES / "fandisk.obj", {"radius_rel": 0.01}),
     (SHAPES / "nonmanifold-fan.obj", {}),
     (SHAPES / "open-box.obj", {}),
+    (SHAPES / "cylinder-skinned.glb", {}),
+    (SHAPES / "cube-morph.glb", {}),
 ]
 
 
@@ -85,7 +100,7 @@ def baked():
 
 def test_the_reader_reads_every_fresh_bake_as_chamfer_does(baked):
     for name, _, read, asset in baked:
-        assert read["version"] == 5, name
+        assert read["version"] == 6, name
         assert_same(read, asset)
         clusters = read["edge_clusters"]
         assert len(clusters) == -(-asset.edge_count // 64), name
@@ -105,6 +120,8 @@ def test_the_bakes_exercise_every_rule_of_the_reader(baked):
     assert any((r["edge_radii"] > 0).any() for r in reads)
     flags = np.bitwise_or.reduce([np.bitwise_or.reduce(r["edge_flags"]) for r in reads])
     assert flags == 0xFF, hex(flags)
+    assert any(len(r["skin_joints"]) and r["rig"]["animations"] for r in reads), "a skinned bake"
+    assert any(len(r["morph_starts"]) for r in reads), "a morph target"
     old = [format_reader.read(p.read_bytes()) for p in OLD_ASSETS]
     stored = [r for r in reads + old if r["header"]["sections"][0][2] > 0]
     assert stored, "no asset stores its render positions (§3.1)"
@@ -138,11 +155,16 @@ def accepted_by_reader(data):
     return True
 
 
-@pytest.mark.parametrize("path", [FIXTURES / "assets" / "cube-v3.chamfer", None], ids=["cube-v3", "cube-v5"])
-def test_the_reader_rejects_what_chamfer_rejects(path, baked):
+@pytest.mark.parametrize(
+    "path, bake",
+    [(FIXTURES / "assets" / "cube-v3.chamfer", None), (None, "cube.obj"), (None, "cube-morph.glb")],
+    ids=["cube-v3", "cube-v6", "cube-morph-v6"],
+)
+def test_the_reader_rejects_what_chamfer_rejects(path, bake, baked):
     """Every byte of a small asset changed (three ways) and every truncation: the reader and the
-    Rust decoder agree on which files are assets, so the document states every rule."""
-    original = path.read_bytes() if path else next(d for n, d, _, _ in baked if n == "cube.obj")
+    Rust decoder agree on which files are assets, so the document states every rule (the morph
+    cube's rig, skin-less, and morph sections included)."""
+    original = path.read_bytes() if path else next(d for n, d, _, _ in baked if n == bake)
     disagreements = []
     rejected = 0
     for at in range(len(original)):
