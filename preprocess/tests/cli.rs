@@ -1344,7 +1344,7 @@ fn stl_and_3mf_bake_from_the_command_line_and_inspect_reports_the_stitch() {
 }
 
 /// The frame benchmarks (`examples/bench_render.rs`, `bench_section.rs`, `bench_display.rs`,
-/// `bench_scene.rs`, built
+/// `bench_scene.rs`, `bench_pose.rs`, built
 /// by `cargo test`) run: one frame of each configuration at 64 × 64 on a cube (with chamfer radii
 /// for bench_render, the highlight's row included; the scenes of 2³ instances).
 #[test]
@@ -1372,6 +1372,7 @@ fn the_frame_benchmarks_run_at_a_tiny_size() {
             &["--grid", "2", "--no-separate", "--large", cube][..],
             &["| + one SceneRenderer"][..],
         ),
+        ("bench_pose", &["--vertices", "500", "--joints", "4"][..], &["| 450"][..]),
     ] {
         run_frame_bench(name, extra, rows);
     }
