@@ -8,8 +8,9 @@
 //! away from the centre, every frame's transforms given anew); S cycles a section plane across x,
 //! y, z or none, and a right-button drag moves it along its axis (the cut capped and outlined);
 //! V cycles the display mode: shaded, shaded with hidden edges dashed, hidden-line, X-ray,
-//! wireframe (the display schema's modes, as `chamfer render --hidden-line` and the others); Esc
-//! quits. Meshes are baked with a chamfer radius of 0.4 % of their diagonal on ridges. It is also the smallest example of hosting the renderers in an
+//! wireframe (the display schema's modes, as `chamfer render --hidden-line` and the others); A
+//! plays or pauses an animated asset's animations (each asset its first, looping; a
+//! `PosedAsset` posed every frame, on by default); Esc quits. Meshes are baked with a chamfer radius of 0.4 % of their diagonal on ridges. It is also the smallest example of hosting the renderers in an
 //! application's own wgpu setup: the window, device and frame belong to this file.
 
 use std::path::PathBuf;
@@ -22,8 +23,9 @@ use chamfer_runtime::highlight::strip::Material;
 use chamfer_runtime::render::{
     Camera, CapMethod, CutRenderer, CutStyle, DisplaySettings, EdgeClasses, EdgeStyle, FrameViews,
     GpuAsset, Highlight, Instance, Light, MeshLight, MeshRenderer, MeshStyle, Orbit, Pipelines,
-    SceneRenderer, Shading, Target, Technique,
+    PosedAsset, SceneRenderer, Shading, Target, Technique,
 };
+use chamfer_runtime::rig::Pose;
 use chamfer_runtime::section::{ClipPlanes, Plane};
 use glam::{Mat4, Vec3};
 use winit::application::ApplicationHandler;
@@ -73,6 +75,7 @@ fn main() -> anyhow::Result<()> {
         section: None,
         moving_section: false,
         display: 0,
+        playing: true,
         cursor: None,
         error: None,
     };
@@ -106,6 +109,8 @@ struct Viewer {
     moving_section: bool,
     /// The display mode: an index into [`display_modes`].
     display: usize,
+    /// Animated assets play their first animation (key A).
+    playing: bool,
     cursor: Option<(f64, f64)>,
     error: Option<anyhow::Error>,
 }
@@ -153,6 +158,8 @@ struct Gpu {
     depth: wgpu::TextureView,
     depth_sampled: wgpu::TextureView,
     assets: Vec<GpuAsset>,
+    /// Per asset with an animation, its pose.
+    posed: Vec<Option<PosedAsset>>,
     mesh: MeshRenderer,
     edges: SceneRenderer,
     cut: CutRenderer,
@@ -196,6 +203,15 @@ impl Gpu {
             .iter()
             .map(|asset| GpuAsset::for_techniques(&device, asset, &Technique::all()))
             .collect::<Result<Vec<_>, _>>()?;
+        let posed = uploaded
+            .iter()
+            .map(|asset| match asset.rig() {
+                Some(rig) if !rig.animations.is_empty() => {
+                    PosedAsset::new(&pipelines, asset).map(Some)
+                }
+                _ => Ok(None),
+            })
+            .collect::<Result<Vec<_>, _>>()?;
         let mesh = MeshRenderer::for_scenes(&pipelines)?;
         let edges = SceneRenderer::new(&pipelines);
         let cut = CutRenderer::new(&pipelines)?;
@@ -209,6 +225,7 @@ impl Gpu {
             depth,
             depth_sampled,
             assets: uploaded,
+            posed,
             mesh,
             edges,
             cut,
@@ -224,7 +241,8 @@ impl Gpu {
 
     /// What the camera frames: the scene as placed, so that it stays put while the scene explodes.
     fn bounds(&self, placed: &[(usize, Mat4)]) -> [[f32; 3]; 2] {
-        Instance::scene_bounds(&instances(&self.assets, placed, false)).unwrap_or_default()
+        let still: Vec<&GpuAsset> = self.assets.iter().collect();
+        Instance::scene_bounds(&instances(&still, placed, false)).unwrap_or_default()
     }
 
     fn draw(
@@ -236,6 +254,7 @@ impl Gpu {
         mesh_style: Option<&MeshStyle>,
         draw_edges: bool,
         section: Option<(usize, f32)>,
+        time: Option<f32>,
     ) -> anyhow::Result<()> {
         let frame = match self.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(frame)
@@ -251,7 +270,25 @@ impl Gpu {
         let bounds = self.bounds(placed);
         let camera = Camera::orbit(bounds, orbit, [self.config.width, self.config.height]);
         let mut encoder = self.device.create_command_encoder(&Default::default());
-        let instances = instances(&self.assets, placed, explode);
+        // Playing: each animated asset at its first animation's time, looping; paused, at rest.
+        for posed in self.posed.iter_mut().flatten() {
+            let rig = posed.rig();
+            let duration = rig.animations[0].duration().max(1e-3);
+            let pose = match time {
+                Some(t) => Pose::sampled(rig, 0, t % duration),
+                None => Some(Pose::rest(rig)),
+            };
+            if let Some(pose) = pose {
+                posed.prepare(&self.queue, &mut encoder, &pose)?;
+            }
+        }
+        let shown: Vec<&GpuAsset> = self
+            .assets
+            .iter()
+            .zip(&self.posed)
+            .map(|(still, posed)| posed.as_ref().map_or(still, PosedAsset::asset))
+            .collect();
+        let instances = instances(&shown, placed, explode);
         let cut = CutStyle {
             section: section_plane(bounds, section),
             ..CutStyle::default()
@@ -342,13 +379,13 @@ fn section_plane(bounds: [[f32; 3]; 2], section: Option<(usize, f32)>) -> ClipPl
 /// The instances to draw this frame; exploded: each moved away from the scene's centre to twice
 /// its distance.
 fn instances<'a>(
-    assets: &'a [GpuAsset],
+    assets: &[&'a GpuAsset],
     placed: &[(usize, Mat4)],
     explode: bool,
 ) -> Vec<Instance<'a>> {
     let instances: Vec<Instance<'a>> = placed
         .iter()
-        .map(|&(asset, transform)| Instance::new(&assets[asset]).with_transform(transform))
+        .map(|&(asset, transform)| Instance::new(assets[asset]).with_transform(transform))
         .collect();
     let Some(bounds) = Instance::scene_bounds(&instances).filter(|_| explode) else {
         return instances;
@@ -532,6 +569,8 @@ impl ApplicationHandler for Viewer {
                     mesh_style.as_ref(),
                     self.draw_edges,
                     self.section,
+                    self.playing
+                        .then(|| self.started.elapsed().as_secs_f32()),
                 ) {
                     self.error = Some(e);
                     event_loop.exit();
@@ -541,7 +580,8 @@ impl ApplicationHandler for Viewer {
                     self.title,
                     style.technique.name()
                 ));
-                if self.highlight != Lit::Off {
+                let animated = gpu.posed.iter().any(Option::is_some);
+                if self.highlight != Lit::Off || (self.playing && animated) {
                     gpu.window.request_redraw();
                 }
                 false
@@ -614,6 +654,9 @@ impl ApplicationHandler for Viewer {
                     true
                 } else if event.logical_key == Key::Character("x".into()) {
                     self.explode = !self.explode;
+                    true
+                } else if event.logical_key == Key::Character("a".into()) {
+                    self.playing = !self.playing;
                     true
                 } else if event.logical_key == Key::Character("v".into()) {
                     self.display = (self.display + 1) % display_modes().len();

@@ -215,6 +215,14 @@ pub fn display_schema() -> String {
     chamfer_runtime::render::DisplaySettings::schema_json().to_string()
 }
 
+/// The animation schema, as JSON: the pose of an animated asset (`chamfer render`'s
+/// `--animation`, `--time`, `--pose`), from which the page builds its animation panel; the view
+/// settings take the same keys.
+#[wasm_bindgen(js_name = animationSchema)]
+pub fn animation_schema() -> String {
+    chamfer_runtime::rig::AnimationSettings::schema_json().to_string()
+}
+
 /// The edge classes' names, as JSON (`chamfer render --classes` takes the same).
 #[wasm_bindgen(js_name = edgeClasses)]
 pub fn edge_classes() -> String {

@@ -8,6 +8,7 @@ use chamfer_runtime::render::{
     Camera, DEFAULT_LIGHT_DIRECTION, DisplaySettings, EdgeClasses, EdgeStyle, Light, MeshStyle,
     Orbit, Shading, StyleSettings, Technique,
 };
+use chamfer_runtime::rig::AnimationSettings;
 use chamfer_runtime::schema::{Schema, Value};
 use chamfer_runtime::section::{ClipPlanes, CutSettings, Section};
 use serde::Deserialize;
@@ -50,6 +51,9 @@ pub struct ViewSettings {
     /// schema's names.
     #[serde(skip)]
     pub display: DisplaySettings,
+    /// `--animation`, `--time`, `--pose`: the keys of the animation schema's names.
+    #[serde(skip)]
+    pub animation: AnimationSettings,
     /// `--technique`, by name.
     pub technique: String,
     /// The technique's own parameters by their names in its table (`{"step": 3}` for a `hybrid-*`
@@ -73,6 +77,7 @@ impl Default for ViewSettings {
             section: Section::default(),
             cut: CutSettings::default(),
             display: DisplaySettings::default(),
+            animation: AnimationSettings::default(),
             technique: Technique::default().name().to_owned(),
             parameters: serde_json::Map::new(),
             classes: EdgeClasses::names().map(str::to_owned).collect(),
@@ -108,6 +113,7 @@ impl ViewSettings {
         let section = take_keys(&mut keys, Section::ENTRIES.iter().map(|e| e.name));
         let cut = take_keys(&mut keys, CutSettings::ENTRIES.iter().map(|e| e.name));
         let display = take_keys(&mut keys, DisplaySettings::ENTRIES.iter().map(|e| e.name));
+        let animation = take_keys(&mut keys, AnimationSettings::ENTRIES.iter().map(|e| e.name));
         let mut settings: Self =
             serde_json::from_value(serde_json::Value::Object(keys)).map_err(error)?;
         settings.orbit = serde_json::from_value(camera).map_err(error)?;
@@ -115,6 +121,7 @@ impl ViewSettings {
         settings.section = serde_json::from_value(section).map_err(error)?;
         settings.cut = serde_json::from_value(cut).map_err(error)?;
         settings.display = serde_json::from_value(display).map_err(error)?;
+        settings.animation = serde_json::from_value(animation).map_err(error)?;
         settings.check()?;
         Ok(settings)
     }
@@ -124,6 +131,7 @@ impl ViewSettings {
         self.look.check().map_err(|e| e.to_string())?;
         self.section.check().map_err(|e| e.to_string())?;
         self.cut.check().map_err(|e| e.to_string())?;
+        self.animation.check().map_err(|e| e.to_string())?;
         let unit = |c: &[f32; 4]| c.iter().all(|v| v.is_finite() && (0.0..=1.0).contains(v));
         if !unit(&self.background) || self.edge_color.as_ref().is_some_and(|c| !unit(c)) {
             return Err("colours are four numbers from 0 to 1".into());

@@ -7,8 +7,8 @@ use std::sync::{Arc, Mutex};
 
 use chamfer_runtime::asset::Asset;
 use chamfer_runtime::render::{
-    CutRenderer, GpuAsset, Instance, MeshRenderer, OffscreenTarget, Pipelines, SceneRenderer,
-    Target,
+    CutRenderer, GpuAsset, Instance, MeshRenderer, OffscreenTarget, Pipelines, PosedAsset,
+    SceneRenderer, Target,
 };
 use wasm_bindgen::prelude::*;
 
@@ -38,12 +38,15 @@ struct Frame {
     mesh: MeshRenderer,
     cut: CutRenderer,
     edges: SceneRenderer,
+    pipelines: Pipelines,
 }
 
-/// The asset on screen: decoded, and uploaded with what the techniques drawn so far need.
+/// The asset on screen: decoded, and uploaded with what the techniques drawn so far need; posed
+/// when the view asks for a pose (made at the first such frame, for this upload and frame).
 struct Shown {
     asset: Asset,
     gpu: GpuAsset,
+    posed: Option<PosedAsset>,
 }
 
 /// Opens WebGPU on `canvas`. Fails with the reason when the browser has no WebGPU adapter.
@@ -118,8 +121,28 @@ impl Viewer {
         let technique = self.view.technique().map_err(|e| JsError::new(&e))?;
         let gpu = GpuAsset::for_techniques(&self.device, &asset, &[technique])
             .map_err(|e| JsError::new(&format!("{name}: cannot upload: {e}")))?;
-        self.shown = Some(Shown { asset, gpu });
+        self.shown = Some(Shown {
+            asset,
+            gpu,
+            posed: None,
+        });
         Ok(())
+    }
+
+    /// The shown asset's animations as JSON, `[{"name", "duration"}]` (empty for a still asset
+    /// or none shown): the page's animation panel lists them.
+    pub fn animations(&self) -> String {
+        let animations = self.shown.as_ref().map_or(Vec::new(), |shown| {
+            shown
+                .asset
+                .motion
+                .rig
+                .animations
+                .iter()
+                .map(|a| serde_json::json!({"name": a.name, "duration": a.duration()}))
+                .collect()
+        });
+        serde_json::Value::from(animations).to_string()
     }
 
     /// Changes the view (JSON, [`ViewSettings`]); refused settings leave it as it was.
@@ -158,6 +181,10 @@ impl Viewer {
         let size = [width.max(1), height.max(1)];
         if self.frame.as_ref().is_none_or(|f| f.size != size) {
             self.frame = Some(self.new_frame(size)?);
+            // A pose is made for a frame's pipelines.
+            if let Some(shown) = &mut self.shown {
+                shown.posed = None;
+            }
         }
         let (Some(frame), Some(shown)) = (&mut self.frame, &mut self.shown) else {
             return Ok(());
@@ -169,10 +196,38 @@ impl Viewer {
             shown.gpu =
                 GpuAsset::with_extras(&self.device, &shown.asset, shown.gpu.extras() | needs)
                     .map_err(|e| fail("cannot upload the asset", &e))?;
+            shown.posed = None;
         }
-        let shown = &*shown;
-        let drawn = [Instance::new(&shown.gpu)];
-        let bounds = shown.gpu.bounds();
+        let mut encoder = self
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("chamfer web frame"),
+            });
+        // The pose the view asks for, as `chamfer render` takes it from the same keys.
+        let moving = (!shown.asset.motion.rig.is_empty()).then_some(&shown.asset.motion.rig);
+        let pose = self
+            .view
+            .animation
+            .pose_of(moving)
+            .map_err(|e| JsError::new(&e.to_string()))?;
+        let drawn_asset = match pose {
+            Some(pose) => {
+                let posed = match &mut shown.posed {
+                    Some(posed) => posed,
+                    slot => slot.insert(
+                        PosedAsset::new(&frame.pipelines, &shown.gpu)
+                            .map_err(|e| fail("cannot pose the asset", &e))?,
+                    ),
+                };
+                posed
+                    .prepare(&self.queue, &mut encoder, &pose)
+                    .map_err(|e| fail("cannot pose the asset", &e))?;
+                posed.asset()
+            }
+            None => &shown.gpu,
+        };
+        let drawn = [Instance::new(drawn_asset)];
+        let bounds = drawn_asset.bounds();
         let camera = self.view.camera(bounds, size);
         let faces = self.view.faces_style();
         if let Some(faces) = &faces {
@@ -186,11 +241,6 @@ impl Viewer {
             frame.cut.prepare(&self.queue, &camera, &drawn, &cut);
         }
         let style = self.view.edge_style().map_err(|e| JsError::new(&e))?;
-        let mut encoder = self
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("chamfer web frame"),
-            });
         let prepared = frame
             .edges
             .prepare(&self.queue, &mut encoder, &camera, &drawn, &style)
@@ -275,6 +325,7 @@ impl Viewer {
             mesh,
             cut,
             edges,
+            pipelines,
         })
     }
 }

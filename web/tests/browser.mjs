@@ -431,6 +431,51 @@ await check("hidden-line mode draws the hidden edges chamfer render draws", asyn
   await page.close();
 });
 
+// Issue 41: an animated glTF is posed by the animation schema's keys as chamfer render poses it
+// with the same flags, every animation schema entry is a control, and "play" moves the time.
+await check("an animated glTF is posed as chamfer render poses it", async () => {
+  const cylinder = "fixtures/shapes/cylinder-skinned.glb";
+  const page = await openPage(session, "&azimuth=-50&elevation=30");
+  await settled(page);
+  await upload(page, cylinder);
+  await settled(page);
+  const names = await page.evaluate(() => document.getElementById("animations").textContent);
+  expect(names.includes('0 "bend" 1.00 s'), `the page lists ${names}`);
+  const rest = await capture(page);
+  const bent = await capture(page, { animation: 0, time: 1 });
+  const bentMesh = await capture(page, { classes: [] });
+  await capture(page, { classes: ALL });
+  save(bent, "bent-page.png");
+  const cli = render([cylinder, ...CAMERA, "--animation", "0", "--time", "1"], "bent-cli.png");
+  const cliMesh = render([cylinder, ...CAMERA, "--animation", "0", "--time", "1", "--style", "mesh"], "bent-cli-mesh.png");
+  const [pageEdges, cliEdges] = [edgesOf(bent, bentMesh), edgesOf(cli, cliMesh)];
+  const [pageInCli, cliInPage] = overlap(pageEdges, cliEdges);
+  console.log(`     ${count(pageEdges)} edge pixels of the bent cylinder in the page, ${count(cliEdges)} from ` +
+    `chamfer render; within 1 px ${pageInCli.toFixed(4)} / ${cliInPage.toFixed(4)}`);
+  expect(count(pageEdges) > 300, `only ${count(pageEdges)} edge pixels`);
+  expect(pageInCli >= 0.95 && cliInPage >= 0.95, "the page's pose and chamfer render's differ");
+  expect(count(differing(rest, bent)) > 1000, "posing changed nothing");
+  const schema = await page.evaluate(() => window.chamfer.animationSchema);
+  const controls = await page.evaluate(() => [...document.querySelectorAll("#animation-options input")].map((i) => i.id));
+  expect(controls.length === schema.length && schema.every((e) => controls.includes(`animation-${e.name}`)),
+    `controls ${controls} for ${schema.map((e) => e.name)}`);
+  // An animation the asset lacks is refused, with chamfer render's message.
+  const refused = await capture(page, { animation: 5 }).then(() => null, (e) => String(e));
+  expect(refused?.includes("must be below 1"), `animation 5: ${refused}`);
+  await capture(page, { animation: null, time: 0 });
+  const time = await page.evaluate(async () => {
+    const play = document.getElementById("play");
+    play.checked = true;
+    play.dispatchEvent(new Event("change"));
+    await new Promise((done) => setTimeout(done, 600));
+    play.checked = false;
+    return window.chamfer.view.time;
+  });
+  expect(time > 0 && time < 1 && (await page.evaluate(() => window.chamfer.view.animation)) === 0,
+    `playing set time ${time}`);
+  await page.close();
+});
+
 await check("the downloads are the asset on screen and its SVG drawing", async () => {
   const folder = join(outDir, "downloads");
   rmSync(folder, { recursive: true, force: true });

@@ -2,10 +2,11 @@
 // drawn by the wasm Viewer on WebGPU, the controls, the downloads. Query parameters: url (a file to
 // load), any entry of the view and style schemas (azimuth, elevation, edge_width, ...), size (WxH
 // canvas pixels), technique and its parameters (hybrid_step, fin_thickness, ...), section_axis
-// (x, y, z, -x, -y, -z) and section_at (0 to 1) for the section slider, any entry of the cut and
-// display schemas.
+// (x, y, z, -x, -y, -z) and section_at (0 to 1) for the section slider, any entry of the cut,
+// display and animation schemas.
 import init, {
-  bakeSchema, createViewer, cutSchema, displaySchema, edgeClasses, sectionSchema, styleSchema, techniques, viewSchema,
+  animationSchema, bakeSchema, createViewer, cutSchema, displaySchema, edgeClasses, sectionSchema, styleSchema,
+  techniques, viewSchema,
 } from "./pkg/chamfer_web.js";
 
 const $ = (id) => document.getElementById(id);
@@ -167,6 +168,31 @@ function sectionPlane() {
   return [...normal, sign * offset];
 }
 
+// "Play": the chosen animation (the view's `animation`, the first when none is chosen) runs on the
+// clock, looping, its `time` set each frame as the time field would set it.
+function setUpPlayback() {
+  const play = $("play");
+  let started = 0;
+  const step = (now) => {
+    if (!play.checked) return;
+    const animations = JSON.parse(state.viewer?.animations() ?? "[]");
+    const chosen = animations[state.view.animation ?? 0];
+    if (chosen) {
+      state.view.animation ??= 0;
+      state.view.time = ((now - started) / 1000) % Math.max(chosen.duration, 1e-3);
+      $("animation-animation").value = state.view.animation;
+      $("animation-time").value = state.view.time.toFixed(3);
+      redraw();
+    }
+    requestAnimationFrame(step);
+  };
+  play.addEventListener("change", () => {
+    if (!play.checked) return;
+    started = performance.now();
+    requestAnimationFrame(step);
+  });
+}
+
 function setUpSection() {
   const axis = query.get("section_axis");
   if (axis) $("section-axis").value = axis;
@@ -232,6 +258,10 @@ function show(name, bytes, report, from) {
   }
   try {
     state.viewer.show(name, bytes);
+    const animations = JSON.parse(state.viewer.animations());
+    $("animations").textContent = animations.length
+      ? animations.map((a, i) => `${i} "${a.name}" ${a.duration.toFixed(2)} s`).join(", ")
+      : "none (a still asset)";
     state.view.distance = null;
     state.view.section = sectionPlane();
     const took = report.worker_ms ? ` in ${report.worker_ms.toFixed(0)} ms` : "";
@@ -456,6 +486,8 @@ async function start() {
   state.sectionSchema = JSON.parse(sectionSchema());
   setUpPanel(JSON.parse(cutSchema()), "cut-options");
   setUpPanel(JSON.parse(displaySchema()), "display-options");
+  setUpPanel(JSON.parse(animationSchema()), "animation-options");
+  setUpPlayback();
   setUpSection();
   setUpControls(JSON.parse(techniques()));
   setUpBakeOptions(JSON.parse(bakeSchema()));
