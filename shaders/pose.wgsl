@@ -11,23 +11,30 @@ struct PoseFrame {
     skinned: u32,
     // 1 when the asset has per-topology-vertex normals to pose (AssetExtras::VERTEX_NORMALS).
     vertex_normals: u32,
+    // The rig's joints: `pose_data` holds their matrices, then their normal matrices, then the
+    // morph weights.
+    joints: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
+// Each pass binds at most seven storage buffers (WebGPU guarantees eight per stage), so what
+// belongs together shares one: the skin, the pose, the morph targets.
 @group(0) @binding(0) var<uniform> pose: PoseFrame;
 // The rest positions, as common.wgsl binds them.
 @group(0) @binding(1) var<storage, read> topology: array<f32>;
-// Four u16 joint indices per vertex, as two words.
-@group(0) @binding(40) var<storage, read> skin_joints: array<u32>;
-@group(0) @binding(41) var<storage, read> skin_weights: array<vec4<f32>>;
-@group(0) @binding(42) var<storage, read> joint_matrices: array<mat4x4<f32>>;
-// Per joint, the inverse transpose of its linear part (in the upper 3 × 3).
-@group(0) @binding(43) var<storage, read> joint_normals: array<mat4x4<f32>>;
-// Per vertex, its first morph entry; one more at the end.
-@group(0) @binding(44) var<storage, read> morph_ranges: array<u32>;
-// xyz: the delta, w: its target's index (bits).
-@group(0) @binding(45) var<storage, read> morph_entries: array<vec4<f32>>;
-@group(0) @binding(46) var<storage, read> morph_weights: array<f32>;
+// Six words per vertex: four u16 joint indices in two, then four f32 weights.
+@group(0) @binding(40) var<storage, read> skin: array<u32>;
+// 4 columns per joint matrix, 4 per joint's normal matrix (the inverse transpose of its linear
+// part, in the upper 3 × 3), then the morph weights, four a vec4.
+@group(0) @binding(42) var<storage, read> pose_data: array<vec4<f32>>;
+// V + 1 words: each vertex's first morph entry (and the end); then four words per entry: the
+// delta's three f32 and its target.
+@group(0) @binding(44) var<storage, read> morphs: array<u32>;
 @group(0) @binding(47) var<storage, read_write> posed_topology: array<f32>;
+// pose_render reads what pose_vertices wrote (a separate dispatch: its writes are visible).
+@group(0) @binding(52) var<storage, read> posed_topology_in: array<f32>;
 @group(0) @binding(8) var<storage, read> render_normals: array<f32>;
 @group(0) @binding(12) var<storage, read> render_to_topology: array<u32>;
 @group(0) @binding(48) var<storage, read_write> posed_render: array<f32>;
@@ -36,32 +43,40 @@ struct PoseFrame {
 @group(0) @binding(50) var<storage, read_write> posed_vertex_normals: array<vec4<f32>>;
 
 fn joints_of(v: u32) -> vec4<u32> {
-    let a = skin_joints[2u * v];
-    let b = skin_joints[2u * v + 1u];
+    let a = skin[6u * v];
+    let b = skin[6u * v + 1u];
     return vec4<u32>(a & 0xffffu, a >> 16u, b & 0xffffu, b >> 16u);
 }
 
-// Σ wᵢ Jᵢ, the matrix that moves vertex v (identity when it has no weights).
-fn skin_matrix(v: u32) -> mat4x4<f32> {
-    let w = skin_weights[v];
+fn weights_of(v: u32) -> vec4<f32> {
+    let at = 6u * v + 2u;
+    return bitcast<vec4<f32>>(vec4<u32>(skin[at], skin[at + 1u], skin[at + 2u], skin[at + 3u]));
+}
+
+fn joint_matrix(first: u32, j: u32) -> mat4x4<f32> {
+    let at = first + 4u * j;
+    return mat4x4<f32>(pose_data[at], pose_data[at + 1u], pose_data[at + 2u], pose_data[at + 3u]);
+}
+
+fn morph_weight(t: u32) -> f32 {
+    return pose_data[8u * pose.joints + t / 4u][t % 4u];
+}
+
+// Σ wᵢ Mᵢ over the vertex's joints, of the matrices from `first` on (the joints' or their
+// normals'); the identity when it has no weights.
+fn blended(v: u32, first: u32) -> mat4x4<f32> {
+    let w = weights_of(v);
     if pose.skinned == 0u || all(w == vec4<f32>(0.0)) {
         return mat4x4<f32>(vec4(1.0, 0.0, 0.0, 0.0), vec4(0.0, 1.0, 0.0, 0.0), vec4(0.0, 0.0, 1.0, 0.0), vec4(0.0, 0.0, 0.0, 1.0));
     }
     let j = joints_of(v);
-    return joint_matrices[j.x] * w.x + joint_matrices[j.y] * w.y + joint_matrices[j.z] * w.z
-        + joint_matrices[j.w] * w.w;
+    return joint_matrix(first, j.x) * w.x + joint_matrix(first, j.y) * w.y
+        + joint_matrix(first, j.z) * w.z + joint_matrix(first, j.w) * w.w;
 }
 
 // The normal of vertex v turned by its joints (unchanged when it has none).
 fn skin_normal(v: u32, n: vec3<f32>) -> vec3<f32> {
-    let w = skin_weights[v];
-    if pose.skinned == 0u || all(w == vec4<f32>(0.0)) {
-        return n;
-    }
-    let j = joints_of(v);
-    let m = joint_normals[j.x] * w.x + joint_normals[j.y] * w.y + joint_normals[j.z] * w.z
-        + joint_normals[j.w] * w.w;
-    let turned = (m * vec4<f32>(n, 0.0)).xyz;
+    let turned = (blended(v, 4u * pose.joints) * vec4<f32>(n, 0.0)).xyz;
     let length2 = dot(turned, turned);
     return select(n, turned * inverseSqrt(length2), length2 > 0.0);
 }
@@ -74,11 +89,13 @@ fn pose_vertices(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     var p = vec3<f32>(topology[3u * v], topology[3u * v + 1u], topology[3u * v + 2u]);
-    for (var e = morph_ranges[v]; e < morph_ranges[v + 1u]; e++) {
-        let entry = morph_entries[e];
-        p += morph_weights[bitcast<u32>(entry.w)] * entry.xyz;
+    let entries = pose.vertices + 1u;
+    for (var e = morphs[v]; e < morphs[v + 1u]; e++) {
+        let at = entries + 4u * e;
+        let delta = bitcast<vec3<f32>>(vec3<u32>(morphs[at], morphs[at + 1u], morphs[at + 2u]));
+        p += morph_weight(morphs[at + 3u]) * delta;
     }
-    let q = skin_matrix(v) * vec4<f32>(p, 1.0);
+    let q = blended(v, 0u) * vec4<f32>(p, 1.0);
     posed_topology[3u * v] = q.x;
     posed_topology[3u * v + 1u] = q.y;
     posed_topology[3u * v + 2u] = q.z;
@@ -89,7 +106,7 @@ fn pose_vertices(@builtin(global_invocation_id) id: vec3<u32>) {
 }
 
 // One thread per render vertex: its topology vertex's posed position and its own normal, turned.
-// Runs after pose_vertices (a separate dispatch: its writes are visible here).
+// Runs after pose_vertices, in its own bind group (the posed positions read-only here).
 @compute @workgroup_size(WORKGROUP)
 fn pose_render(@builtin(global_invocation_id) id: vec3<u32>) {
     let r = thread_index(id);
@@ -98,7 +115,7 @@ fn pose_render(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let t = render_to_topology[r];
     for (var k = 0u; k < 3u; k++) {
-        posed_render[3u * r + k] = posed_topology[3u * t + k];
+        posed_render[3u * r + k] = posed_topology_in[3u * t + k];
     }
     let n = vec3<f32>(render_normals[3u * r], render_normals[3u * r + 1u], render_normals[3u * r + 2u]);
     let turned = skin_normal(t, n);

@@ -384,5 +384,9 @@ fn version_3_assets_are_still_read_and_re_encode_as_a_fresh_bake() {
             .map(|s| s.length)
     };
     assert_eq!(stored(&old.header.sections), Some(24 * 12));
-    assert_eq!(stored(&new.encoded_sections()), Some(0), "the cube's 24 render positions are not stored");
+    assert_eq!(
+        stored(&new.encoded_sections()),
+        Some(0),
+        "the cube's 24 render positions are not stored"
+    );
 }

@@ -84,8 +84,8 @@ fn main() -> Result<()> {
             gpu.submit(encoder)?;
             let posing = start.elapsed().as_secs_f64() * 1e3;
             let frame = |mesh: &mut MeshRenderer,
-                             edges: &mut EdgeRenderer,
-                             posed: Option<&mut PosedAsset>|
+                         edges: &mut EdgeRenderer,
+                         posed: Option<&mut PosedAsset>|
              -> Result<f64> {
                 let start = Instant::now();
                 let mut encoder = gpu.encoder();
@@ -159,8 +159,8 @@ fn tube(vertices: usize) -> Result<Asset> {
         triangles,
         ..Mesh::default()
     };
-    let options = chamfer_preprocess::BakeOptions::DEFAULT
-        .with_limits(chamfer_preprocess::Limits::NONE);
+    let options =
+        chamfer_preprocess::BakeOptions::DEFAULT.with_limits(chamfer_preprocess::Limits::NONE);
     Ok(chamfer_preprocess::bake(mesh, "tube", &options)?.asset)
 }
 

@@ -569,8 +569,7 @@ impl ApplicationHandler for Viewer {
                     mesh_style.as_ref(),
                     self.draw_edges,
                     self.section,
-                    self.playing
-                        .then(|| self.started.elapsed().as_secs_f32()),
+                    self.playing.then(|| self.started.elapsed().as_secs_f32()),
                 ) {
                     self.error = Some(e);
                     event_loop.exit();

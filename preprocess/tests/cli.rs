@@ -1372,7 +1372,11 @@ fn the_frame_benchmarks_run_at_a_tiny_size() {
             &["--grid", "2", "--no-separate", "--large", cube][..],
             &["| + one SceneRenderer"][..],
         ),
-        ("bench_pose", &["--vertices", "500", "--joints", "4"][..], &["| 450"][..]),
+        (
+            "bench_pose",
+            &["--vertices", "500", "--joints", "4"][..],
+            &["| 450"][..],
+        ),
     ] {
         run_frame_bench(name, extra, rows);
     }

@@ -37,40 +37,49 @@ pub(crate) struct PoseFrame {
     pub(crate) render_vertices: u32,
     pub(crate) skinned: u32,
     pub(crate) vertex_normals: u32,
+    pub(crate) joints: u32,
+    pub(crate) _pad0: u32,
+    pub(crate) _pad1: u32,
+    pub(crate) _pad2: u32,
 }
 
 const POSE: Binding = Binding::new(0, "pose", Kind::Uniform);
-const SKIN_JOINTS: Binding = Binding::new(40, "skin_joints", Kind::Read);
-const SKIN_WEIGHTS: Binding = Binding::new(41, "skin_weights", Kind::Read);
-const JOINT_MATRICES: Binding = Binding::new(42, "joint_matrices", Kind::Read);
-const JOINT_NORMALS: Binding = Binding::new(43, "joint_normals", Kind::Read);
-const MORPH_RANGES: Binding = Binding::new(44, "morph_ranges", Kind::Read);
-const MORPH_ENTRIES: Binding = Binding::new(45, "morph_entries", Kind::Read);
-const MORPH_WEIGHTS: Binding = Binding::new(46, "morph_weights", Kind::Read);
+const SKIN: Binding = Binding::new(40, "skin", Kind::Read);
+const POSE_DATA: Binding = Binding::new(42, "pose_data", Kind::Read);
+const MORPHS: Binding = Binding::new(44, "morphs", Kind::Read);
 const POSED_TOPOLOGY: Binding = Binding::new(47, "posed_topology", Kind::ReadWrite);
+const POSED_TOPOLOGY_IN: Binding = Binding::new(52, "posed_topology_in", Kind::Read);
 const POSED_RENDER: Binding = Binding::new(48, "posed_render", Kind::ReadWrite);
 const POSED_NORMALS: Binding = Binding::new(49, "posed_normals", Kind::ReadWrite);
 const POSED_VERTEX_NORMALS: Binding = Binding::new(50, "posed_vertex_normals", Kind::ReadWrite);
 
-static POSE_BINDINGS: Bindings = Bindings::compute(
-    "pose",
+/// The topology pass: seven storage buffers (WebGPU guarantees eight per stage).
+static VERTICES: Bindings = Bindings::compute(
+    "pose vertices",
     &[
         POSE,
         bindings::asset::TOPOLOGY,
-        bindings::asset::RENDER_NORMALS,
-        bindings::asset::VERTEX_NORMALS,
-        bindings::asset::RENDER_TO_TOPOLOGY,
-        SKIN_JOINTS,
-        SKIN_WEIGHTS,
-        JOINT_MATRICES,
-        JOINT_NORMALS,
-        MORPH_RANGES,
-        MORPH_ENTRIES,
-        MORPH_WEIGHTS,
+        SKIN,
+        POSE_DATA,
+        MORPHS,
         POSED_TOPOLOGY,
+        bindings::asset::VERTEX_NORMALS,
+        POSED_VERTEX_NORMALS,
+    ],
+);
+
+/// The render-vertex pass: seven storage buffers.
+static RENDER: Bindings = Bindings::compute(
+    "pose render vertices",
+    &[
+        POSE,
+        SKIN,
+        POSE_DATA,
+        POSED_TOPOLOGY_IN,
+        bindings::asset::RENDER_NORMALS,
+        bindings::asset::RENDER_TO_TOPOLOGY,
         POSED_RENDER,
         POSED_NORMALS,
-        POSED_VERTEX_NORMALS,
     ],
 );
 
@@ -80,8 +89,8 @@ pub(crate) fn shader() -> Shader {
         "pose.wgsl",
         &[chamfer_shaders::POSE],
         vec![
-            Program::compute("pose_vertices", &POSE_BINDINGS),
-            Program::compute("pose_render", &POSE_BINDINGS),
+            Program::compute("pose_vertices", &VERTICES),
+            Program::compute("pose_render", &RENDER),
         ],
     )
 }
@@ -92,7 +101,16 @@ pub(crate) fn structs() -> Vec<super::layout::Layout> {
     vec![super::layout::layout!(
         "PoseFrame",
         PoseFrame,
-        [vertices, render_vertices, skinned, vertex_normals]
+        [
+            vertices,
+            render_vertices,
+            skinned,
+            vertex_normals,
+            joints,
+            _pad0,
+            _pad1,
+            _pad2
+        ]
     )]
 }
 
@@ -117,11 +135,11 @@ impl PipelineSet for PosePipelines {
 #[derive(Debug)]
 pub(crate) struct GpuMotion {
     rig: Rig,
-    skin_joints: wgpu::Buffer,
-    skin_weights: wgpu::Buffer,
+    /// Per vertex its joints and weights, six words.
+    skin: wgpu::Buffer,
     skinned: bool,
-    morph_ranges: wgpu::Buffer,
-    morph_entries: wgpu::Buffer,
+    /// Each vertex's first morph entry (V + 1 words), then four words an entry.
+    morphs: wgpu::Buffer,
     render_to_topology: wgpu::Buffer,
     /// The asset's clusters with bounds that cull nothing (their flags kept).
     open_clusters: wgpu::Buffer,
@@ -167,17 +185,36 @@ impl GpuMotion {
             ranges[v + 1] += ranges[v];
         }
         let mut next = ranges.clone();
-        let mut entries = vec![[0.0f32; 4]; motion.morph_vertices.len()];
+        let entries_at = ranges.len();
+        let mut morphs = ranges;
+        morphs.resize(entries_at + 4 * motion.morph_vertices.len(), 0);
         let mut morph_reach = vec![Vec3::ZERO; motion.morph_starts.len()];
         for (target, reach) in morph_reach.iter_mut().enumerate() {
             let (list, deltas) = motion.morph_target(target);
             for (&v, d) in list.iter().zip(deltas) {
                 let slot = &mut next[v as usize];
-                entries[*slot as usize] = [d[0], d[1], d[2], f32::from_bits(target as u32)];
+                let at = entries_at + 4 * *slot as usize;
+                morphs[at..at + 4].copy_from_slice(&[
+                    d[0].to_bits(),
+                    d[1].to_bits(),
+                    d[2].to_bits(),
+                    target as u32,
+                ]);
                 *slot += 1;
                 *reach = reach.max(Vec3::from(*d).abs());
             }
         }
+        let skin: Vec<u32> = motion
+            .joints
+            .iter()
+            .zip(&motion.weights)
+            .flat_map(|(j, w)| {
+                let pair = |a: u16, b: u16| u32::from(a) | (u32::from(b) << 16);
+                [pair(j[0], j[1]), pair(j[2], j[3])]
+                    .into_iter()
+                    .chain(w.map(f32::to_bits))
+            })
+            .collect();
         let mut joint_boxes = vec![None; motion.rig.joints.len()];
         let mut still_box = None;
         let grow = |slot: &mut Option<[Vec3; 2]>, p: Vec3| {
@@ -209,11 +246,9 @@ impl GpuMotion {
             .collect();
         Some(Self {
             rig: motion.rig.clone(),
-            skin_joints: upload("skin joints", bytemuck::cast_slice(&motion.joints)),
-            skin_weights: upload("skin weights", bytemuck::cast_slice(&motion.weights)),
+            skin: upload("skin", bytemuck::cast_slice(&skin)),
             skinned: motion.is_skinned(),
-            morph_ranges: upload("morph ranges", bytemuck::cast_slice(&ranges)),
-            morph_entries: upload("morph entries", bytemuck::cast_slice(&entries)),
+            morphs: upload("morph targets by vertex", bytemuck::cast_slice(&morphs)),
             render_to_topology: upload(
                 "render to topology",
                 bytemuck::cast_slice(render_to_topology),
@@ -268,11 +303,11 @@ pub struct PosedAsset {
     posed: GpuAsset,
     motion: Arc<GpuMotion>,
     pipelines: Arc<PosePipelines>,
-    group: wgpu::BindGroup,
+    vertices_group: wgpu::BindGroup,
+    render_group: wgpu::BindGroup,
     frame: wgpu::Buffer,
-    joints: wgpu::Buffer,
-    normals: wgpu::Buffer,
-    weights: wgpu::Buffer,
+    /// The joint matrices, their normal matrices and the morph weights (`pose_data`).
+    data: wgpu::Buffer,
     vertex_normals: bool,
 }
 
@@ -312,24 +347,18 @@ impl PosedAsset {
         posed.intersection_count = 0;
         posed.corner_count = 0;
         posed.key = Arc::new(());
-        // At least a mat4: a rig without joints still binds one.
-        let buffer = |label: &str, size: u64, usage| {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: size.max(64),
-                usage: usage | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            })
-        };
-        let joint_bytes = 64 * motion.rig.joints.len() as u64;
-        let frame = buffer("pose frame", 16, wgpu::BufferUsages::UNIFORM);
-        let joints = buffer("joint matrices", joint_bytes, storage);
-        let normals = buffer("joint normals", joint_bytes, storage);
-        let weights = buffer(
-            "morph weights",
-            4 * motion.rig.morph_weights.len() as u64,
-            storage,
-        );
+        let frame = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("pose frame"),
+            size: std::mem::size_of::<PoseFrame>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let data = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("pose data"),
+            size: pose_data_bytes(&motion.rig),
+            usage: storage | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
         // Without vertex normals, one placeholder to read and another to write (a buffer cannot
         // be both in one dispatch).
         let placeholder = |label| {
@@ -343,41 +372,41 @@ impl PosedAsset {
             placeholder("no vertex normals"),
             placeholder("no posed vertex normals"),
         );
-        let layout = pipelines.layout(&POSE_BINDINGS);
-        let group = POSE_BINDINGS.group(device, &layout, |binding| {
-            let resource = match binding {
-                POSE => &frame,
-                bindings::asset::TOPOLOGY => &asset.topology_positions,
-                bindings::asset::RENDER_NORMALS => &asset.render_normals,
-                bindings::asset::VERTEX_NORMALS => {
-                    asset.vertex_normals.as_ref().unwrap_or(&no_normals)
-                }
-                bindings::asset::RENDER_TO_TOPOLOGY => &motion.render_to_topology,
-                SKIN_JOINTS => &motion.skin_joints,
-                SKIN_WEIGHTS => &motion.skin_weights,
-                JOINT_MATRICES => &joints,
-                JOINT_NORMALS => &normals,
-                MORPH_RANGES => &motion.morph_ranges,
-                MORPH_ENTRIES => &motion.morph_entries,
-                MORPH_WEIGHTS => &weights,
-                POSED_TOPOLOGY => &posed.topology_positions,
-                POSED_RENDER => &posed.render_positions,
-                POSED_NORMALS => &posed.render_normals,
-                POSED_VERTEX_NORMALS => posed.vertex_normals.as_ref().unwrap_or(&no_posed_normals),
-                other => return Err(bindings::unbound(&POSE_BINDINGS, other)),
-            };
-            Ok(resource.as_entire_binding())
-        })?;
+        let group = |set: &'static Bindings| {
+            let layout = pipelines.layout(set);
+            set.group(device, &layout, |binding| {
+                let resource = match binding {
+                    POSE => &frame,
+                    SKIN => &motion.skin,
+                    POSE_DATA => &data,
+                    MORPHS => &motion.morphs,
+                    bindings::asset::TOPOLOGY => &asset.topology_positions,
+                    bindings::asset::RENDER_NORMALS => &asset.render_normals,
+                    bindings::asset::VERTEX_NORMALS => {
+                        asset.vertex_normals.as_ref().unwrap_or(&no_normals)
+                    }
+                    bindings::asset::RENDER_TO_TOPOLOGY => &motion.render_to_topology,
+                    POSED_TOPOLOGY | POSED_TOPOLOGY_IN => &posed.topology_positions,
+                    POSED_RENDER => &posed.render_positions,
+                    POSED_NORMALS => &posed.render_normals,
+                    POSED_VERTEX_NORMALS => {
+                        posed.vertex_normals.as_ref().unwrap_or(&no_posed_normals)
+                    }
+                    other => return Err(bindings::unbound(set, other)),
+                };
+                Ok(resource.as_entire_binding())
+            })
+        };
+        let (vertices_group, render_group) = (group(&VERTICES)?, group(&RENDER)?);
         Ok(Self {
             vertex_normals: posed.vertex_normals.is_some(),
             posed,
             motion,
             pipelines: pose_pipelines,
-            group,
+            vertices_group,
+            render_group,
             frame,
-            joints,
-            normals,
-            weights,
+            data,
         })
     }
 
@@ -417,12 +446,15 @@ impl PosedAsset {
                 "a joint matrix or morph weight is not finite".into(),
             ));
         }
-        let matrices: Vec<[f32; 16]> = pose.joints.iter().map(Mat4::to_cols_array).collect();
-        let normals: Vec<[f32; 16]> = pose
-            .joints
-            .iter()
-            .map(|m| Mat4::from_mat3(normal_matrix(Mat3::from_mat4(*m))).to_cols_array())
-            .collect();
+        // The matrices, their normal matrices, the weights (padded to whole vec4s).
+        let mut data: Vec<f32> = pose.joints.iter().flat_map(Mat4::to_cols_array).collect();
+        data.extend(
+            pose.joints
+                .iter()
+                .flat_map(|m| Mat4::from_mat3(normal_matrix(Mat3::from_mat4(*m))).to_cols_array()),
+        );
+        data.extend(&pose.weights);
+        data.resize(data.len().next_multiple_of(4).max(4), 0.0);
         queue.write_buffer(
             &self.frame,
             0,
@@ -431,27 +463,33 @@ impl PosedAsset {
                 render_vertices: self.motion.render_vertices,
                 skinned: u32::from(self.motion.skinned),
                 vertex_normals: u32::from(self.vertex_normals),
+                joints: rig.joints.len() as u32,
+                _pad0: 0,
+                _pad1: 0,
+                _pad2: 0,
             }),
         );
-        if !pose.joints.is_empty() {
-            queue.write_buffer(&self.joints, 0, bytemuck::cast_slice(&matrices));
-            queue.write_buffer(&self.normals, 0, bytemuck::cast_slice(&normals));
-        }
-        if !pose.weights.is_empty() {
-            queue.write_buffer(&self.weights, 0, bytemuck::cast_slice(&pose.weights));
-        }
+        queue.write_buffer(&self.data, 0, bytemuck::cast_slice(&data));
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("pose"),
             timestamp_writes: None,
         });
-        pass.set_bind_group(0, &self.group, &[]);
-        for (pipeline, items) in [
-            (&self.pipelines.vertices, self.motion.vertices),
-            (&self.pipelines.render, self.motion.render_vertices),
+        for (pipeline, group, items) in [
+            (
+                &self.pipelines.vertices,
+                &self.vertices_group,
+                self.motion.vertices,
+            ),
+            (
+                &self.pipelines.render,
+                &self.render_group,
+                self.motion.render_vertices,
+            ),
         ] {
             let [x, y] = workgroups(items);
             if x > 0 {
                 pass.set_pipeline(pipeline);
+                pass.set_bind_group(0, group, &[]);
                 pass.dispatch_workgroups(x, y, 1);
             }
         }
@@ -459,6 +497,12 @@ impl PosedAsset {
         self.posed.bounds = self.motion.bounds(pose);
         Ok(())
     }
+}
+
+/// Bytes of `pose_data` for `rig`: two matrices a joint, the weights in whole vec4s (one at least).
+fn pose_data_bytes(rig: &Rig) -> u64 {
+    let floats = 32 * rig.joints.len() + rig.morph_weights.len().next_multiple_of(4);
+    4 * floats.max(4) as u64
 }
 
 /// The inverse transpose of `m` (its cofactor matrix, up to a positive scale that the shader's
