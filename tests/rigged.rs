@@ -4,16 +4,17 @@
 
 use serde_json::json;
 
+/// `bytes` filled with `fill` to a multiple of four (GLB chunks and buffer views are aligned so).
+fn pad4(bytes: &mut Vec<u8>, fill: u8) {
+    bytes.resize(bytes.len().next_multiple_of(4), fill);
+}
+
 /// A GLB file from its JSON document and its binary buffer.
 pub fn glb(document: &serde_json::Value, buffer: &[u8]) -> Vec<u8> {
     let mut text = document.to_string().into_bytes();
-    while text.len() % 4 != 0 {
-        text.push(b' ');
-    }
+    pad4(&mut text, b' ');
     let mut bin = buffer.to_vec();
-    while bin.len() % 4 != 0 {
-        bin.push(0);
-    }
+    pad4(&mut bin, 0);
     let total = 12 + 8 + text.len() + 8 + bin.len();
     let mut out = Vec::with_capacity(total);
     out.extend_from_slice(b"glTF");
@@ -47,9 +48,7 @@ impl Buffer {
         kind: &str,
         extra: serde_json::Value,
     ) -> usize {
-        while self.bytes.len() % 4 != 0 {
-            self.bytes.push(0);
-        }
+        pad4(&mut self.bytes, 0);
         self.views.push(json!({
             "buffer": 0, "byteOffset": self.bytes.len(), "byteLength": bytes.len()
         }));
@@ -330,9 +329,7 @@ pub fn morph_cube(rest_weight: f32) -> Vec<u8> {
 }
 
 fn view(buffer: &mut Buffer, bytes: &[u8]) -> usize {
-    while buffer.bytes.len() % 4 != 0 {
-        buffer.bytes.push(0);
-    }
+    pad4(&mut buffer.bytes, 0);
     buffer.views.push(json!({
         "buffer": 0, "byteOffset": buffer.bytes.len(), "byteLength": bytes.len()
     }));

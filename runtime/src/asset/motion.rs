@@ -303,8 +303,8 @@ fn check_morphs(motion: &Motion, vertices: usize) -> Result<(), DecodeError> {
             position: d as u64,
         });
     }
-    for t in 0..targets {
-        let start = starts[t] as usize;
+    for (t, &start) in starts.iter().enumerate() {
+        let start = start as usize;
         let (list, _) = motion.morph_target(t);
         if let Some(i) = list.iter().position(|&v| v as usize >= vertices) {
             return Err(DecodeError::IndexOutOfRange {
