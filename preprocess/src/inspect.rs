@@ -95,6 +95,7 @@ pub fn summary(asset: &Asset, total_bytes: u64, precision: Option<Precision>) ->
             "closed": asset.intersection_polylines().filter(|p| p.first().map(|s| s[0]) == p.last().map(|s| s[1])).count(),
             "length": asset.intersection_length(),
         },
+        "motion": motion_report(asset),
         "bounds": { "min": asset.header.bounds_min, "max": asset.header.bounds_max },
         "precision": {
             "position_bits": precision.position_bits,
@@ -109,6 +110,26 @@ pub fn summary(asset: &Asset, total_bytes: u64, precision: Option<Precision>) ->
             "decoded_total": decoded_total,
             "per_edge": per_edge,
         },
+    })
+}
+
+/// What moves an animated asset (all zero and empty for a still one): its joints, the topology
+/// vertices they move, the morph targets (names, entries), the animations (number, name, length,
+/// channels), as `--animation` and `--animation-name` take them.
+fn motion_report(asset: &Asset) -> serde_json::Value {
+    let motion = &asset.motion;
+    let rig = &motion.rig;
+    json!({
+        "joints": rig.joints.len(),
+        "skinned_vertices": motion.weights.iter().filter(|w| w.iter().any(|&x| x != 0.0)).count(),
+        "morph_targets": rig.morph_names,
+        "morph_entries": motion.morph_vertices.len(),
+        "animations": rig.animations.iter().enumerate().map(|(i, a)| json!({
+            "index": i,
+            "name": a.name,
+            "duration": a.duration(),
+            "channels": a.channels.len(),
+        })).collect::<Vec<_>>(),
     })
 }
 

@@ -48,10 +48,16 @@ fn bake_then_inspect_json_has_the_documented_keys() {
         "triangles",
         "degenerate_triangles",
         "edges",
+        "motion",
         "bytes",
     ] {
         assert!(json.get(key).is_some(), "missing {key}: {json}");
     }
+    assert_eq!(
+        json["motion"]["joints"], 0,
+        "a still asset: {}",
+        json["motion"]
+    );
     for key in [
         "total",
         "boundary",
@@ -1872,6 +1878,18 @@ fn render_poses_an_animated_gltf_by_the_animation_flags() {
         picture(cube, &["--pose", "1"], "risen"),
         picture(cube, &[], "flat")
     );
+    // `inspect` names what `--animation` and `--animation-name` take.
+    let baked = dir.path().join("cylinder.chamfer");
+    succeed(&["bake", path_str(&fixture(cylinder)), "-o", path_str(&baked)]);
+    let report = text(&succeed(&["inspect", path_str(&baked)]).stdout);
+    assert!(
+        report.contains("2 joints moving") && report.contains("animation 0    \"bend\" (1.000 s"),
+        "{report}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_slice(&succeed(&["inspect", "--json", path_str(&baked)]).stdout)
+            .expect("JSON");
+    assert_eq!(json["motion"]["animations"][0]["name"], "bend");
 
     let refused = dir.path().join("refused.png");
     for (mesh, args, message) in [

@@ -18,7 +18,7 @@ use clap::Args;
 pub struct InspectArgs {
     /// The asset.
     asset: PathBuf,
-    /// Print JSON (stable keys: vertices, welded_vertices, triangles, degenerate_triangles, edges, stitch, intersections, precision, bytes).
+    /// Print JSON (stable keys: vertices, welded_vertices, triangles, degenerate_triangles, edges, stitch, intersections, motion, precision, bytes).
     #[arg(long)]
     json: bool,
     /// Also decode the file section by section on one thread and print what each section took
@@ -157,6 +157,31 @@ fn table(out: &mut String, name: &str, asset: &Asset, r: &serde_json::Value) -> 
         i["closed"],
         i["length"].as_f64().unwrap_or(0.0)
     )?;
+    let m = &r["motion"];
+    if let Some(animations) = m["animations"].as_array()
+        && (m["joints"].as_u64() > Some(0)
+            || !animations.is_empty()
+            || m["morph_entries"].as_u64() > Some(0))
+    {
+        writeln!(
+            out,
+            "  motion         {} joints moving {} vertices, {} morph targets ({} entries)",
+            m["joints"],
+            m["skinned_vertices"],
+            m["morph_targets"].as_array().map_or(0, Vec::len),
+            m["morph_entries"]
+        )?;
+        for a in animations {
+            writeln!(
+                out,
+                "  animation {}    {} ({:.3} s, {} channels)",
+                a["index"],
+                a["name"],
+                a["duration"].as_f64().unwrap_or(0.0),
+                a["channels"]
+            )?;
+        }
+    }
     let p = &r["precision"];
     let exact = |bits: &serde_json::Value| bits.as_u64() == Some(u64::from(LOSSLESS_BITS));
     if exact(&p["position_bits"]) && exact(&p["normal_bits"]) {
