@@ -282,6 +282,21 @@ fn hostile_animations_with_non_increasing_times() {
 #[test]
 fn hostile_more_joints_than_the_limit() {
     let glb = rigged::skinned_cylinder("LINEAR", [0.0; 3]);
+    // Counted from the skins the file declares, before anything is read: a typed limit error.
+    let options = BakeOptions::default().with_limits(Limits::DEFAULT.with_max_joints(1));
+    let error = chamfer_preprocess::bake_bytes(Path::new("broken.glb"), &glb, &options)
+        .expect_err("more joints than the limit");
+    assert!(
+        matches!(
+            error,
+            Error::LimitExceeded {
+                count: 2,
+                limit: 1,
+                ..
+            }
+        ),
+        "{error}"
+    );
     let text = refused(&glb, Limits::DEFAULT.with_max_joints(1));
     assert!(
         text.contains("2 joints") && text.contains("--max-joints"),

@@ -84,3 +84,8 @@ def test_a_still_asset_has_no_pose():
     assert still.joints.shape == (0, 4) and still.rig["joints"] == 0
     with pytest.raises(chamfer.OptionsError, match="does not move"):
         chamfer.pose(still)
+
+
+def test_more_joints_than_the_limit_is_a_limit_error():
+    with pytest.raises(chamfer.LimitError, match="joints"):
+        chamfer.bake(CYLINDER, max_joints=1)

@@ -303,6 +303,16 @@ fn with_document<R>(
         });
     limits.check(path, Limited::Vertices, vertices)?;
     limits.check(path, Limited::Triangles, triangles)?;
+    // The joints of the skins the drawn nodes use, declared before any is read.
+    let skins: std::collections::BTreeSet<usize> = node_meshes
+        .iter()
+        .filter_map(|n| root.nodes.get(n.node?)?.skin.map(|s| s.value()))
+        .collect();
+    let joints = skins
+        .iter()
+        .filter_map(|&s| root.skins.get(s))
+        .fold(0u64, |n, skin| n.saturating_add(skin.joints.len() as u64));
+    limits.check(path, Limited::Joints, joints)?;
 
     let buffers =
         buffers::load(root, gltf.blob.as_deref(), path, companions, limits).map_err(invalid)?;
