@@ -36,14 +36,7 @@ pub fn attach(input: InputMotion, input_vertex_map: &[u32], vertices: usize) -> 
     if input.is_empty() {
         return (Motion::default(), 0);
     }
-    const NONE: u32 = u32::MAX;
-    // The first input vertex of each topology vertex.
-    let mut first = vec![NONE; vertices];
-    for (i, &v) in input_vertex_map.iter().enumerate() {
-        if first[v as usize] == NONE {
-            first[v as usize] = i as u32;
-        }
-    }
+    let first = first_inputs(input_vertex_map, vertices);
     let mut differ = vec![false; input_vertex_map.len()];
     let (mut joints, mut weights) = (Vec::new(), Vec::new());
     if !input.joints.is_empty() {
@@ -57,23 +50,25 @@ pub fn attach(input: InputMotion, input_vertex_map: &[u32], vertices: usize) -> 
     }
     let mut morph_starts = Vec::with_capacity(input.targets.len());
     let (mut morph_vertices, mut morph_deltas) = (Vec::new(), Vec::new());
+    // Each input vertex's delta in the target at hand (zero elsewhere), reset after each target.
+    let mut moved = vec![[0.0f32; 3]; input_vertex_map.len()];
     for target in input.targets {
         morph_starts.push(morph_vertices.len() as u32);
         // A delta of a vertex that is not its topology vertex's first is not kept; it differs from
         // the first's unless that one moves by the same amount.
         let mut kept: Vec<(u32, [f32; 3])> = Vec::with_capacity(target.len());
-        let mut moved = std::collections::HashMap::new();
         for &(i, delta) in &target {
             let v = input_vertex_map[i as usize];
             if first[v as usize] == i {
                 kept.push((v, delta));
             }
-            moved.insert(i, delta);
+            moved[i as usize] = delta;
         }
         for (i, &v) in input_vertex_map.iter().enumerate() {
-            let mine = moved.get(&(i as u32)).copied().unwrap_or([0.0; 3]);
-            let theirs = moved.get(&first[v as usize]).copied().unwrap_or([0.0; 3]);
-            differ[i] |= mine != theirs;
+            differ[i] |= moved[i] != moved[first[v as usize] as usize];
+        }
+        for &(i, _) in &target {
+            moved[i as usize] = [0.0; 3];
         }
         kept.sort_unstable_by_key(|&(v, _)| v);
         for (v, delta) in kept {
@@ -100,32 +95,36 @@ pub fn rigid_groups(input: &InputMotion, input_vertex_map: &[u32], vertices: usi
     for &(i, _) in input.targets.iter().flatten() {
         morphed[input_vertex_map[i as usize] as usize] = true;
     }
-    let mut first = vec![u32::MAX; vertices];
-    for (i, &v) in input_vertex_map.iter().enumerate().rev() {
-        first[v as usize] = i as u32;
-    }
+    let first = first_inputs(input_vertex_map, vertices);
     let mut groups = std::collections::HashMap::new();
+    // Groups are numbered in order of appearance; a morphed vertex is one of its own.
     let mut next = 0u32;
+    let mut new_group = || {
+        next += 1;
+        next - 1
+    };
     (0..vertices)
         .map(|v| {
+            if morphed[v] {
+                return new_group();
+            }
             let i = first[v] as usize;
             let skin = match input.joints.get(i) {
                 Some(joints) => (*joints, input.weights[i].map(f32::to_bits)),
                 None => ([0; INFLUENCES], [0; INFLUENCES]),
             };
-            let key = (!morphed[v]).then_some(skin);
-            match key {
-                Some(key) => *groups.entry(key).or_insert_with(|| {
-                    next += 1;
-                    next - 1
-                }),
-                None => {
-                    next += 1;
-                    next - 1
-                }
-            }
+            *groups.entry(skin).or_insert_with(&mut new_group)
         })
         .collect()
+}
+
+/// The first input vertex welded into each of the `vertices` topology vertices.
+fn first_inputs(input_vertex_map: &[u32], vertices: usize) -> Vec<u32> {
+    let mut first = vec![u32::MAX; vertices];
+    for (i, &v) in input_vertex_map.iter().enumerate().rev() {
+        first[v as usize] = i as u32;
+    }
+    first
 }
 
 #[cfg(test)]
@@ -162,5 +161,20 @@ mod tests {
             rig: Rig::default(),
         };
         assert_eq!(attach(input, &[1, 0, 0], 2).1, 1);
+    }
+
+    #[test]
+    fn vertices_share_a_group_only_when_they_always_move_together() {
+        let input = InputMotion {
+            joints: vec![[0; 4], [0; 4], [1, 0, 0, 0], [0; 4]],
+            weights: vec![[1.0, 0.0, 0.0, 0.0]; 4],
+            // Input vertex 3 is morphed: its topology vertex is a group of its own.
+            targets: vec![vec![(3, [0.0, 1.0, 0.0])]],
+            rig: Rig::default(),
+        };
+        let groups = rigid_groups(&input, &[0, 1, 2, 3], 4);
+        assert_eq!(groups[0], groups[1], "same joints and weights");
+        assert_ne!(groups[0], groups[2], "another joint");
+        assert!(groups[3] != groups[0] && groups[3] != groups[2], "morphed");
     }
 }

@@ -87,11 +87,14 @@ impl Asset {
         let kinds = SectionKind::of_version(version)
             .ok_or_else(|| io::Error::other(format!("no format version {version}")))?;
         // The clusters are derived: an older file simply lacks them.
-        if SectionKind::ALL.iter().any(|k| {
-            !kinds.contains(k)
-                && *k != SectionKind::EdgeClusters
-                && !self.section_bytes(*k).is_empty()
-        }) {
+        let lacks_rig = !kinds.contains(&SectionKind::Rig) && !self.motion.rig.is_empty();
+        if lacks_rig
+            || SectionKind::ALL.iter().any(|k| {
+                !kinds.contains(k)
+                    && *k != SectionKind::EdgeClusters
+                    && !self.section_bytes(*k).is_empty()
+            })
+        {
             return Err(io::Error::other(format!(
                 "version {version} cannot hold this asset's sections"
             )));
@@ -164,13 +167,22 @@ impl Asset {
 
     /// The encoded asset in a new vector.
     pub fn encode_to_vec(&self) -> Vec<u8> {
-        let capacity = self.encoded_len();
-        let mut bytes = Vec::with_capacity(capacity as usize);
+        // The clusters, the derived sections and the layout once, for the capacity and the bytes.
+        let clusters = self.clusters();
+        let written = Derived::of(self, &SectionKind::ALL, &clusters).and_then(|derived| {
+            let capacity = self
+                .layout(&SectionKind::ALL, &derived)?
+                .1
+                .last()
+                .map_or(0, |s| s.offset + s.length);
+            let mut bytes = Vec::with_capacity(capacity as usize);
+            self.write_as(FORMAT_VERSION, &SectionKind::ALL, &derived, &mut bytes)?;
+            Ok(bytes)
+        });
         // Writing to a Vec cannot fail; the header and rig limits are far above any real asset's.
-        if let Err(e) = self.encode(&mut bytes) {
-            panic!("chamfer: encoding into memory failed ({e}); please report this");
-        }
-        bytes
+        written.unwrap_or_else(|e| {
+            panic!("chamfer: encoding into memory failed ({e}); please report this")
+        })
     }
 
     /// The size of the encoded asset in bytes.

@@ -124,7 +124,7 @@ impl<'a> MotionReader<'a> {
                 self.ungrouped_skins += 1;
                 self.rest(drawn.vertices);
             }
-            (Some((_, _)), Some(skin)) => self.skinned(drawn, skin)?,
+            (Some(_), Some(skin)) => self.skinned(drawn, skin)?,
             (Some((n, _)), None) if self.moves(n)? => {
                 let joint = self.joint(n, drawn.world.inverse(), drawn.world)?;
                 self.joints

@@ -6,6 +6,7 @@
 //! asset ([`join`]): the triangles and the mesh's corners beside the vertices, attributes and
 //! clusters; then the edges beside the rings (coded rings need only the corners, not the edges).
 
+mod motion;
 mod raw;
 
 use std::borrow::Cow;
@@ -303,7 +304,7 @@ fn decode(
         intersection_segments: vertices.intersection_segments,
         intersection_starts: vertices.intersection_starts,
         edge_clusters: Vec::new(),
-        motion: super::motion::read(&|kind| sections.get(kind), shape.topology_vertices)?,
+        motion: motion::read(&|kind| sections.get(kind), shape.topology_vertices)?,
     };
     // Rings decoded from their orders are cycles within bounds by construction.
     if sections.coded(SectionKind::RingOrders).is_none() {
