@@ -178,21 +178,14 @@ mod tests {
 
     #[test]
     fn bad_keys_are_named() {
-        assert!(
-            check_keys(&[0.0, 0.0], &[1.0, 2.0], 1)
-                .unwrap_err()
-                .contains("not increasing")
-        );
-        assert!(
-            check_keys(&[0.0], &[1.0, 2.0], 1)
-                .unwrap_err()
-                .contains("2 values")
-        );
-        assert!(check_keys(&[], &[], 1).unwrap_err().contains("no keys"));
-        assert!(
-            check_keys(&[f32::NAN], &[1.0], 1)
-                .unwrap_err()
-                .contains("finite")
-        );
+        for (times, values, expected) in [
+            (&[0.0, 0.0][..], &[1.0, 2.0][..], "not increasing"),
+            (&[0.0][..], &[1.0, 2.0][..], "2 values"),
+            (&[][..], &[][..], "no keys"),
+            (&[f32::NAN][..], &[1.0][..], "finite"),
+        ] {
+            let error = check_keys(times, values, 1).expect_err(expected);
+            assert!(error.contains(expected), "{expected}: {error}");
+        }
     }
 }
